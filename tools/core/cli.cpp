@@ -1,0 +1,71 @@
+// Shared command-line conventions (see cli.hpp).
+#include "core/cli.hpp"
+
+#include <omp.h>
+
+#include <cstdio>
+#include <iostream>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/provenance.hpp"
+
+namespace finverse::cli {
+
+Standard::Standard(CLI::App& app, const std::string& tool_name) : tool(tool_name) {
+  log::set_tool(tool_name);
+  app.set_version_flag("--version", producer_string(tool_name));
+  app.set_config("--config", "", "read options from a TOML/INI file (same keys as the long flags)");
+  app.add_option("--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--log-level", log_level, "debug, info, warn, error or quiet")->capture_default_str();
+}
+
+nlohmann::json effective_config(const CLI::App& app) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const CLI::Option* opt : app.get_options()) {
+    const auto& name = opt->get_lnames().empty() ? opt->get_name() : opt->get_lnames().front();
+    if (name == "help" || name == "version" || name == "config" || name.empty()) continue;
+    std::vector<std::string> values = opt->results();
+    if (values.empty() && !opt->get_default_str().empty()) values = {opt->get_default_str()};
+    if (values.empty()) {
+      j[name] = nullptr;
+    } else if (values.size() == 1 && opt->get_expected_max() <= 1) {
+      j[name] = values.front();
+    } else {
+      j[name] = values;
+    }
+  }
+  for (const CLI::App* sub : app.get_subcommands()) {
+    j["subcommand"] = sub->get_name();
+    j[sub->get_name()] = effective_config(*sub);
+  }
+  return j;
+}
+
+int threads_in_use() { return omp_get_max_threads(); }
+
+int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::function<int()>& body) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);  // --help, --version
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "%s: error: %s (see --help)\n", standard.tool.c_str(), e.what());
+    return kExitError;
+  }
+  try {
+    log::set_level(log::parse_level(standard.log_level));
+    if (standard.threads > 0) omp_set_num_threads(standard.threads);
+    log::info(producer_string(standard.tool));
+    log::info("configuration: " + effective_config(app).dump());
+    const int rc = body();
+    log::timing_summary(threads_in_use());
+    return rc;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", standard.tool.c_str(), e.what());
+    return kExitError;
+  }
+}
+
+}  // namespace finverse::cli

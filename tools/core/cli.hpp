@@ -1,0 +1,40 @@
+// Command-line conventions shared by every executable (DESIGN.md section 3, "Command line"):
+// --help, --version, --threads N (else OMP_NUM_THREADS), --log-level, --config FILE (a TOML/INI
+// file with the same keys as the flags, CLI11's format); the effective configuration is echoed
+// to the log and returned as JSON for the output files' `config` attribute. Errors end with one
+// line on stderr and exit code 2.
+//
+//   int main(int argc, char** argv) {
+//     CLI::App app{"fin-mesh: mesh the fin planform"};
+//     finverse::cli::Standard std_opts(app, "fin-mesh");
+//     app.add_option("--in", in, "kinematics.h5")->required();
+//     return finverse::cli::run(app, std_opts, argc, argv, [&] { ...; return 0; });
+//   }
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+namespace finverse::cli {
+
+struct Standard {
+  Standard(CLI::App& app, const std::string& tool);
+  std::string tool;
+  int threads = 0;  // 0: OMP_NUM_THREADS or the OpenMP default
+  std::string log_level = "info";
+};
+
+// Effective values of every option (defaults included), keyed by long name without dashes.
+nlohmann::json effective_config(const CLI::App& app);
+
+// Parses, applies threads and log level, echoes the configuration, runs `body` and maps
+// exceptions to exit codes: finverse::Error and other std::exception -> one line + 2,
+// CLI11 usage errors -> CLI11's message + 2, --help/--version -> 0.
+int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::function<int()>& body);
+
+int threads_in_use();
+
+}  // namespace finverse::cli

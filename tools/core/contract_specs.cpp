@@ -1,0 +1,171 @@
+// The contracts of the stage files of DESIGN.md section 4, written down once. Readers and
+// writers in stage_files.hpp check against these; CONTRACTS.md is rendered from them.
+// A change of meaning or shape of an existing dataset bumps the schema version.
+#include "core/contract.hpp"
+
+namespace finverse::contract {
+namespace {
+
+using h5::DType;
+constexpr auto f64 = DType::f64;
+constexpr auto i32 = DType::i32;
+constexpr auto i64 = DType::i64;
+constexpr auto u8 = DType::u8;
+constexpr auto str = DType::str;
+
+DatasetSpec opt(DatasetSpec d) {
+  d.required = false;
+  return d;
+}
+DatasetSpec may_be_nan(DatasetSpec d) {
+  d.finite = false;
+  return d;
+}
+
+AttributeSpec period_attr() { return {"T", "s", "period of periodic data; absent when not periodic"}; }
+std::vector<AttributeSpec> flow_attrs() {
+  return {{"rho", "kg m-3", "fluid density used for the coefficients", true},
+          {"U", "m s-1", "reference (free-stream) speed", true},
+          {"reference_area", "m2", "area that normalises the force coefficients", true},
+          period_attr()};
+}
+std::vector<DatasetSpec> force_datasets(const std::string& nt) {
+  return {
+      {"nodal_force", f64, {nt, "nv", "3"}, "N", "net hydrodynamic force on each mid-surface node (both sides)"},
+      {"force_total", f64, {nt, "3"}, "N", "total hydrodynamic force on the fin; thrust is -x"},
+      {"coefficients/thrust", f64, {nt}, "1", "C_T = -F_x / (0.5 rho U^2 A)"},
+      {"coefficients/lateral", f64, {nt}, "1", "C_Y = F_y / (0.5 rho U^2 A)"},
+      {"coefficients/vertical", f64, {nt}, "1", "C_Z = F_z / (0.5 rho U^2 A)"},
+  };
+}
+
+std::vector<FileSpec> build() {
+  std::vector<FileSpec> specs;
+
+  specs.push_back({"finverse/truth", 1, "truth.h5", "fin-synth",
+                   "The virtual experiment's ground truth, for scoring only: the motion of the truth fin, "
+                   "its materials and the effects it contains.",
+                   {
+                       {"template/points", f64, {"nv", "3"}, "m", "truth surface vertices at rest"},
+                       {"template/triangles", i32, {"ntri", "3"}, "", "truth surface triangles (0-based)"},
+                       {"time", f64, {"nf"}, "s", "frame times"},
+                       {"points", f64, {"nf", "nv", "3"}, "m", "truth vertex positions per frame"},
+                       {"materials/names", str, {"np"}, "", "material parameter names, e.g. E_membrane, E_ray01, nu"},
+                       {"materials/units", str, {"np"}, "", "unit of each parameter"},
+                       {"materials/values", f64, {"np"}, "", "truth values in the units of materials/units"},
+                   },
+                   {period_attr(), {"effects", "", "JSON object of the extra effects in the truth model", false, true}}});
+
+  specs.push_back({"finverse/kinematics", 1, "kinematics.h5", "fin-track",
+                   "Reconstructed fin motion: the template driven by the fitted skeleton, per frame, with the fit "
+                   "quality in every view.",
+                   {
+                       {"template/points", f64, {"nv", "3"}, "m", "template surface vertices at rest"},
+                       {"template/triangles", i32, {"ntri", "3"}, "", "template triangles (0-based)"},
+                       {"template/ray_offsets", i32, {"nr+1"}, "", "CSR offsets of each ray's vertex polyline"},
+                       {"template/ray_vertices", i32, {"nrv"}, "", "template vertices along each ray, root to tip"},
+                       {"time", f64, {"nf"}, "s", "frame times"},
+                       {"points", f64, {"nf", "nv", "3"}, "m", "reconstructed vertex positions"},
+                       {"skeleton/joint_parent", i32, {"nj"}, "", "parent joint, -1 for the root"},
+                       {"skeleton/joint_rest", f64, {"nj", "3"}, "m", "joint positions in the template"},
+                       {"skeleton/joint_angles", f64, {"nf", "nj", "3"}, "rad", "fitted joint rotation vectors"},
+                       {"quality/views", str, {"nviews"}, "", "camera view names"},
+                       may_be_nan({"quality/silhouette_iou", f64, {"nf", "nviews"}, "1",
+                                   "silhouette intersection over union; NaN where the view is missing"}),
+                       may_be_nan({"quality/reprojection_rms", f64, {"nf", "nviews"}, "px",
+                                   "RMS feature reprojection error; NaN where the view is missing"}),
+                       {"quality/valid", u8, {"nf", "nviews"}, "", "1 where the view's frame was present and used"},
+                   },
+                   {period_attr(), {"fps", "s-1", "camera frame rate"}}});
+
+  specs.push_back({"finverse/mesh", 1, "mesh.h5", "fin-mesh",
+                   "Structural mesh of the fin (membrane shells, ray beams on mesh edges, root node set) and the "
+                   "closed thin surface the immersed-boundary solver sees.",
+                   {
+                       {"points", f64, {"nv", "3"}, "m", "mid-surface nodes at rest"},
+                       {"triangles", i32, {"ntri", "3"}, "", "shell elements (0-based nodes)"},
+                       {"shell/thickness", f64, {"ntri"}, "m", "membrane thickness per shell element"},
+                       {"shell/region", i32, {"ntri"}, "", "material region of each shell element (0 = membrane)"},
+                       {"beams/elements", i32, {"nb", "2"}, "", "beam elements on mesh edges (0-based nodes)"},
+                       {"beams/ray", i32, {"nb"}, "", "ray number of each beam element, 1 = dorsal edge"},
+                       {"beams/s", f64, {"nb", "2"}, "1", "arc-length fraction along the ray at both ends"},
+                       {"beams/thickness", f64, {"nb", "2"}, "m", "section thickness (flapping direction) at both ends"},
+                       {"beams/width", f64, {"nb", "2"}, "m", "section width (in the fin plane) at both ends"},
+                       {"root_nodes", i32, {"nroot"}, "", "nodes whose motion is prescribed (the fin root)"},
+                       {"ibm/points", f64, {"nvi", "3"}, "m", "closed thin immersed-boundary surface at rest"},
+                       {"ibm/triangles", i32, {"ntri_ibm", "3"}, "", "its triangles, outward normals"},
+                       {"ibm/source_node", i32, {"nvi"}, "", "mid-surface node each surface vertex is offset from"},
+                       {"ibm/offset_sign", i32, {"nvi"}, "", "+1/-1: side of the mid-surface, 0 on the rim"},
+                   },
+                   {{"ibm_thickness", "m", "thickness of the closed immersed-boundary body"},
+                    {"chord", "m", "fin chord c"}}});
+
+  specs.push_back({"finverse/motion", 1, "motion.h5", "fin-mesh",
+                   "The reconstructed motion carried onto the structural mesh nodes.",
+                   {
+                       {"time", f64, {"nf"}, "s", "sample times"},
+                       {"points", f64, {"nf", "nv", "3"}, "m", "mesh node positions"},
+                       opt({"velocity", f64, {"nf", "nv", "3"}, "m s-1", "mesh node velocities"}),
+                   },
+                   {period_attr()}});
+
+  {
+    FileSpec s{"finverse/loads", 1, "loads.h5", "fin-cfd",
+               "Hydrodynamic loads on the fin under prescribed motion. Nodal forces and coefficients come from the "
+               "same surface traction, so they agree.",
+               {{"time", f64, {"nt"}, "s", "output times"}},
+               flow_attrs()};
+    for (auto& d : force_datasets("nt")) s.datasets.push_back(d);
+    s.datasets.push_back({"pressure_jump", f64, {"nt", "ntri"}, "Pa", "pressure difference across each shell element"});
+    specs.push_back(s);
+  }
+
+  specs.push_back({"finverse/materials", 1, "materials.h5", "fin-fit",
+                   "Inverse-fit result: the parameters, their bounds, the best values, every GA run and the "
+                   "uncertainty from the local polish. Values are SI; moduli are searched as log10.",
+                   {
+                       {"parameters/names", str, {"np"}, "", "parameter names"},
+                       {"parameters/units", str, {"np"}, "", "unit of each parameter"},
+                       {"parameters/scale", str, {"np"}, "", "search scale: log10 or linear"},
+                       {"parameters/lower", f64, {"np"}, "", "lower bounds (units per parameters/units)"},
+                       {"parameters/upper", f64, {"np"}, "", "upper bounds"},
+                       {"best", f64, {"np"}, "", "best parameter values"},
+                       {"objective", f64, {}, "m", "objective at the best values"},
+                       {"runs/seed", i64, {"nruns"}, "", "seed of each independent run"},
+                       {"runs/best", f64, {"nruns", "np"}, "", "best values of each run"},
+                       {"runs/objective", f64, {"nruns"}, "m", "final objective of each run"},
+                       {"runs/generations", i32, {"nruns"}, "", "generations until convergence"},
+                       may_be_nan({"runs/history", f64, {"nruns", "ngen"}, "m",
+                                   "best objective per generation; NaN after a run converged"}),
+                       opt({"uncertainty/std", f64, {"np"}, "", "standard deviation in the search scale"}),
+                       opt({"uncertainty/ci95", f64, {"np", "2"}, "", "95% confidence interval in parameter units"}),
+                       opt({"uncertainty/correlation", f64, {"np", "np"}, "1", "parameter correlation matrix"}),
+                   },
+                   {}});
+
+  {
+    FileSpec s{"finverse/fsi", 1, "fsi.h5", "fin-fsi",
+               "Fully coupled flow-structure simulation: the structure's motion, its loads and the coupling history.",
+               {
+                   {"time", f64, {"nt"}, "s", "output times"},
+                   {"points", f64, {"nt", "nv", "3"}, "m", "mesh node positions"},
+                   opt({"velocity", f64, {"nt", "nv", "3"}, "m s-1", "mesh node velocities"}),
+               },
+               flow_attrs()};
+    for (auto& d : force_datasets("nt")) s.datasets.push_back(d);
+    s.datasets.push_back({"coupling/iterations", i32, {"nt"}, "", "coupling iterations of each step"});
+    s.datasets.push_back({"coupling/residual", f64, {"nt"}, "m", "final interface displacement change of each step"});
+    specs.push_back(s);
+  }
+  (void)i64;
+  return specs;
+}
+
+}  // namespace
+
+const std::vector<FileSpec>& all() {
+  static const std::vector<FileSpec> specs = build();
+  return specs;
+}
+
+}  // namespace finverse::contract

@@ -1,0 +1,41 @@
+// Provenance attributes of output files (see provenance.hpp).
+#include "core/provenance.hpp"
+
+#include <unistd.h>
+
+#include "core/sha256.hpp"
+#include "core/version.hpp"
+
+namespace finverse {
+
+std::string producer_string(const std::string& tool) {
+  std::string s = std::string("finverse ") + version_string() + " (git " + git_describe() + ")";
+  return tool.empty() ? s : tool + " " + s;
+}
+
+std::string host_name() {
+  char buf[256] = {0};
+  if (gethostname(buf, sizeof(buf) - 1) != 0) return "unknown";
+  return buf;
+}
+
+const std::vector<std::string>& provenance_attribute_names() {
+  static const std::vector<std::string> names = {"producer", "config", "inputs"};
+  return names;
+}
+
+nlohmann::json hash_inputs(const std::vector<std::filesystem::path>& inputs) {
+  auto arr = nlohmann::json::array();
+  for (const auto& p : inputs) arr.push_back({{"path", p.string()}, {"sha256", sha256_file(p)}});
+  return arr;
+}
+
+void write_provenance(h5::Group& root, const std::string& schema, int schema_version, const Provenance& p) {
+  root.set_attr(".", "schema", schema);
+  root.set_attr(".", "schema_version", static_cast<std::int64_t>(schema_version));
+  root.set_attr(".", "producer", producer_string(p.tool));
+  root.set_attr(".", "config", p.config.dump());
+  root.set_attr(".", "inputs", hash_inputs(p.inputs).dump());
+}
+
+}  // namespace finverse

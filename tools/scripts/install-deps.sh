@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Installs every build, test and workflow dependency of finverse from Debian 12 packages.
+# Idempotent: apt-get skips what is already there. Nothing is downloaded outside apt.
+#
+#   tools/scripts/install-deps.sh            build + workflow + tests
+#   tools/scripts/install-deps.sh --peers    also the benchmark peers (OpenFOAM, CalculiX, hypre)
+#
+# Why each package beyond the expected set (Eigen, OpenCV, CGAL, VTK, HDF5, Snakemake, pagmo2,
+# CLI11, GoogleTest, h5py, matplotlib):
+#   nlohmann-json3-dev   JSON for the provenance `config` attribute and summary.json; a complete,
+#                        tested parser/serialiser is better than a hand-written one.
+#   libsuitesparse-dev   CHOLMOD sparse Cholesky for the FEM (DESIGN.md 5.2), faster than Eigen's.
+#   python3-jsonschema   Snakemake's config validation against config/config.schema.yaml.
+#   python3-numpy        array handling in the plotting and summary helpers.
+#   ninja-build          faster incremental builds than make (optional; CMake falls back to make).
+set -euo pipefail
+
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+
+pkgs=(
+  build-essential cmake ninja-build pkg-config git ca-certificates
+  libeigen3-dev libopencv-dev libcgal-dev libvtk9-dev libhdf5-dev
+  libpagmo-dev libcli11-dev libgtest-dev libgmock-dev nlohmann-json3-dev libsuitesparse-dev
+  libomp-dev
+  snakemake python3-jsonschema python3-yaml python3-numpy python3-h5py python3-matplotlib
+)
+peers=(openfoam calculix-ccx libhypre-dev)
+
+want=("${pkgs[@]}")
+if [ "${1:-}" = "--peers" ]; then want+=("${peers[@]}"); fi
+
+missing=()
+for p in "${want[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#want[@]} packages present"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
