@@ -6,19 +6,6 @@
 #include <limits>
 
 namespace finverse {
-namespace {
-
-std::string index_string(std::size_t flat, const std::vector<std::size_t>& shape) {
-  std::vector<std::size_t> idx(shape.size());
-  for (std::size_t d = shape.size(); d-- > 0;) {
-    idx[d] = shape[d] ? flat % shape[d] : 0;
-    flat = shape[d] ? flat / shape[d] : 0;
-  }
-  return shape_string(idx);
-}
-
-}  // namespace
-
 Comparison mismatch(const std::string& object, const std::string& status, const std::string& detail) {
   Comparison c;
   c.object = object;

@@ -117,7 +117,7 @@ Dims check(const h5::File& file, const FileSpec& spec) {
       const auto a = file.read_f64(d.path);
       for (std::size_t i = 0; i < a.size(); ++i)
         if (!std::isfinite(a.data[i]))
-          throw Error(where + "non-finite value " + std::to_string(a.data[i]) + " at flat index " + std::to_string(i));
+          throw Error(where + "non-finite value " + std::to_string(a.data[i]) + " at " + index_string(i, a.shape));
     }
   }
   return dims;

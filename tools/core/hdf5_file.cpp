@@ -13,12 +13,6 @@
 
 namespace finverse {
 
-std::string shape_string(const std::vector<std::size_t>& shape) {
-  std::string s = "[";
-  for (std::size_t i = 0; i < shape.size(); ++i) s += (i ? "," : "") + std::to_string(shape[i]);
-  return s + "]";
-}
-
 namespace h5 {
 namespace {
 

@@ -12,6 +12,7 @@ namespace finverse {
 
 template <class T>
 struct NdArray {
+  using value_type = T;
   std::vector<std::size_t> shape;
   std::vector<T> data;
 
@@ -40,5 +41,7 @@ struct NdArray {
 
 // "[3,412,3]": how shapes appear in messages.
 std::string shape_string(const std::vector<std::size_t>& shape);
+// The multi-index of a flat row-major position, as "[2,7,1]".
+std::string index_string(std::size_t flat, const std::vector<std::size_t>& shape);
 
 }  // namespace finverse
