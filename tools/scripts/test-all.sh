@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Builds finverse twice and runs every test in both builds:
+#   build/       Release, warnings as errors: unit, regression (fin-diff golden files), workflow
+#   build-asan/  Debug with AddressSanitizer + UndefinedBehaviorSanitizer: the unit tests
+# This is what .ci/run runs. Jobs default to the machine's cores (CI has 2).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+jobs=${JOBS:-$(nproc)}
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+
+echo "== Release build"
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DFINVERSE_WERROR=ON
+cmake --build build -j "$jobs"
+echo "== Release tests"
+ctest --test-dir build -j "$jobs" --output-on-failure --timeout 900
+
+echo "== Debug + ASan/UBSan build"
+cmake -S . -B build-asan "${generator[@]}" -DCMAKE_BUILD_TYPE=Debug -DFINVERSE_SANITIZE=ON -DFINVERSE_WERROR=ON
+cmake --build build-asan -j "$jobs"
+echo "== Debug + ASan/UBSan unit tests"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-asan -j "$jobs" --output-on-failure --timeout 1800 -L unit
+echo "== all tests passed"
