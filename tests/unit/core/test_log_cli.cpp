@@ -1,0 +1,84 @@
+// Logging, progress reports and the shared command-line conventions.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include "core/cli.hpp"
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "test_util.hpp"
+
+using namespace finverse;
+
+TEST(Log, DurationsReadNaturally) {
+  EXPECT_EQ(log::format_duration(12.34), "12.3s");
+  EXPECT_EQ(log::format_duration(185), "3m05s");
+  EXPECT_EQ(log::format_duration(3725), "1h02m");
+  EXPECT_THROW(log::parse_level("loud"), Error);
+  EXPECT_EQ(log::parse_level("warn"), log::Level::warn);
+}
+
+TEST(Log, ProgressReportsStepStatusAndEta) {
+  testing::internal::CaptureStderr();
+  log::set_level(log::Level::info);
+  {
+    log::Progress p("step", 100, 0.0);
+    p.update(0, "t=0 s");
+    p.update(50, "t=0.5 s  res=1e-6");
+    p.finish("ok");
+  }
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("step 50/100 (50%)  t=0.5 s  res=1e-6"), std::string::npos) << err;
+  EXPECT_NE(err.find("ETA"), std::string::npos) << err;
+  EXPECT_NE(err.find("step finished in"), std::string::npos) << err;
+}
+
+namespace {
+int run_exe(const std::string& args, std::string* out = nullptr) {
+  const auto tmp = std::filesystem::temp_directory_path() / ("finverse_cli_" + std::to_string(getpid()));
+  const int status = std::system((std::string(FIN_DIFF_EXE) + " " + args + " > " + tmp.string() + " 2>&1").c_str());
+  if (out) *out = test::slurp(tmp);
+  std::filesystem::remove(tmp);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+}  // namespace
+
+TEST(Cli, VersionHelpAndBadFlags) {
+  std::string out;
+  EXPECT_EQ(run_exe("--version", &out), 0);
+  EXPECT_NE(out.find("fin-diff finverse"), std::string::npos) << out;
+  EXPECT_EQ(run_exe("--help", &out), 0);
+  EXPECT_NE(out.find("--tolerances"), std::string::npos) << out;
+  EXPECT_EQ(run_exe("a.h5 b.h5 --no-such-flag", &out), 2);
+  EXPECT_NE(out.find("--no-such-flag"), std::string::npos) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << "one line: " << out;
+  EXPECT_EQ(run_exe("a.h5 b.h5 --atol -1", &out), 2);
+}
+
+TEST(Cli, EffectiveConfigurationHoldsEveryOption) {
+  CLI::App app{"t"};
+  cli::Standard s(app, "t");
+  double dt = 1e-3;
+  int n = 0;
+  app.add_option("--dt", dt)->capture_default_str();
+  app.add_option("--steps", n);
+  const char* argv[] = {"t", "--steps", "12", "--threads", "1"};
+  app.parse(5, const_cast<char**>(argv));
+  const auto j = cli::effective_config(app);
+  EXPECT_EQ(j["steps"], "12");
+  EXPECT_EQ(j["dt"], "0.001");
+  EXPECT_EQ(j["threads"], "1");
+  EXPECT_FALSE(j.contains("help"));
+}
+
+TEST(Cli, ConfigFileSetsOptions) {
+  test::ScratchDir dir;
+  std::ofstream(dir / "c.toml") << "steps = 7\n";
+  CLI::App app{"t"};
+  cli::Standard s(app, "t");
+  int n = 0;
+  app.add_option("--steps", n);
+  const std::string cfg = (dir / "c.toml").string();
+  const char* argv[] = {"t", "--config", cfg.c_str()};
+  app.parse(3, const_cast<char**>(argv));
+  EXPECT_EQ(n, 7);
+}
