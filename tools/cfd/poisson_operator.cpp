@@ -1,0 +1,346 @@
+// Finite-volume variable-coefficient Poisson operator on the stretched grid; see
+// poisson_operator.hpp for the discretisation.
+#include "cfd/poisson_operator.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace finverse::cfd {
+
+namespace {
+
+// Cell widths tangential to axis d at the face (i,j,k): the face area is their product.
+double face_area(const StretchedGrid& g, int d, int i, int j, int k) {
+  switch (d) {
+    case 0: return g.dy(j) * g.dz(k);
+    case 1: return g.dx(i) * g.dz(k);
+    default: return g.dx(i) * g.dy(j);
+  }
+}
+
+// The stencil kernel: out = b - A p (with_b) or A p. Runs over lines (j,k) in parallel; x fastest.
+// D = 2 skips the z terms at compile time.
+template <int D, bool WithB>
+void stencil(const PoissonOperator& op, const Field* b, const Field& p, Field& out) {
+  const StretchedGrid& g = op.grid();
+  const int nx = g.nx(), ny = g.ny(), nz = g.nz();
+  const double* tx = op.transmissibility(0).data();
+  const double* ty = op.transmissibility(1).data();
+  const double* tz = op.transmissibility(2).data();
+  const double* dg = op.diagonal().data();
+  const std::ptrdiff_t sy = p.stride_y(), sz = p.stride_z();
+#pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
+  for (int l = 0; l < ny * nz; ++l) {
+    const int j = l % ny, k = l / ny;
+    const double* pc = &p(0, j, k);
+    double* o = &out(0, j, k);
+    const double* bb = WithB ? &(*b)(0, j, k) : nullptr;
+    const double* txr = tx + static_cast<std::size_t>(nx + 1) * static_cast<std::size_t>(l);
+    const double* tys = ty + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) +
+                                                             static_cast<std::size_t>(ny + 1) * k);
+    const double* tyn = tys + nx;
+    const double* tzb = tz + static_cast<std::size_t>(nx) * static_cast<std::size_t>(l);
+    const double* tzt = tzb + static_cast<std::size_t>(nx) * ny;
+    const double* d = dg + static_cast<std::size_t>(nx) * static_cast<std::size_t>(l);
+    for (int i = 0; i < nx; ++i) {
+      double a = d[i] * pc[i] - txr[i] * pc[i - 1] - txr[i + 1] * pc[i + 1] - tys[i] * pc[i - sy] -
+                 tyn[i] * pc[i + sy];
+      if constexpr (D == 3) a -= tzb[i] * pc[i - sz] + tzt[i] * pc[i + sz];
+      if constexpr (WithB) o[i] = bb[i] - a;
+      else o[i] = a;
+    }
+  }
+}
+
+}  // namespace
+
+void PoissonOperator::setup(const StretchedGrid& grid, const FaceCoefficients& beta,
+                            const BoundaryConditions& bc) {
+  bc.validate();
+  grid_ = grid;
+  beta_ = beta;
+  bc_ = bc;
+  const int dim = grid.dim();
+  const int n[3] = {grid.nx(), grid.ny(), grid.nz()};
+  for (int d = 0; d < 3; ++d) {
+    if (beta.faces(d) != static_cast<std::size_t>(n[0] + (d == 0)) * static_cast<std::size_t>(n[1] + (d == 1)) *
+                             static_cast<std::size_t>(n[2] + (d == 2)))
+      throw std::invalid_argument("PoissonOperator: face coefficients do not match the grid");
+    for (double v : beta.values(d))
+      if (!(v >= 0) || !std::isfinite(v))
+        throw std::invalid_argument("PoissonOperator: beta must be finite and >= 0");
+  }
+
+  for (int d = 0; d < 3; ++d) {
+    auto& t = t_[static_cast<std::size_t>(d)];
+    t.assign(beta.faces(d), 0.0);
+    if (d >= dim) continue;  // 2-D: no z faces
+    const Axis& ax = grid.axis(d);
+    const int nd = ax.size();
+    const BcType lo = bc[static_cast<Side>(2 * d)], hi = bc[static_cast<Side>(2 * d + 1)];
+    const int e[3] = {n[0] + (d == 0), n[1] + (d == 1), n[2] + (d == 2)};
+    for (int k = 0; k < e[2]; ++k)
+      for (int j = 0; j < e[1]; ++j)
+        for (int i = 0; i < e[0]; ++i) {
+          const int f = d == 0 ? i : d == 1 ? j : k;  // face position along d
+          double dist;
+          int bf = f;  // face whose beta applies (a periodic last face takes face 0's)
+          if (f > 0 && f < nd) dist = ax.centre(f) - ax.centre(f - 1);
+          else if (lo == BcType::Periodic) {
+            dist = 0.5 * (ax.width(0) + ax.width(nd - 1));
+            bf = 0;
+          } else if ((f == 0 ? lo : hi) == BcType::Dirichlet) dist = 0.5 * ax.width(f == 0 ? 0 : nd - 1);
+          else continue;  // Neumann: the flux is data, it goes to the right-hand side
+          int bi = i, bj = j, bk = k;
+          (d == 0 ? bi : d == 1 ? bj : bk) = bf;
+          t[beta.index(d, i, j, k)] = beta(d, bi, bj, bk) * face_area(grid, d, i, j, k) / dist;
+        }
+  }
+
+  diag_.assign(grid.cells(), 0.0);
+  inv_diag_.assign(grid.cells(), 0.0);
+  active_cells_ = 0;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        double s = t_[0][beta.index(0, i, j, k)] + t_[0][beta.index(0, i + 1, j, k)] +
+                   t_[1][beta.index(1, i, j, k)] + t_[1][beta.index(1, i, j + 1, k)];
+        if (dim == 3) s += t_[2][beta.index(2, i, j, k)] + t_[2][beta.index(2, i, j, k + 1)];
+        const std::size_t c = cell_index(i, j, k);
+        diag_[c] = s;
+        if (s > 0) {
+          inv_diag_[c] = 1 / s;
+          ++active_cells_;
+        }
+      }
+  build_connectivity();
+}
+
+void PoissonOperator::fill_ghosts(Field& p) const {
+  // Axis by axis, each pass also copying the ghosts written by the previous ones, so that edge and
+  // corner ghosts are right too (linear prolongation reads them for doubly periodic domains).
+  const int nx = grid_.nx(), ny = grid_.ny(), nz = grid_.nz();
+  const int gz = dim() == 3 ? 1 : 0;
+  if (bc_.periodic(0))
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j) p(-1, j, k) = p(nx - 1, j, k), p(nx, j, k) = p(0, j, k);
+  if (bc_.periodic(1))
+    for (int k = 0; k < nz; ++k)
+      for (int i = -1; i <= nx; ++i) p(i, -1, k) = p(i, ny - 1, k), p(i, ny, k) = p(i, 0, k);
+  if (gz && bc_.periodic(2))
+    for (int j = -1; j <= ny; ++j)
+      for (int i = -1; i <= nx; ++i) p(i, j, -1) = p(i, j, nz - 1), p(i, j, nz) = p(i, j, 0);
+}
+
+void PoissonOperator::apply(Field& p, Field& out) const {
+  fill_ghosts(p);
+  if (dim() == 3) stencil<3, false>(*this, nullptr, p, out);
+  else stencil<2, false>(*this, nullptr, p, out);
+}
+
+void PoissonOperator::residual(const Field& b, Field& x, Field& r) const {
+  fill_ghosts(x);
+  if (dim() == 3) stencil<3, true>(*this, &b, x, r);
+  else stencil<2, true>(*this, &b, x, r);
+}
+
+void PoissonOperator::assemble_rhs(const Field& f, const BoundaryValues& values, Field& b) const {
+  const StretchedGrid& g = grid_;
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i)
+        b(i, j, k) = active(i, j, k) ? -f(i, j, k) * g.volume(i, j, k) : 0.0;
+
+  for (int s = 0; s < 2 * dim(); ++s) {
+    const Side side = static_cast<Side>(s);
+    const BcType type = bc_[side];
+    const auto& v = values[side];
+    if (type == BcType::Periodic || v.empty()) continue;
+    if (v.size() != side_faces(g, side))
+      throw std::invalid_argument("PoissonOperator::assemble_rhs: wrong number of boundary values");
+    const int d = side_axis(side);
+    const int cell = side_is_high(side) ? g.n(d) - 1 : 0;  // adjacent cell index along d
+    const int face = side_is_high(side) ? g.n(d) : 0;
+    const int na = d == 0 ? g.ny() : g.nx();                // first tangential extent
+    const int nb = d == 2 ? g.ny() : g.nz();                // second tangential extent
+    for (int q = 0; q < nb; ++q)
+      for (int p = 0; p < na; ++p) {
+        int ci[3], fi[3];
+        const int t1 = d == 0 ? 1 : 0, t2 = d == 2 ? 1 : 2;
+        ci[d] = cell, fi[d] = face;
+        ci[t1] = fi[t1] = p;
+        ci[t2] = fi[t2] = q;
+        const double val = v[static_cast<std::size_t>(p) + static_cast<std::size_t>(na) * q];
+        const std::size_t fx = beta_.index(d, fi[0], fi[1], fi[2]);
+        double add;
+        if (type == BcType::Dirichlet) add = t_[static_cast<std::size_t>(d)][fx] * val;
+        else add = beta_.values(d)[fx] * face_area(g, d, fi[0], fi[1], fi[2]) * val;
+        b(ci[0], ci[1], ci[2]) += add;
+      }
+  }
+}
+
+PoissonOperator PoissonOperator::coarsened(const std::array<bool, 3>& coarsen) const {
+  const StretchedGrid cg = grid_.coarsened(coarsen);
+  FaceCoefficients cb(cg, 0.0);
+  const StretchedGrid& g = grid_;
+  for (int d = 0; d < dim(); ++d) {
+    const int e[3] = {cg.nx() + (d == 0), cg.ny() + (d == 1), cg.nz() + (d == 2)};
+    for (int K = 0; K < e[2]; ++K)
+      for (int J = 0; J < e[1]; ++J)
+        for (int I = 0; I < e[0]; ++I) {
+          // Fine faces covering coarse face (I,J,K): along d the coinciding face, tangentially the
+          // children of the coarse cell.
+          const int C[3] = {I, J, K};
+          int lo[3], hi[3];
+          for (int a = 0; a < 3; ++a) {
+            const bool c = coarsen[static_cast<std::size_t>(a)];
+            if (a == d) lo[a] = hi[a] = c ? 2 * C[a] : C[a];
+            else lo[a] = c ? 2 * C[a] : C[a], hi[a] = c ? 2 * C[a] + 1 : C[a];
+          }
+          double num = 0, den = 0;
+          for (int k = lo[2]; k <= hi[2]; ++k)
+            for (int j = lo[1]; j <= hi[1]; ++j)
+              for (int i = lo[0]; i <= hi[0]; ++i) {
+                const double a = face_area(g, d, i, j, k);
+                num += a * beta_(d, i, j, k);
+                den += a;
+              }
+          cb(d, I, J, K) = num / den;
+        }
+  }
+  PoissonOperator coarse;
+  coarse.setup(cg, cb, bc_);
+  return coarse;
+}
+
+void PoissonOperator::build_connectivity() {
+  const int nx = grid_.nx(), ny = grid_.ny(), nz = grid_.nz();
+  component_.assign(grid_.cells(), -1);
+  singular_.clear();
+  std::vector<std::size_t> stack;
+  const auto dirichlet_face = [&](int d, int i, int j, int k) {
+    // A Dirichlet boundary face with nonzero transmissibility pins the component's constant.
+    return t_[static_cast<std::size_t>(d)][beta_.index(d, i, j, k)] > 0;
+  };
+  for (int k0 = 0; k0 < nz; ++k0)
+    for (int j0 = 0; j0 < ny; ++j0)
+      for (int i0 = 0; i0 < nx; ++i0) {
+        const std::size_t c0 = cell_index(i0, j0, k0);
+        if (diag_[c0] <= 0 || component_[c0] >= 0) continue;
+        const int id = static_cast<int>(singular_.size());
+        bool pinned = false;
+        component_[c0] = id;
+        stack.push_back(c0);
+        while (!stack.empty()) {
+          const std::size_t c = stack.back();
+          stack.pop_back();
+          const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
+                    k = static_cast<int>(c / (static_cast<std::size_t>(nx) * ny));
+          const int idx[3] = {i, j, k}, n[3] = {nx, ny, nz};
+          for (int d = 0; d < dim(); ++d)
+            for (int side = 0; side < 2; ++side) {
+              int f[3] = {i, j, k};
+              f[d] += side;  // the face on the low (0) or high (1) side of the cell
+              if (t_[static_cast<std::size_t>(d)][beta_.index(d, f[0], f[1], f[2])] <= 0) continue;
+              int nb[3] = {i, j, k};
+              nb[d] = idx[d] + (side ? 1 : -1);
+              if (nb[d] < 0 || nb[d] >= n[d]) {
+                if (!bc_.periodic(d)) {
+                  pinned = pinned || dirichlet_face(d, f[0], f[1], f[2]);
+                  continue;
+                }
+                nb[d] = (nb[d] + n[d]) % n[d];
+              }
+              const std::size_t cn = cell_index(nb[0], nb[1], nb[2]);
+              if (component_[cn] < 0) {
+                component_[cn] = id;
+                stack.push_back(cn);
+              }
+            }
+        }
+        singular_.push_back(pinned ? 0 : 1);
+      }
+}
+
+bool PoissonOperator::any_singular() const {
+  for (char s : singular_)
+    if (s) return true;
+  return false;
+}
+
+namespace {
+// Per-component sums of w(i,j,k) * x(i,j,k) and of w, in a fixed (serial) order.
+template <class Weight>
+void component_sums(const PoissonOperator& op, const Field& x, Weight w, std::vector<double>& sx,
+                    std::vector<double>& sw) {
+  const StretchedGrid& g = op.grid();
+  sx.assign(static_cast<std::size_t>(op.components()), 0.0);
+  sw.assign(static_cast<std::size_t>(op.components()), 0.0);
+  const auto& comp = op.component();
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i) {
+        const int c = comp[op.cell_index(i, j, k)];
+        if (c < 0 || !op.singular(c)) continue;
+        const double wi = w(i, j, k);
+        sx[static_cast<std::size_t>(c)] += wi * x(i, j, k);
+        sw[static_cast<std::size_t>(c)] += wi;
+      }
+}
+
+// x -= shift_c * w(i,j,k) on every singular component c.
+template <class Weight>
+void subtract(const PoissonOperator& op, Field& x, Weight w, const std::vector<double>& shift) {
+  const StretchedGrid& g = op.grid();
+  const auto& comp = op.component();
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i) {
+        const int c = comp[op.cell_index(i, j, k)];
+        if (c >= 0 && op.singular(c)) x(i, j, k) -= shift[static_cast<std::size_t>(c)] * w(i, j, k);
+      }
+}
+}  // namespace
+
+void PoissonOperator::remove_mean(Field& r) const {
+  if (!any_singular()) return;
+  std::vector<double> s, n;
+  auto one = [](int, int, int) { return 1.0; };
+  component_sums(*this, r, one, s, n);
+  for (std::size_t c = 0; c < s.size(); ++c) s[c] = n[c] > 0 ? s[c] / n[c] : 0;
+  subtract(*this, r, one, s);
+}
+
+void PoissonOperator::make_compatible(Field& b) const {
+  if (!any_singular()) return;
+  std::vector<double> s, v;
+  auto one = [](int, int, int) { return 1.0; };
+  component_sums(*this, b, one, s, v);  // s = sum b
+  auto vol = [&](int i, int j, int k) { return grid_.volume(i, j, k); };
+  Field unit = make_field();
+  unit.fill(1.0);
+  std::vector<double> dummy;
+  component_sums(*this, unit, vol, dummy, v);  // v = component volume
+  for (std::size_t c = 0; c < s.size(); ++c) s[c] = v[c] > 0 ? s[c] / v[c] : 0;
+  subtract(*this, b, vol, s);
+}
+
+void PoissonOperator::remove_volume_mean(Field& p) const {
+  if (!any_singular()) return;
+  std::vector<double> s, v;
+  auto vol = [&](int i, int j, int k) { return grid_.volume(i, j, k); };
+  component_sums(*this, p, vol, s, v);
+  for (std::size_t c = 0; c < s.size(); ++c) s[c] = v[c] > 0 ? s[c] / v[c] : 0;
+  subtract(*this, p, [](int, int, int) { return 1.0; }, s);
+}
+
+void PoissonOperator::zero_inactive(Field& x) const {
+  if (active_cells_ == grid_.cells()) return;
+  for (int k = 0; k < grid_.nz(); ++k)
+    for (int j = 0; j < grid_.ny(); ++j)
+      for (int i = 0; i < grid_.nx(); ++i)
+        if (!active(i, j, k)) x(i, j, k) = 0;
+}
+
+}  // namespace finverse::cfd

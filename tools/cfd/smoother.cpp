@@ -1,0 +1,191 @@
+// Red-black point and zebra line Gauss-Seidel smoothers; see smoother.hpp.
+#include "cfd/smoother.hpp"
+
+#include <algorithm>
+#include <vector>
+
+namespace finverse::cfd {
+
+namespace {
+
+// Updates the cells of one colour: x_P = (b_P + sum_f T_f x_N) / diag_P. Inactive cells have
+// inverse diagonal 0 and stay at 0.
+template <int D>
+void colour_update(const PoissonOperator& op, const Field& b, Field& x, int colour) {
+  const StretchedGrid& g = op.grid();
+  const int nx = g.nx(), ny = g.ny(), nz = g.nz();
+  const double* tx = op.transmissibility(0).data();
+  const double* ty = op.transmissibility(1).data();
+  const double* tz = op.transmissibility(2).data();
+  const double* id = op.inverse_diagonal().data();
+  const std::ptrdiff_t sy = x.stride_y(), sz = x.stride_z();
+#pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
+  for (int l = 0; l < ny * nz; ++l) {
+    const int j = l % ny, k = l / ny;
+    double* xc = &x(0, j, k);
+    const double* bb = &b(0, j, k);
+    const double* txr = tx + static_cast<std::size_t>(nx + 1) * static_cast<std::size_t>(l);
+    const double* tys = ty + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) +
+                                                             static_cast<std::size_t>(ny + 1) * k);
+    const double* tyn = tys + nx;
+    const double* tzb = tz + static_cast<std::size_t>(nx) * static_cast<std::size_t>(l);
+    const double* tzt = tzb + static_cast<std::size_t>(nx) * ny;
+    const double* inv = id + static_cast<std::size_t>(nx) * static_cast<std::size_t>(l);
+    for (int i = (j + k + colour) & 1; i < nx; i += 2) {
+      double s = bb[i] + txr[i] * xc[i - 1] + txr[i + 1] * xc[i + 1] + tys[i] * xc[i - sy] +
+                 tyn[i] * xc[i + sy];
+      if constexpr (D == 3) s += tzb[i] * xc[i - sz] + tzt[i] * xc[i + sz];
+      xc[i] = s * inv[i];
+    }
+  }
+}
+
+// Solves the lines along axis `a` whose transverse index parity is `colour`. Each line is the
+// tridiagonal system  diag_m x_m - T_{m} x_{m-1} - T_{m+1} x_{m+1} = b_m + transverse neighbours,
+// with the wrap-around couplings of a periodic axis handled by the Sherman-Morrison formula.
+// Inactive cells (diag 0) are held at zero by replacing their row with the identity.
+template <int D>
+void line_update(const PoissonOperator& op, const Field& b, Field& x, int a, int colour) {
+  const StretchedGrid& g = op.grid();
+  const int n[3] = {g.nx(), g.ny(), g.nz()};
+  const int t1 = a == 0 ? 1 : 0, t2 = a == 2 ? 1 : 2;  // transverse axes
+  const int m = n[a];
+  const bool periodic = op.bc().periodic(a) && m > 2;
+  const FaceCoefficients& beta = op.beta();
+  const std::ptrdiff_t stride[3] = {1, x.stride_y(), x.stride_z()};
+  const int lines = n[t1] * n[t2];
+#pragma omp parallel if (static_cast<long>(g.cells()) >= parallel_min_cells)
+  {
+    std::vector<double> lo(static_cast<std::size_t>(m)), di(static_cast<std::size_t>(m)),
+        up(static_cast<std::size_t>(m)), rhs(static_cast<std::size_t>(m)), u(static_cast<std::size_t>(m)),
+        cp(static_cast<std::size_t>(m)), dp(static_cast<std::size_t>(m));
+    auto thomas = [&](std::vector<double>& r, std::vector<double>& d) {
+      // Solves (lo, di, up) y = r in place into r; d is scratch for the modified diagonal.
+      d[0] = di[0];
+      for (int q = 1; q < m; ++q) {
+        const double w = lo[static_cast<std::size_t>(q)] / d[static_cast<std::size_t>(q - 1)];
+        d[static_cast<std::size_t>(q)] = di[static_cast<std::size_t>(q)] - w * up[static_cast<std::size_t>(q - 1)];
+        // A zero pivot means the line segment so far is a whole singular component (an
+        // all-Neumann segment isolated by immersed-boundary faces); pinning it fixes its constant.
+        if (d[static_cast<std::size_t>(q)] <= 1e-12 * di[static_cast<std::size_t>(q)])
+          d[static_cast<std::size_t>(q)] = di[static_cast<std::size_t>(q)];
+        r[static_cast<std::size_t>(q)] -= w * r[static_cast<std::size_t>(q - 1)];
+      }
+      r[static_cast<std::size_t>(m - 1)] /= d[static_cast<std::size_t>(m - 1)];
+      for (int q = m - 2; q >= 0; --q)
+        r[static_cast<std::size_t>(q)] = (r[static_cast<std::size_t>(q)] - up[static_cast<std::size_t>(q)] *
+                                                                              r[static_cast<std::size_t>(q + 1)]) /
+                                         d[static_cast<std::size_t>(q)];
+    };
+#pragma omp for schedule(static)
+    for (int l = 0; l < lines; ++l) {
+      int idx[3];
+      idx[t1] = l % n[t1];
+      idx[t2] = l / n[t1];
+      if (((idx[t1] + idx[t2]) & 1) != colour) continue;
+      double wrap = 0;  // transmissibility of the periodic closing face
+      for (int q = 0; q < m; ++q) {
+        idx[a] = q;
+        const std::size_t c = op.cell_index(idx[0], idx[1], idx[2]);
+        const auto sq = static_cast<std::size_t>(q);
+        const double dg = op.diagonal()[c];
+        // Faces along the line and the transverse neighbours' contribution to the right-hand side.
+        int f[3] = {idx[0], idx[1], idx[2]};
+        const double tlo = op.transmissibility(a)[beta.index(a, f[0], f[1], f[2])];
+        f[a] += 1;
+        const double thi = op.transmissibility(a)[beta.index(a, f[0], f[1], f[2])];
+        double r = b(idx[0], idx[1], idx[2]);
+        const double* xp = &x(idx[0], idx[1], idx[2]);
+        for (int t : {t1, t2}) {
+          if (t >= D) continue;
+          int e[3] = {idx[0], idx[1], idx[2]};
+          const double tl = op.transmissibility(t)[beta.index(t, e[0], e[1], e[2])];
+          e[t] += 1;
+          const double th = op.transmissibility(t)[beta.index(t, e[0], e[1], e[2])];
+          r += tl * xp[-stride[t]] + th * xp[stride[t]];
+        }
+        if (dg > 0) {
+          di[sq] = dg;
+          lo[sq] = -tlo;
+          up[sq] = -thi;
+          rhs[sq] = r;
+        } else {
+          di[sq] = 1, lo[sq] = up[sq] = rhs[sq] = 0;
+        }
+        if (q == 0) wrap = tlo;
+      }
+      if (!periodic) {
+        // Non-periodic ends: the boundary transmissibility stays in the diagonal only.
+        lo[0] = 0;
+        up[static_cast<std::size_t>(m - 1)] = 0;
+        if (op.bc().periodic(a)) {
+          // m <= 2 periodic: both couplings go to the same neighbour; fold them into the band.
+          // For m == 1 the cell couples to itself and the net coupling is zero.
+          if (m == 1) di[0] -= 2 * wrap;
+          else {
+            up[0] -= wrap;
+            lo[1] -= wrap;
+          }
+        }
+        thomas(rhs, cp);
+      } else {
+        // Cyclic tridiagonal: A = A' + u v^T with the corner entries -wrap moved into a rank-one
+        // update (Sherman-Morrison), gamma chosen to keep A' well conditioned.
+        const auto last = static_cast<std::size_t>(m - 1);
+        const double corner = -wrap;  // A[0][m-1] = A[m-1][0]
+        const double gamma = -di[0];
+        const double d0 = di[0], dl = di[last];
+        di[0] = d0 - gamma;
+        di[last] = dl - corner * corner / gamma;
+        lo[0] = 0;
+        up[last] = 0;
+        std::fill(u.begin(), u.end(), 0.0);
+        u[0] = gamma;
+        u[last] = corner;
+        thomas(rhs, cp);
+        thomas(u, cp);
+        const double vy = rhs[0] + corner / gamma * rhs[last];
+        const double vz = u[0] + corner / gamma * u[last];
+        const double fac = vy / (1 + vz);
+        for (std::size_t q = 0; q <= last; ++q) rhs[q] -= fac * u[q];
+      }
+      for (int q = 0; q < m; ++q) {
+        idx[a] = q;
+        x(idx[0], idx[1], idx[2]) = rhs[static_cast<std::size_t>(q)];
+      }
+    }
+  }
+}
+
+template <int D>
+void rb(const PoissonOperator& op, const Field& b, Field& x, bool forward) {
+  for (int c : {0, 1}) {
+    op.fill_ghosts(x);
+    colour_update<D>(op, b, x, forward ? c : 1 - c);
+  }
+}
+
+template <int D>
+void zebra(const PoissonOperator& op, const Field& b, Field& x, bool forward) {
+  for (int s = 0; s < D; ++s) {
+    const int a = forward ? s : D - 1 - s;
+    for (int c : {0, 1}) {
+      op.fill_ghosts(x);
+      line_update<D>(op, b, x, a, forward ? c : 1 - c);
+    }
+  }
+}
+
+}  // namespace
+
+void red_black_sweep(const PoissonOperator& op, const Field& b, Field& x, bool forward) {
+  if (op.dim() == 3) rb<3>(op, b, x, forward);
+  else rb<2>(op, b, x, forward);
+}
+
+void zebra_line_sweep(const PoissonOperator& op, const Field& b, Field& x, bool forward) {
+  if (op.dim() == 3) zebra<3>(op, b, x, forward);
+  else zebra<2>(op, b, x, forward);
+}
+
+}  // namespace finverse::cfd

@@ -1,0 +1,49 @@
+// Inter-grid transfers of the cell-centred multigrid: prolongation P (coarse correction to fine
+// grid) and restriction R = P^T (fine residual to coarse right-hand side).
+//
+// P is the tensor product of 1-D linear interpolations between cell centres at their true
+// (stretched) positions: a fine cell takes its parent and the coarse neighbour on its side. At a
+// Dirichlet wall the neighbour is the wall itself with correction 0, at a Neumann wall the
+// correction is extended constantly (zero gradient), across a periodic boundary the neighbour
+// wraps. Coarse cells that are inactive (inside an immersed body) are dropped and the remaining
+// weights renormalised, so no correction is interpolated from inside the solid; inactive fine
+// cells get none.
+//
+// Linear P (order 2) with R = P^T (order 2) satisfies m_P + m_R > 2 for the second-order operator,
+// which V-cycles need for h-independent convergence on cell-centred grids, and R = P^T makes the
+// V-cycle symmetric, as conjugate gradients requires. Equations are volume-integrated on every
+// level, and each fine residual is distributed with weights summing to one, so no rescaling is
+// needed between levels.
+#pragma once
+
+#include <array>
+#include <utility>
+#include <vector>
+
+#include "cfd/field.hpp"
+#include "cfd/poisson_operator.hpp"
+
+namespace finverse::cfd {
+
+class GridTransfer {
+ public:
+  void setup(const PoissonOperator& fine, const PoissonOperator& coarse, const std::array<bool, 3>& coarsened);
+
+  // coarse_b = R fine_r.
+  void restrict_residual(const Field& fine_r, Field& coarse_b) const;
+  // fine_x += P coarse_e. Fills coarse_e's ghosts (periodic wrap; zero elsewhere).
+  void prolongate_add(Field& coarse_e, Field& fine_x) const;
+
+ private:
+  struct Entry {
+    int c = 0;       // coarse index along the axis, -1 or n for the ghost (wrap or wall value 0)
+    double w = 0.0;  // 1-D weight
+  };
+  const PoissonOperator* coarse_ = nullptr;
+  const PoissonOperator* fine_ = nullptr;
+  std::array<std::vector<std::array<Entry, 2>>, 3> prol_;  // per axis, per fine index
+  std::array<std::vector<std::vector<std::pair<int, double>>>, 3> restr_;  // per axis, per coarse index
+  std::vector<double> scale_;  // per fine cell renormalisation; empty when every cell is active
+};
+
+}  // namespace finverse::cfd
