@@ -21,6 +21,7 @@ include: "rules/common.smk"
 for _area in ["fem", "cfd", "mesh", "vision", "fit", "fsi"]:
     if os.path.exists(os.path.join(workflow.basedir, "rules", _area + ".smk")):
         include: os.path.join("rules", _area + ".smk")
+include: "rules/bench.smk"
 include: "rules/report.smk"
 
 

@@ -1,14 +1,19 @@
 // fin-poisson-bench: times the pressure Poisson solver (geometric multigrid, MG-PCG by default) on
-// a 3-D all-Neumann problem on a stretched grid, the shape of the fractional-step pressure solve
-// (DESIGN.md section 5.1), and writes the results as a finverse/summary bench file.
+// the benchmark problem of cfd/poisson_bench_problem.hpp (3-D, stretched, all-Neumann: the shape
+// of the fractional-step pressure solve, DESIGN.md section 5.1) and writes a finverse/summary
+// bench file. With --peer, it also reads the result of fin-poisson-hypre on the same problem and
+// grades the time ratio against hypre's best solver (goal <= 0.5).
 //
 //   fin-poisson-bench -n 64 -n 128 --json results/bench/poisson.json
-//   fin-poisson-bench -n 64 --mask --smoother zebra
+//   mpirun -np 2 fin-poisson-hypre -n 128 --json hypre.json && fin-poisson-bench -n 128 --peer hypre.json
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <limits>
 #include <string>
 
+#include "cfd/poisson_bench_problem.hpp"
 #include "cfd/poisson_solver.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
@@ -19,8 +24,18 @@ namespace {
 using namespace finverse::cfd;
 using clock_type = std::chrono::steady_clock;
 
-double seconds_since(clock_type::time_point t0) {
-  return std::chrono::duration<double>(clock_type::now() - t0).count();
+double seconds_since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
+
+// Fastest peer time (setup + solve) for an n^3 grid in a fin-poisson-hypre JSON, and its solver.
+std::pair<double, std::string> best_peer_time(const nlohmann::json& peer, int n) {
+  double best = std::numeric_limits<double>::infinity();
+  std::string name;
+  for (const auto& r : peer.at("runs"))
+    if (r.at("n").get<int>() == n && r.at("converged").get<bool>()) {
+      const double t = r.at("setup_s").get<double>() + r.at("solve_s").get<double>();
+      if (t < best) best = t, name = r.at("solver").get<std::string>();
+    }
+  return {best, name};
 }
 
 }  // namespace
@@ -29,7 +44,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Time the multigrid pressure Poisson solver on a stretched 3-D grid"};
   finverse::cli::Standard standard(app, "fin-poisson-bench");
   std::vector<int> sizes{128};
-  std::string json_path, method = "pcg", smoother = "rb", cycle = "V";
+  std::string json_path, peer_path, method = "pcg", smoother = "rb", cycle = "V";
   double rtol = 1e-8, ratio = 1.1;
   int repeats = 1;
   bool mask = false;
@@ -46,6 +61,8 @@ int main(int argc, char** argv) {
   app.add_flag("--mask", mask, "immerse a sphere (beta = 0 on the faces of its cells)");
   app.add_option("--repeats", repeats, "solves per size (the fastest is reported)")->capture_default_str();
   app.add_option("--json", json_path, "write a finverse/summary bench file here");
+  app.add_option("--peer", peer_path, "fin-poisson-hypre JSON of the same problem: grade the time ratio");
+
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     const int threads = finverse::cli::threads_in_use();
     const auto t_all = clock_type::now();
@@ -53,44 +70,37 @@ int main(int argc, char** argv) {
                               "3-D all-Neumann pressure Poisson solve on a stretched grid to relative residual " +
                                   std::to_string(rtol) + " with geometric multigrid (" + method + ", " + smoother +
                                   " smoother, " + cycle + "-cycle)");
+    nlohmann::json peer;
+    if (!peer_path.empty()) {
+      std::ifstream in(peer_path);
+      if (!in) throw finverse::Error("--peer " + peer_path + ": cannot open");
+      try {
+        peer = nlohmann::json::parse(in);
+      } catch (const nlohmann::json::exception& e) {
+        throw finverse::Error("--peer " + peer_path + ": malformed JSON: " + e.what());
+      }
+    }
     bool all_converged = true;
     for (int n : sizes) {
       if (n < 8) throw finverse::Error("--size " + std::to_string(n) + ": need at least 8 cells per axis");
-      // Body-fitted core of a fin-sized problem: [-0.5,1.5] x [-0.5,0.5] x [-0.25,1.25] uniform,
-      // stretched to a box of a few chord lengths, all-Neumann (the fractional-step pressure).
-      const StretchedGrid grid(Axis::stretched_count(-4, 8, -0.5, 1.5, n, ratio),
-                               Axis::stretched_count(-4, 4, -0.5, 0.5, n, ratio),
-                               Axis::stretched_count(-3, 4, -0.25, 1.25, n, ratio));
-      FaceCoefficients beta(grid, 1.0);
-      if (mask)
-        beta.mask_cells([&](int i, int j, int k) {
-          const double x = grid.xc(i) - 0.3, y = grid.yc(j), z = grid.zc(k) - 0.5;
-          return x * x + y * y + z * z < 0.35 * 0.35;
-        });
+      const auto problem = make_poisson_bench_problem(n, ratio, mask);
+      const auto& grid = problem.grid;
       PoissonSolverOptions opt;
       opt.rtol = rtol;
       opt.method = method == "pcg" ? PoissonMethod::MultigridPCG : PoissonMethod::MultigridCycles;
       opt.multigrid.smoother = smoother == "rb" ? SmootherKind::RedBlack : SmootherKind::ZebraLines;
       opt.multigrid.cycle = cycle == "V" ? CycleType::V : cycle == "W" ? CycleType::W : CycleType::F;
 
-      // Smooth source with a nonzero mean: exercises the compatibility projection.
-      Field f(grid);
-      for (int k = 0; k < grid.nz(); ++k)
-        for (int j = 0; j < grid.ny(); ++j)
-          for (int i = 0; i < grid.nx(); ++i)
-            f(i, j, k) =
-                std::sin(grid.xc(i)) * std::cos(1.3 * grid.yc(j)) * std::exp(-0.1 * grid.zc(k) * grid.zc(k)) + 0.1;
-
       auto t0 = clock_type::now();
       PoissonSolver solver;
-      solver.setup(grid, beta, BoundaryConditions::all(BcType::Neumann), opt);
+      solver.setup(grid, problem.beta, problem.bc, opt);
       const double setup_s = seconds_since(t0);
       double solve_s = 1e300;
       PoissonSolveStats st;
       for (int r = 0; r < repeats; ++r) {
         Field p(grid);
         t0 = clock_type::now();
-        st = solver.solve(f, BoundaryValues{}, p);
+        st = solver.solve(problem.source, BoundaryValues{}, p);
         solve_s = std::min(solve_s, seconds_since(t0));
       }
       all_converged = all_converged && st.converged;
@@ -110,11 +120,19 @@ int main(int argc, char** argv) {
       summary.info("relative_residual_" + tag, st.relative_residual);
       summary.info("solve_time_per_unknown_" + tag, solve_s / unknowns, "s");
       summary.info("max_aspect_ratio_" + tag, grid.max_aspect_ratio());
+      if (!peer.is_null()) {
+        const auto [peer_s, peer_name] = best_peer_time(peer, n);
+        if (!std::isfinite(peer_s)) throw finverse::Error("--peer " + peer_path + ": no converged run for n = " + std::to_string(n));
+        summary.info("hypre_best_time_" + tag, peer_s, "s");
+        summary.at_most("time_ratio_vs_hypre_" + tag, (setup_s + solve_s) / peer_s, 0.5,
+                        "goal of issue 4: finverse (setup+solve) <= 0.5 x hypre's best (" + peer_name + ")");
+        std::printf("  hypre best: %s %.3f s; ratio %.2f\n", peer_name.c_str(), peer_s, (setup_s + solve_s) / peer_s);
+      }
     }
     if (!json_path.empty()) {
-      summary.parameters() = {{"sizes", sizes},   {"rtol", rtol},         {"max_stretch_ratio", ratio},
-                              {"method", method}, {"smoother", smoother}, {"cycle", cycle},
-                              {"mask", mask},     {"repeats", repeats}};
+      summary.parameters() = {{"sizes", sizes}, {"rtol", rtol}, {"max_stretch_ratio", ratio}, {"method", method},
+                              {"smoother", smoother}, {"cycle", cycle}, {"mask", mask}, {"repeats", repeats},
+                              {"peer", peer.is_null() ? nlohmann::json(nullptr) : peer}};
       summary.set_timing(seconds_since(t_all), threads);
       summary.write(json_path);
     }
