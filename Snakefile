@@ -27,6 +27,7 @@ include: "rules/report.smk"
 
 rule all:
     input:
+        STAGE_OUTPUTS,
         validation_targets(),
         bench_targets(),
         "results/validation/index.txt" if validation_targets() else [],

@@ -13,6 +13,8 @@ COARSE = config["validation"]["coarse"]
 # name -> description; each rules/<area>.smk registers the cases it defines.
 VALIDATION_CASES = {}
 BENCHMARKS = {}
+# Final outputs of the pipeline stages that exist (each rules/<area>.smk adds its own).
+STAGE_OUTPUTS = []
 
 
 def EXE(name):
@@ -26,6 +28,10 @@ def have(name):
 
 def register_validation(name, description):
     VALIDATION_CASES[name] = description
+
+
+def register_stage_output(path):
+    STAGE_OUTPUTS.append(path)
 
 
 def register_bench(name, description):

@@ -1,0 +1,73 @@
+// Motion sources for the virtual experiment (DESIGN.md sections 1 and 5.5). A MotionSource moves
+// the truth fin surface; fin-synth renders whatever source it is given and writes the same
+// truth.h5, so a FEM- or FSI-driven source with hidden effects can replace the prescribed model
+// below without touching the renderer or the files.
+//
+// PrescribedKinematics is the reconstructed trout motion of the seed paper, section 4.4:
+//   - root heave of amplitude 0.44 c (lateral, y),
+//   - root pitch of every ray about the dorsal axis z, amplitude U-shaped across the rays
+//     (edge rays pitch most) and phase W-shaped across the rays (Fig. 12(c)),
+//   - a chordwise bending wave travelling root to tip and a spanwise (cupping) bending mode,
+// at St = f (2A) / U = 0.44, Re = U c / nu = 1000 (section 4.2), so f = St U / (2 A).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/nd_array.hpp"
+#include "vision/fin_surface.hpp"
+
+namespace finverse::vision {
+
+class MotionSource {
+ public:
+  virtual ~MotionSource() = default;
+  virtual std::string name() const = 0;
+  virtual double period() const = 0;  // s
+  // Vertex positions [nv,3] (metres) of the surface at time t (s).
+  virtual NdArray<double> positions(const FinSurface& surface, double t) const = 0;
+  // Parameters that define the motion (stored in truth.h5's provenance config).
+  virtual nlohmann::json parameters() const = 0;
+  // Extra physical effects in the truth (truth.h5 'effects'); none for a prescribed motion.
+  virtual nlohmann::json effects() const { return nlohmann::json::object(); }
+};
+
+struct KinematicParams {
+  double chord_m = 0.01;
+  double reynolds = 1000;
+  double strouhal = 0.44;
+  double kinematic_viscosity = 1e-6;      // water, m^2/s
+  double heave_over_chord = 0.44;         // root heave amplitude A / c
+  double pitch_center_deg = 12;           // root pitch amplitude of the middle ray ("U": smallest)
+  double pitch_edge_deg = 22;             // ... of the edge rays (largest)
+  double pitch_phase_deg = 90;            // mean phase lead of root pitch over heave
+  double pitch_phase_w_deg = 20;          // half swing of the W across the rays
+  double chordwise_over_chord = 0.08;     // tip amplitude of the chordwise bending wave
+  double chordwise_wavelength = 1.6;      // in ray lengths
+  double chordwise_phase_deg = -60;       // relative to heave
+  double spanwise_over_chord = 0.04;      // amplitude of the spanwise cupping mode at the tips
+  double spanwise_phase_deg = -30;
+};
+
+class PrescribedKinematics final : public MotionSource {
+ public:
+  explicit PrescribedKinematics(const KinematicParams& p);
+  std::string name() const override { return "prescribed_kinematics"; }
+  double period() const override { return 1.0 / frequency_; }
+  double frequency() const { return frequency_; }
+  double speed() const { return speed_; }  // free-stream U, m/s
+  NdArray<double> positions(const FinSurface& surface, double t) const override;
+  nlohmann::json parameters() const override;
+
+  // Root pitch amplitude (rad) and phase (rad) of the ray line at eta (+1 dorsal, -1 ventral).
+  double pitch_amplitude(double eta) const;
+  double pitch_phase(double eta) const;
+
+ private:
+  KinematicParams p_;
+  double speed_, frequency_;
+};
+
+}  // namespace finverse::vision
