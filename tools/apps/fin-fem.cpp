@@ -1,0 +1,168 @@
+// fin-fem: runs the structural FEM validation cases (DESIGN.md section 6) and writes
+// <out-dir>/<case>/summary.json. Exit code 0 when every metric passes, 1 when one misses,
+// 2 on error.
+//
+//   fin-fem elastica_beam --reference data/reference/structures.json
+//   fin-fem cantilever_vibration
+//   fin-fem sze_end_shear --reference data/reference/structures.json
+//   fin-fem turek_hron_csm3 --reference data/reference/turek_hron.json --coarse
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "core/cli.hpp"
+#include "core/summary.hpp"
+#include "fem/validation/cases.hpp"
+#include "fem/validation/shell_cases.hpp"
+#include "fem/validation/turek_hron_csm.hpp"
+
+namespace {
+
+namespace fv = finverse::fem::validation;
+
+finverse::Summary to_summary(const fv::Report& r) {
+  finverse::Summary s("validation", r.name, r.description);
+  for (const auto& m : r.metrics) {
+    if (m.kind == "relative")
+      s.relative(m.name, m.value, *m.reference, *m.tolerance, m.source, m.units);
+    else if (m.kind == "absolute")
+      s.absolute(m.name, m.value, *m.reference, *m.tolerance, m.source, m.units);
+    else if (m.kind == "max")
+      s.at_most(m.name, m.value, *m.tolerance, m.source, m.units);
+    else
+      s.info(m.name, m.value, m.units);
+  }
+  s.parameters() = r.parameters;
+  s.set_timing(r.wall_seconds, r.threads);
+  return s;
+}
+
+int finish(fv::Report report, const std::filesystem::path& out_dir, double wall_seconds) {
+  report.wall_seconds = wall_seconds;
+  report.threads = finverse::cli::threads_in_use();
+  const finverse::Summary summary = to_summary(report);
+  const auto path = out_dir / report.name / "summary.json";
+  std::filesystem::create_directories(path.parent_path());
+  summary.write(path);
+  for (const auto& m : report.metrics) {
+    std::cerr << "  " << m.name << " = " << m.value;
+    if (m.reference) std::cerr << " (reference " << *m.reference << ", error " << m.error() << ")";
+    if (auto p = m.pass()) std::cerr << (*p ? "  pass" : "  FAIL");
+    std::cerr << "\n";
+  }
+  std::cerr << "fin-fem " << report.name << ": " << (summary.pass() ? "pass" : "FAIL") << ", "
+            << wall_seconds << " s, wrote " << path.string() << "\n";
+  return summary.pass() ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fin-fem: structural FEM validation cases (corotational beams, Newton, generalized-alpha)"};
+  finverse::cli::Standard standard(app, "fin-fem");
+  app.require_subcommand(1);
+  std::string out_dir = "results/validation";
+  std::string solver = "cholmod";
+  app.add_option("--out-dir", out_dir, "directory that receives <case>/summary.json")
+      ->capture_default_str();
+  app.add_option("--solver", solver, "sparse solver: cholmod or simplicial_ldlt")
+      ->capture_default_str();
+
+  fv::ElasticaOptions elastica;
+  std::string reference;
+  auto* el = app.add_subcommand("elastica_beam", "cantilever under a dead tip load, PL^2/EI = 1..20");
+  el->add_option("--reference", reference, "structures.json with elastica_tip_load")->required();
+  el->add_option("--elements", elastica.elements, "beam elements")->capture_default_str();
+
+  fv::VibrationOptions vibration;
+  auto* vib = app.add_subcommand("cantilever_vibration",
+                                 "first three bending frequencies and energy drift of a cantilever");
+  vib->add_option("--elements", vibration.elements, "beam elements")->capture_default_str();
+  vib->add_option("--steps-per-period-spectrum", vibration.steps_per_period_spectrum,
+                  "time steps per first-mode period in the spectral run")
+      ->capture_default_str();
+  vib->add_option("--periods-spectrum", vibration.periods_spectrum,
+                  "first-mode periods simulated for the spectrum")
+      ->capture_default_str();
+  vib->add_option("--steps-per-period-energy", vibration.steps_per_period_energy,
+                  "time steps per first-mode period in the energy run")
+      ->capture_default_str();
+  vib->add_option("--periods-energy", vibration.periods_energy,
+                  "first-mode periods simulated for the energy drift")
+      ->capture_default_str();
+
+  // Shell cases (corotational triangle) and the Turek-Hron CSM flag (plane-strain Q9 solid).
+  fv::SzeEndShearOptions shear;
+  fv::SzeEndMomentOptions moment;
+  fv::SzeHemisphereOptions hemisphere;
+  fv::ElasticaShellOptions elastica_shell;
+  fv::CsmStaticOptions csm1, csm2;
+  csm2.case_number = 2;
+  fv::Csm3Options csm3;
+  bool coarse = false;
+  auto with_reference = [&](CLI::App* sc, const char* what) {
+    sc->add_option("--reference", reference, what)->required();
+    return sc;
+  };
+  auto* sh = with_reference(app.add_subcommand("sze_end_shear", "Sze shell strip under end shear, 10 load levels"),
+                            "structures.json with sze_cantilever_end_shear");
+  sh->add_option("--nx", shear.nx, "cells along the strip")->capture_default_str();
+  sh->add_option("--ny", shear.ny, "cells across the strip")->capture_default_str();
+  auto* mo = with_reference(app.add_subcommand("sze_end_moment", "Sze shell strip rolled into a circle by an end moment"),
+                            "structures.json with sze_cantilever_end_moment");
+  mo->add_option("--nx", moment.nx, "cells along the strip")->capture_default_str();
+  mo->add_option("--ny", moment.ny, "cells across the strip")->capture_default_str();
+  auto* he = with_reference(app.add_subcommand("sze_hemisphere", "Sze open hemisphere under point loads, quarter model"),
+                            "structures.json with sze_open_hemisphere");
+  he->add_option("--n-meridian", hemisphere.n_meridian, "cells along the meridian")->capture_default_str();
+  he->add_option("--n-circumference", hemisphere.n_circumference, "cells around")->capture_default_str();
+  auto* es = with_reference(app.add_subcommand("elastica_shell", "elastica computed with a shell strip"),
+                            "structures.json with elastica_tip_load");
+  es->add_option("--nx", elastica_shell.nx, "cells along the strip")->capture_default_str();
+  auto* c1 = with_reference(app.add_subcommand("turek_hron_csm1", "Turek-Hron CSM1: static flag under gravity, E = 1.4 MPa"),
+                            "turek_hron.json");
+  auto* c2 = with_reference(app.add_subcommand("turek_hron_csm2", "Turek-Hron CSM2: static flag under gravity, E = 5.6 MPa"),
+                            "turek_hron.json");
+  auto* c3 = with_reference(
+      app.add_subcommand("turek_hron_csm3", "Turek-Hron CSM3: flag released under gravity, generalized-alpha"),
+      "turek_hron.json");
+  for (auto* sc : {c1, c2, c3}) sc->add_flag("--coarse", coarse, "the CI variant (coarser meshes, one time step)");
+
+  return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
+    const auto start = std::chrono::steady_clock::now();
+    const auto backend = finverse::fem::parse_solver_backend(solver);
+    auto seconds = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    auto configure = [&](auto& options) {
+      options.reference = reference;
+      options.backend = backend;
+      return options;
+    };
+    // The case runs first, then the clock is read: the order in which function arguments are
+    // evaluated is unspecified.
+    auto report = [&]() -> fv::Report {
+      if (*el) return fv::run_elastica(configure(elastica));
+      if (*sh) return fv::run_sze_end_shear(configure(shear));
+      if (*mo) return fv::run_sze_end_moment(configure(moment));
+      if (*he) return fv::run_sze_hemisphere(configure(hemisphere));
+      if (*es) return fv::run_elastica_shell(configure(elastica_shell));
+      if (*c1 || *c2) {
+        auto& o = *c1 ? csm1 : csm2;
+        o.coarse = coarse;
+        return fv::run_turek_hron_csm_static(configure(o));
+      }
+      if (*c3) {
+        csm3.coarse = coarse;
+        return fv::run_turek_hron_csm3(configure(csm3));
+      }
+      vibration.backend = backend;
+      return fv::run_cantilever_vibration(vibration);
+    }();
+    const double wall = seconds();
+    return finish(std::move(report), out_dir, wall);
+  });
+}

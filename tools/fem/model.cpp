@@ -1,0 +1,177 @@
+// Structural model bookkeeping and input checks (see model.hpp).
+#include "model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "errors.hpp"
+
+namespace finverse::fem {
+
+namespace {
+const char* dof_name(int dof) {
+  static const char* names[] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+  return (dof >= 0 && dof < 6) ? names[dof] : "?";
+}
+}  // namespace
+
+int Model::add_node(const Vec3& X) {
+  if (!X.allFinite()) {
+    std::ostringstream os;
+    os << "node " << reference_.size() << ": non-finite coordinates (" << X.transpose() << ")";
+    throw InvalidInput(os.str());
+  }
+  reference_.push_back(X);
+  return node_count() - 1;
+}
+
+int Model::add_material(const Material& material) {
+  fem::validate(material);
+  materials_.push_back(material);
+  return static_cast<int>(materials_.size()) - 1;
+}
+
+void Model::check_node(int node, const char* what) const {
+  if (node < 0 || node >= node_count()) {
+    std::ostringstream os;
+    os << what << ": node " << node << " out of range (model has " << node_count() << " nodes)";
+    throw InvalidInput(os.str());
+  }
+}
+
+void Model::check_dof(int dof, const char* what) const {
+  if (dof < 0 || dof >= kDofsPerNode) {
+    std::ostringstream os;
+    os << what << ": dof " << dof << " out of range, expected 0..5";
+    throw InvalidInput(os.str());
+  }
+}
+
+int Model::add_beam(int node1, int node2, int material_id, const TaperedRectangle& section,
+                    const Vec3& y_axis_hint, std::optional<double> youngs_modulus,
+                    CorotationalBeam::Options options) {
+  check_node(node1, "beam");
+  check_node(node2, "beam");
+  if (material_id < 0 || material_id >= static_cast<int>(materials_.size()))
+    throw InvalidInput("beam: material id " + std::to_string(material_id) + " out of range");
+  Material m = materials_[material_id];
+  if (youngs_modulus) m.youngs_modulus = *youngs_modulus;
+  return add_element(std::make_unique<CorotationalBeam>(
+      node1, node2, reference_[node1], reference_[node2], y_axis_hint, m, section, options));
+}
+
+int Model::add_element(std::unique_ptr<Element> element) {
+  for (int n : element->nodes()) check_node(n, "element");
+  elements_.push_back(std::move(element));
+  return static_cast<int>(elements_.size()) - 1;
+}
+
+void Model::fix(int node, int dof) { prescribe(node, dof, {}); }
+
+void Model::fix_node(int node) {
+  for (int d = 0; d < kDofsPerNode; ++d) fix(node, d);
+}
+
+void Model::prescribe(int node, int dof, TimeFunction value) {
+  check_node(node, "prescribed dof");
+  check_dof(dof, "prescribed dof");
+  for (auto& p : prescribed_)
+    if (p.node == node && p.dof == dof) {
+      p.value = std::move(value);
+      return;
+    }
+  prescribed_.push_back({node, dof, std::move(value)});
+}
+
+void Model::add_nodal_load(int node, int dof, double value) {
+  check_node(node, "nodal load");
+  check_dof(dof, "nodal load");
+  if (!std::isfinite(value)) {
+    std::ostringstream os;
+    os << "nodal load on node " << node << " dof " << dof_name(dof) << " is " << value
+       << ", expected a finite value";
+    throw InvalidInput(os.str());
+  }
+  loads_.push_back({node, dof, value});
+}
+
+void Model::set_gravity(const Vec3& g) {
+  if (!g.allFinite()) throw InvalidInput("gravity vector is not finite");
+  gravity_ = g;
+}
+
+double Model::total_mass() const {
+  double m = 0;
+  for (const auto& e : elements_) m += e->total_mass();
+  return m;
+}
+
+double Model::characteristic_length() const {
+  if (reference_.empty()) return 1.0;
+  Vec3 lo = reference_[0], hi = reference_[0];
+  for (const auto& X : reference_) lo = lo.cwiseMin(X), hi = hi.cwiseMax(X);
+  const double l = (hi - lo).norm();
+  return l > 0 ? l : 1.0;
+}
+
+double Model::position_scale() const {
+  double m = 0;
+  for (const auto& X : reference_) m = std::max(m, X.norm());
+  return m + characteristic_length();
+}
+
+NodalState Model::reference_state() const {
+  NodalState s;
+  s.position = reference_;
+  s.rotation.assign(reference_.size(), Mat3::Identity());
+  return s;
+}
+
+Eigen::VectorXd Model::reference_load() const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(kDofsPerNode * node_count());
+  for (const auto& l : loads_) f(kDofsPerNode * l.node + l.dof) += l.value;
+  return f;
+}
+
+Eigen::VectorXd Model::gravity_load() const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(kDofsPerNode * node_count());
+  if (gravity_.squaredNorm() == 0) return f;
+  const NodalState s = reference_state();
+  Eigen::VectorXd fe;
+  for (const auto& e : elements_) {
+    fe.setZero(e->size());
+    e->gravity_force(s, gravity_, fe);
+    const auto nodes = e->nodes();
+    const auto dofs = e->active_dofs();
+    int k = 0;
+    for (int n : nodes)
+      for (int d : dofs) f(kDofsPerNode * n + d) += fe(k++);
+  }
+  return f;
+}
+
+Eigen::VectorXd Model::external_load(double t) const {
+  const double lf = load_factor(t);
+  if (!std::isfinite(lf)) {
+    std::ostringstream os;
+    os << "load factor at t = " << t << " is " << lf << ", expected a finite value";
+    throw InvalidInput(os.str());
+  }
+  Eigen::VectorXd f = lf * reference_load();
+  if (gravity_.squaredNorm() > 0) f += gravity_load();
+  return f;
+}
+
+void Model::validate() const {
+  if (elements_.empty()) throw InvalidInput("model has no elements");
+  for (const auto& l : loads_)
+    if (!std::isfinite(l.value)) {
+      std::ostringstream os;
+      os << "nodal load on node " << l.node << " dof " << dof_name(l.dof) << " is " << l.value;
+      throw InvalidInput(os.str());
+    }
+  for (const auto& m : materials_) fem::validate(m);
+}
+
+}  // namespace finverse::fem

@@ -1,0 +1,105 @@
+// The structural model: nodes (6 DOF each), region materials, elements, prescribed DOFs, nodal
+// loads and gravity. A model is built once and then read by the solvers; the configuration lives
+// in NodalState.
+//
+// Loads: f_ext(t) = load_factor(t) * (sum of nodal loads) + gravity loads. The static solver uses
+// the load factor lambda itself as "time", so the same model serves a load-controlled static
+// solve and a dynamic one.
+// Prescribed DOFs: value(t) is a displacement for DOFs 0-2 and a rotation-vector component for
+// DOFs 3-5. When all three rotations of a node are prescribed, R = exp(theta(t)) exactly;
+// otherwise the change of a prescribed component between two times is applied as a spin about
+// that global axis (exact for a rotation about a fixed axis, which covers root pitching/heaving).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "beam_section.hpp"
+#include "corotational_beam.hpp"
+#include "element.hpp"
+#include "material.hpp"
+#include "nodal_state.hpp"
+
+namespace finverse::fem {
+
+using TimeFunction = std::function<double(double)>;
+
+struct PrescribedDof {
+  int node = 0;
+  int dof = 0;             // 0..5
+  TimeFunction value;      // empty: held at zero
+  double at(double t) const { return value ? value(t) : 0.0; }
+};
+
+struct NodalLoad {
+  int node = 0;
+  int dof = 0;  // 0..2 force, 3..5 moment (spatial, i.e. a dead moment vector)
+  double value = 0;
+};
+
+class Model {
+ public:
+  int add_node(const Vec3& X);
+  int add_material(const Material& material);  // validates; returns the region id
+
+  // Beam between two nodes; E of this element may differ from its region's (per-element
+  // stiffness, as the inverse fit needs).
+  int add_beam(int node1, int node2, int material_id, const TaperedRectangle& section,
+               const Vec3& y_axis_hint, std::optional<double> youngs_modulus = std::nullopt,
+               CorotationalBeam::Options options = {});
+  // Any other element type (shell, solid) built by the caller.
+  int add_element(std::unique_ptr<Element> element);
+
+  void fix(int node, int dof);
+  void fix_node(int node);  // all 6 DOFs
+  void prescribe(int node, int dof, TimeFunction value);
+  void add_nodal_load(int node, int dof, double value);
+  void set_gravity(const Vec3& g);
+  void set_load_factor(TimeFunction f) { load_factor_ = std::move(f); }
+
+  int node_count() const { return static_cast<int>(reference_.size()); }
+  const std::vector<Vec3>& reference_positions() const { return reference_; }
+  const std::vector<std::unique_ptr<Element>>& elements() const { return elements_; }
+  const Element& element(int i) const { return *elements_.at(i); }
+  const std::vector<Material>& materials() const { return materials_; }
+  const std::vector<PrescribedDof>& prescribed() const { return prescribed_; }
+  const std::vector<NodalLoad>& nodal_loads() const { return loads_; }
+  const Vec3& gravity() const { return gravity_; }
+  double load_factor(double t) const { return load_factor_ ? load_factor_(t) : t; }
+  double total_mass() const;
+  // Largest extent of the reference geometry (scales translation increments in norms).
+  double characteristic_length() const;
+  // Largest |X| plus the extent: the scale of position round-off.
+  double position_scale() const;
+
+  NodalState reference_state() const;
+  // Full-length (6 per node) reference load vector: sum of nodal loads (scaled by the load
+  // factor in the solvers).
+  Eigen::VectorXd reference_load() const;
+  // Full-length gravity load (dead, from the reference configuration).
+  Eigen::VectorXd gravity_load() const;
+  // f_ext(t) = load_factor(t) * reference_load + gravity_load
+  Eigen::VectorXd external_load(double t) const;
+
+  // Throws InvalidInput naming the first problem: no elements, indices out of range, NaN loads.
+  void validate() const;
+
+ private:
+  void check_node(int node, const char* what) const;
+  void check_dof(int dof, const char* what) const;
+
+  std::vector<Vec3> reference_;
+  std::vector<Material> materials_;
+  std::vector<std::unique_ptr<Element>> elements_;
+  std::vector<PrescribedDof> prescribed_;
+  std::vector<NodalLoad> loads_;
+  Vec3 gravity_ = Vec3::Zero();
+  TimeFunction load_factor_;
+};
+
+}  // namespace finverse::fem

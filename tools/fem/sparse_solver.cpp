@@ -1,0 +1,115 @@
+// Sparse direct solver wrapper (see sparse_solver.hpp).
+#include "sparse_solver.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCholesky>
+
+#include "errors.hpp"
+
+namespace finverse::fem {
+
+namespace {
+// Gives access to CHOLMOD's reciprocal condition estimate, which Eigen does not expose.
+// Same set-up as Eigen::CholmodSupernodalLLT.
+class CholmodLLT : public Eigen::CholmodBase<SparseSolver::SparseMatrix, Eigen::Upper, CholmodLLT> {
+  using Base = Eigen::CholmodBase<SparseSolver::SparseMatrix, Eigen::Upper, CholmodLLT>;
+
+ public:
+  CholmodLLT() {
+    m_cholmod.final_asis = 1;
+    m_cholmod.supernodal = CHOLMOD_SUPERNODAL;
+  }
+  double rcond() const { return cholmod_rcond(m_cholmodFactor, &m_cholmod); }
+};
+constexpr double kSingularPivotRatio = 1e-13;
+}  // namespace
+
+struct SparseSolver::Impl {
+  CholmodLLT cholmod;
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper> ldlt;
+  bool cholmod_analysed = false, ldlt_analysed = false;
+};
+
+SolverBackend parse_solver_backend(const std::string& name) {
+  if (name == "cholmod") return SolverBackend::cholmod;
+  if (name == "simplicial_ldlt") return SolverBackend::simplicial_ldlt;
+  throw InvalidInput("solver backend '" + name + "', expected cholmod or simplicial_ldlt");
+}
+
+const char* to_string(SolverBackend b) {
+  return b == SolverBackend::cholmod ? "cholmod" : "simplicial_ldlt";
+}
+
+SparseSolver::SparseSolver(SolverBackend backend)
+    : backend_(backend), impl_(std::make_unique<Impl>()) {}
+SparseSolver::~SparseSolver() = default;
+
+bool SparseSolver::same_pattern(const SparseMatrix& A) const {
+  if (static_cast<int>(outer_.size()) != A.outerSize() + 1) return false;
+  if (static_cast<Eigen::Index>(inner_.size()) != A.nonZeros()) return false;
+  return std::equal(outer_.begin(), outer_.end(), A.outerIndexPtr()) &&
+         std::equal(inner_.begin(), inner_.end(), A.innerIndexPtr());
+}
+
+void SparseSolver::singular(const std::string& what, int equation, double ratio) const {
+  std::ostringstream os;
+  os.precision(3);
+  os << what << " is singular (pivot ratio " << ratio << "): the structure has an unconstrained"
+     << " rigid-body mode or mechanism";
+  if (equation >= 0) os << ", first at " << (describe_ ? describe_(equation) : "equation " + std::to_string(equation));
+  os << "; check the prescribed DOFs";
+  throw SingularMatrix(os.str());
+}
+
+void SparseSolver::factorize(const SparseMatrix& A, const std::string& what) {
+  if (!A.isCompressed()) throw InvalidInput("SparseSolver: matrix must be compressed");
+  const bool new_pattern = !same_pattern(A);
+  if (new_pattern) {
+    outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+    inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+    impl_->cholmod_analysed = impl_->ldlt_analysed = false;
+  }
+  for (Eigen::Index k = 0; k < A.nonZeros(); ++k)
+    if (!std::isfinite(A.valuePtr()[k]))
+      throw NotConverged(what + " contains NaN/Inf entries (the solution diverged)");
+  ++numeric_count_;
+  use_ldlt_now_ = backend_ == SolverBackend::simplicial_ldlt;
+  if (!use_ldlt_now_) {
+    if (!impl_->cholmod_analysed) {
+      impl_->cholmod.analyzePattern(A);
+      impl_->cholmod_analysed = true;
+      ++symbolic_count_;
+    }
+    impl_->cholmod.factorize(A);
+    if (impl_->cholmod.info() == Eigen::Success) {
+      const double rc = impl_->cholmod.rcond();
+      if (!(rc > kSingularPivotRatio)) singular(what, -1, rc);
+      return;
+    }
+    use_ldlt_now_ = true;  // not positive definite: indefinite tangent or singular
+  }
+  auto& ldlt = impl_->ldlt;
+  if (!impl_->ldlt_analysed) {
+    ldlt.analyzePattern(A);
+    impl_->ldlt_analysed = true;
+    ++symbolic_count_;
+  }
+  ldlt.factorize(A);
+  const Eigen::VectorXd D = ldlt.vectorD();
+  const double dmax = D.cwiseAbs().maxCoeff();
+  Eigen::Index worst = 0;
+  const double dmin = D.cwiseAbs().minCoeff(&worst);
+  const double ratio = dmax > 0 ? dmin / dmax : 0.0;
+  if (ldlt.info() != Eigen::Success || !(ratio > kSingularPivotRatio))
+    singular(what, ldlt.permutationPinv().indices()(worst), ratio);
+}
+
+Eigen::VectorXd SparseSolver::solve(const Eigen::VectorXd& b) const {
+  if (use_ldlt_now_) return impl_->ldlt.solve(b);
+  return impl_->cholmod.solve(b);
+}
+
+}  // namespace finverse::fem

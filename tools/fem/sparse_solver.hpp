@@ -1,0 +1,75 @@
+// Sparse symmetric direct solver with symbolic-factorisation reuse.
+//
+// The matrices come from Assembler (upper triangle, fixed pattern), so the ordering and symbolic
+// analysis are done once and only the numeric factorisation is repeated per Newton iteration /
+// time step. The analysis is redone automatically if the pattern ever changes.
+//
+// Backends:
+//   cholmod         CHOLMOD supernodal LL^T (SuiteSparse 5.12, AMD/METIS ordering) through
+//                   Eigen's CholmodSupport. Fails on an indefinite matrix (a tangent past a
+//                   buckling point); then this factorisation falls back to simplicial LDL^T.
+//   simplicial_ldlt Eigen::SimplicialLDLT (AMD ordering), also handles indefinite matrices.
+// Measured (tests/unit/fem/solver_bench.cpp, Release, on a shared 2-core machine under load, so
+// +-30 %): tangent of a 90 x 90 beam lattice, 48 060 free DOFs, 7.4e5 upper nonzeros:
+//   cholmod          analyse+factor 1.01 s, numeric refactorisation 1.27 s, solve 0.039 s
+//   simplicial_ldlt  analyse+factor 3.19 s, numeric refactorisation 3.05 s, solve 0.030 s
+// (CHOLMOD here links the reference BLAS; with OpenBLAS its supernodal kernels gain more),
+// so cholmod is the default (2.4x faster per numeric factorisation).
+//
+// Singularity: a free rigid-body mode shows up as a pivot at round-off level. We test the
+// reciprocal condition estimate (min/max pivot) against 1e-13 and throw SingularMatrix naming the
+// equation (callers map it to node and DOF).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace finverse::fem {
+
+enum class SolverBackend { cholmod, simplicial_ldlt };
+
+SolverBackend parse_solver_backend(const std::string& name);  // throws InvalidInput
+const char* to_string(SolverBackend backend);
+
+class SparseSolver {
+ public:
+  using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+  explicit SparseSolver(SolverBackend backend = SolverBackend::cholmod);
+  ~SparseSolver();
+  SparseSolver(const SparseSolver&) = delete;
+  SparseSolver& operator=(const SparseSolver&) = delete;
+
+  // Factorises the symmetric matrix whose upper triangle is given. `what` names the matrix in
+  // error messages ("tangent stiffness", "effective stiffness", ...); describe(eq) names an
+  // equation ("node 3 rz").
+  void factorize(const SparseMatrix& upper, const std::string& what = "stiffness matrix");
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+
+  void set_equation_names(std::function<std::string(int)> describe) {
+    describe_ = std::move(describe);
+  }
+  SolverBackend backend() const { return backend_; }
+  int symbolic_count() const { return symbolic_count_; }
+  int numeric_count() const { return numeric_count_; }
+  bool used_fallback() const { return use_ldlt_now_; }
+
+ private:
+  struct Impl;
+  bool same_pattern(const SparseMatrix& A) const;
+  [[noreturn]] void singular(const std::string& what, int equation, double ratio) const;
+
+  SolverBackend backend_;
+  std::unique_ptr<Impl> impl_;
+  std::vector<int> outer_, inner_;
+  int symbolic_count_ = 0, numeric_count_ = 0;
+  bool use_ldlt_now_ = false;
+  std::function<std::string(int)> describe_;
+};
+
+}  // namespace finverse::fem

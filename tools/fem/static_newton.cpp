@@ -1,0 +1,155 @@
+// Load-controlled Newton-Raphson with step cutting (see static_newton.hpp).
+#include "static_newton.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "errors.hpp"
+
+namespace finverse::fem {
+
+std::string describe_dof(int g) {
+  static const char* names[] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+  return "node " + std::to_string(g / kDofsPerNode) + " " + names[g % kDofsPerNode];
+}
+
+std::string describe_equation(const DofMap& dofs, int eq) {
+  if (eq < 0 || eq >= dofs.free()) return "equation " + std::to_string(eq);
+  return describe_dof(dofs.free_to_global()[eq]);
+}
+
+void apply_prescribed(const Model& model, double t1, double t2, NodalState& state) {
+  const int nn = model.node_count();
+  std::vector<int> rot_count(nn, 0);
+  for (const auto& p : model.prescribed())
+    if (p.dof >= 3) ++rot_count[p.node];
+  std::vector<Vec3> spin(nn, Vec3::Zero()), full_rotation(nn, Vec3::Zero());
+  for (const auto& p : model.prescribed()) {
+    const double v2 = p.at(t2);
+    if (!std::isfinite(v2)) {
+      std::ostringstream os;
+      os << "prescribed value of " << describe_dof(kDofsPerNode * p.node + p.dof) << " at t = "
+         << t2 << " is " << v2;
+      throw InvalidInput(os.str());
+    }
+    if (p.dof < 3) {
+      state.position[p.node](p.dof) = model.reference_positions()[p.node](p.dof) + v2;
+    } else if (rot_count[p.node] == 3) {
+      full_rotation[p.node](p.dof - 3) = v2;
+    } else {
+      spin[p.node](p.dof - 3) = v2 - p.at(t1);
+    }
+  }
+  for (int n = 0; n < nn; ++n) {
+    if (rot_count[n] == 3)
+      state.rotation[n] = exp_so3(full_rotation[n]);
+    else if (spin[n].squaredNorm() > 0)
+      state.rotation[n] = exp_so3(spin[n]) * state.rotation[n];
+  }
+}
+
+StaticSolver::StaticSolver(const Model& model, StaticOptions options)
+    : model_(model),
+      opt_(options),
+      dofs_((model.validate(), model)),
+      assembler_(model_, dofs_),
+      solver_(options.backend),
+      lchar_(model.characteristic_length()) {
+  if (opt_.steps < 1) throw InvalidInput("static solver: steps must be >= 1");
+  solver_.set_equation_names([this](int eq) { return describe_equation(dofs_, eq); });
+}
+
+int StaticSolver::newton(NodalState& state, double lam, double& residual) {
+  const Eigen::VectorXd f_ext = model_.external_load(lam);
+  if (!f_ext.allFinite()) {
+    for (int g = 0; g < f_ext.size(); ++g)
+      if (!std::isfinite(f_ext(g))) {
+        std::ostringstream os;
+        os << "external load on " << describe_dof(g) << " is " << f_ext(g) << " at load factor "
+           << lam;
+        throw InvalidInput(os.str());
+      }
+  }
+  const Eigen::VectorXd f_ext_free = dofs_.gather_free(f_ext);
+  AssemblyRequest req;
+  req.matrix = true;
+  double r0 = 0, floor = 0;
+  for (int it = 0; it <= opt_.max_iterations; ++it) {
+    assembler_.assemble(state, req);
+    const Eigen::VectorXd& f_int = assembler_.internal_force();
+    const Eigen::VectorXd r = f_ext_free - dofs_.gather_free(f_int);
+    // Reaction forces make the scale when the load is a prescribed displacement only.
+    double reaction = 0;
+    for (int g = 0; g < dofs_.total(); ++g)
+      if (dofs_.is_prescribed(g)) reaction += (f_int(g) - f_ext(g)) * (f_int(g) - f_ext(g));
+    const double scale = std::max({f_ext_free.norm(), std::sqrt(reaction), 1e-30});
+    const double rn = r.norm() / scale;
+    residual = rn;
+    if (!std::isfinite(rn)) return -1;
+    if (it == 0) {
+      r0 = rn;
+      floor = roundoff_force_floor(assembler_.matrix(), dofs_, model_.position_scale());
+    }
+    if (it > 2 && rn > 1e6 * std::max(r0, 1.0)) return -1;  // diverging
+    if (it == opt_.max_iterations) return -1;
+    solver_.factorize(assembler_.matrix(), "tangent stiffness");
+    const Eigen::VectorXd du = solver_.solve(r);
+    if (!du.allFinite()) return -1;
+    double inc = 0;
+    for (int i = 0; i < dofs_.free(); ++i) {
+      const int g = dofs_.free_to_global()[i];
+      const double v = (g % kDofsPerNode) < 3 ? du(i) / lchar_ : du(i);
+      inc += v * v;
+    }
+    inc = std::sqrt(inc);
+    state.apply_increment(dofs_.scatter_free(du));
+    if (rn <= opt_.residual_tolerance + floor / scale && inc <= opt_.increment_tolerance)
+      return it + 1;
+  }
+  return -1;
+}
+
+StaticResult StaticSolver::solve(NodalState& state, double lam0, double lam1) {
+  StaticResult result;
+  const double step0 = (lam1 - lam0) / opt_.steps;
+  double step = step0;
+  double lam = lam0;
+  while ((lam1 - lam) * (step0 > 0 ? 1 : -1) > 1e-14 * std::abs(lam1 - lam0)) {
+    if (std::abs(step) > std::abs(lam1 - lam)) step = lam1 - lam;
+    NodalState trial = state;
+    const double target = lam + step;
+    apply_prescribed(model_, lam, target, trial);
+    double residual = 0;
+    const int its = newton(trial, target, residual);
+    if (its < 0) {
+      result.total_iterations += opt_.max_iterations;
+      ++result.step_cuts;
+      step *= 0.5;
+      if (std::abs(step) < opt_.min_step_fraction * std::abs(step0)) {
+        std::ostringstream os;
+        os.precision(4);
+        os << "static Newton did not converge at load factor " << target << " (from " << lam
+           << "): step cut " << result.step_cuts << " times down to " << 2 * step
+           << ", last relative residual " << residual << " (tolerance "
+           << opt_.residual_tolerance << ")";
+        throw NotConverged(os.str());
+      }
+      continue;
+    }
+    state = std::move(trial);
+    lam = target;
+    result.total_iterations += its;
+    result.steps.push_back({lam, its, residual});
+    if (std::abs(step) < std::abs(step0)) step = std::min(1.5 * std::abs(step), std::abs(step0)) * (step0 > 0 ? 1 : -1);
+  }
+  // Reactions at the converged state.
+  assembler_.assemble(state, AssemblyRequest{});
+  const Eigen::VectorXd f_ext = model_.external_load(lam1);
+  result.reaction = Eigen::VectorXd::Zero(dofs_.total());
+  for (int g = 0; g < dofs_.total(); ++g)
+    if (dofs_.is_prescribed(g)) result.reaction(g) = assembler_.internal_force()(g) - f_ext(g);
+  return result;
+}
+
+}  // namespace finverse::fem

@@ -1,0 +1,80 @@
+// Static equilibrium f_int(x) = f_ext(lambda) by Newton-Raphson under load control.
+//
+// The load factor lambda goes from its start to its end value in steps; each step starts from
+// the converged configuration, applies the change of the prescribed DOFs, and iterates with the
+// (symmetrised, see assembly.hpp) consistent tangent. A step that does not converge within
+// max_iterations, or whose residual becomes non-finite or grows by 1e6, is halved and retried
+// (step cutting); after a converged step the step grows again (x1.5) up to the initial size.
+// Converged when both
+//   |r_free| <= residual_tolerance * max(|f_ext_free|, |f_reaction|) + round-off floor
+//   |du| / L_char + |dtheta| <= increment_tolerance   (L_char: model extent)
+// (round-off floor: roundoff_force_floor in assembly.hpp).
+// Errors: SingularMatrix (unconstrained model), NotConverged (step below min_step),
+// InvalidInput (NaN load, bad material) -- each with a one-line message.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "assembly.hpp"
+#include "dof_map.hpp"
+#include "model.hpp"
+#include "sparse_solver.hpp"
+
+namespace finverse::fem {
+
+struct StaticOptions {
+  int steps = 10;               // initial number of equal load steps
+  int max_iterations = 25;
+  double residual_tolerance = 1e-8;
+  double increment_tolerance = 1e-10;
+  double min_step_fraction = 1e-4;  // smallest step, as a fraction of the initial step
+  SolverBackend backend = SolverBackend::cholmod;
+};
+
+struct StaticStepInfo {
+  double load_factor = 0;
+  int iterations = 0;
+  double residual = 0;  // relative, at convergence
+};
+
+struct StaticResult {
+  std::vector<StaticStepInfo> steps;
+  int total_iterations = 0;
+  int step_cuts = 0;
+  Eigen::VectorXd reaction;  // full length: f_int - f_ext at the prescribed DOFs, zero elsewhere
+};
+
+// Names an equation "node 3 rz" for error messages.
+std::string describe_equation(const DofMap& dofs, int equation);
+std::string describe_dof(int global_dof);
+
+// Applies the prescribed values at time t2, given they were at t1 in `state` (see model.hpp).
+void apply_prescribed(const Model& model, double t1, double t2, NodalState& state);
+
+class StaticSolver {
+ public:
+  StaticSolver(const Model& model, StaticOptions options = {});
+
+  // Solves from lambda_begin (state must be in equilibrium there, e.g. the reference state at 0)
+  // to lambda_end.
+  StaticResult solve(NodalState& state, double lambda_begin, double lambda_end);
+
+  const DofMap& dofs() const { return dofs_; }
+  Assembler& assembler() { return assembler_; }
+  const SparseSolver& linear_solver() const { return solver_; }
+
+ private:
+  // One Newton solve at load factor lam, starting from state (prescribed DOFs already applied).
+  // Returns iterations used, or -1 on non-convergence (state then undefined).
+  int newton(NodalState& state, double lam, double& residual);
+
+  const Model& model_;
+  StaticOptions opt_;
+  DofMap dofs_;
+  Assembler assembler_;
+  SparseSolver solver_;
+  double lchar_;
+};
+
+}  // namespace finverse::fem
