@@ -15,3 +15,7 @@ if(MPI_C_FOUND AND HYPRE_INCLUDE_DIR AND HYPRE_LIBRARY)
   target_link_libraries(fin-poisson-hypre PRIVATE finverse_cfd ${HYPRE_LIBRARY} MPI::MPI_C CLI11::CLI11
                         nlohmann_json::nlohmann_json finverse_warnings)
 endif()
+
+# The Navier-Stokes solver's validation cases (rules/cfd.smk).
+add_executable(fin-cfd ${CMAKE_CURRENT_LIST_DIR}/fin_cfd.cpp)
+target_link_libraries(fin-cfd PRIVATE finverse_cfd finverse_cfd_io finverse_core finverse_vtkio finverse_warnings)

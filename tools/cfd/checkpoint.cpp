@@ -1,0 +1,38 @@
+// HDF5 checkpoint write and read; see checkpoint.hpp.
+#include "cfd/checkpoint.hpp"
+
+#include "core/error.hpp"
+#include "core/hdf5_file.hpp"
+
+namespace finverse::cfd {
+
+void write_checkpoint(const std::filesystem::path& path, const FlowSolver& solver, const std::string& config) {
+  auto file = h5::File::create(path);
+  file.set_attr(".", "schema", std::string("finverse/cfd-checkpoint"));
+  file.set_attr(".", "schema_version", std::int64_t{1});
+  file.set_attr(".", "config", config);
+  auto g = file.create_group("state");
+  for (const StateArray& a : solver.state()) {
+    if (a.values.empty()) continue;  // e.g. Neumann sides: no boundary values
+    g.write(a.name, NdArray<double>({a.values.size()}, a.values), h5::WriteOptions{"", false});
+  }
+  file.commit();
+}
+
+void read_checkpoint(const std::filesystem::path& path, FlowSolver& solver) {
+  auto file = h5::File::open_read(path);
+  if (file.attr_string(".", "schema").value_or("") != "finverse/cfd-checkpoint")
+    throw Error(path.string() + ": not a flow-solver checkpoint (root attribute schema != finverse/cfd-checkpoint)");
+  auto g = file.group("state");
+  std::vector<StateArray> state = solver.state();
+  for (StateArray& a : state) {
+    if (!g.exists(a.name)) {
+      if (!a.values.empty()) throw Error(path.string() + ": dataset state/" + a.name + " missing");
+      continue;
+    }
+    a.values = g.read_f64(a.name).data;
+  }
+  solver.restore(state);
+}
+
+}  // namespace finverse::cfd

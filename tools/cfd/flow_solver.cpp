@@ -1,0 +1,314 @@
+// FlowSolver set-up, the time loop's order of sub-steps, the shared discrete operators (face
+// interpolation, face and cell gradients, divergence) and the checkpoint state; see flow_solver.hpp.
+// The sub-steps themselves live one per file (momentum_predictor.cpp, pressure_correction.cpp,
+// velocity_update.cpp, time_step_control.cpp, boundary_values.cpp).
+#include "cfd/flow_solver.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "cfd/loops.hpp"
+#include "core/error.hpp"
+
+namespace finverse::cfd {
+
+void FlowSolver::setup(const StretchedGrid& grid, const FlowBoundary& boundary, const FlowOptions& options) {
+  boundary.validate(grid.dim());
+  if (!(options.nu > 0)) throw Error("flow solver: nu must be > 0");
+  if (!(options.dt > 0) && !(options.cfl > 0 && std::isfinite(options.dt_max) && options.dt_max > 0))
+    throw Error("flow solver: need dt > 0, or cfl > 0 with a finite dt_max > 0");
+  grid_ = grid;
+  bnd_ = boundary;
+  opt_ = options;
+  beta_ = FaceCoefficients(grid, 1.0);
+  for (int c = 0; c < dim(); ++c) {
+    BoundaryConditions bc;
+    for (int s = 0; s < 6; ++s) {
+      const Side side = static_cast<Side>(s);
+      bc[side] = s < 2 * dim() ? bnd_.component_type(side, c) : BcType::Neumann;
+    }
+    helmholtz_[static_cast<std::size_t>(c)].setup(grid, beta_, bc);
+  }
+  poisson_.setup(grid, beta_, bnd_.pressure_conditions(), opt_.poisson);
+  for (int c = 0; c < 3; ++c) {
+    const auto C = static_cast<std::size_t>(c);
+    const bool on = c < dim();
+    u_[C] = on ? Field(grid) : Field();
+    ustar_[C] = on ? Field(grid) : Field();
+    conv_[C] = on ? Field(grid) : Field();
+    conv_old_[C] = on ? Field(grid) : Field();
+    work_[C] = on ? Field(grid) : Field();
+  }
+  p_ = Field(grid);
+  phi_ = Field(grid);
+  rhs_ = Field(grid);
+  zero_ = Field(grid);
+  grad_ = Field(grid);
+  bterm_ = Field(grid);
+  U_ = FaceField(grid);
+  Ustar_ = FaceField(grid);
+  time_ = 0;
+  dt_old_ = 0;
+  step_ = 0;
+}
+
+void FlowSolver::initialise(const VelocityFunction& velocity, const std::function<double(double, double, double)>& pressure,
+                            double t0) {
+  time_ = t0;
+  dt_old_ = 0;
+  step_ = 0;
+  for_each_cell(grid_, [&](int i, int j, int k) {
+    const auto v = velocity ? velocity(grid_.xc(i), grid_.yc(j), grid_.zc(k), t0) : std::array<double, 3>{0, 0, 0};
+    for (int c = 0; c < dim(); ++c) u_[static_cast<std::size_t>(c)](i, j, k) = v[static_cast<std::size_t>(c)];
+    p_(i, j, k) = pressure ? pressure(grid_.xc(i), grid_.yc(j), grid_.zc(k)) : 0.0;
+  });
+  for (int c = 0; c < dim(); ++c) {
+    conv_old_[static_cast<std::size_t>(c)].fill(0.0);
+    copy_interior(u_[static_cast<std::size_t>(c)], ustar_[static_cast<std::size_t>(c)]);
+  }
+  double norm = norm2(p_);
+  for (int c = 0; c < dim(); ++c) norm += norm2(u_[static_cast<std::size_t>(c)]);
+  if (!std::isfinite(norm)) throw Error("flow solver: the initial velocity or pressure is not finite");
+  set_boundary_values(t0, 0.0, true);
+  // Project the interpolated initial field: the face predictor with dt = 1 and no pressure, then
+  // the same correction as a time step, so that the run starts from discretely solenoidal faces.
+  // The faces get the pressure-coupling term they will carry during the run (see face_predictor).
+  Field p_saved = p_;
+  phi_.fill(0.0);
+  const double tau = opt_.coupling_time > 0 ? (opt_.dt > 0 ? coupling_time(opt_.dt) : opt_.coupling_time) : opt_.dt;
+  if (!(tau > 0)) p_.fill(0.0);  // dt not known yet: start from the plain interpolation
+  face_predictor(1.0, tau > 0 ? tau : 1.0);
+  solve_pressure_correction(1.0);
+  update_velocity(1.0);
+  p_ = p_saved;
+  phi_.fill(0.0);
+  bv_ = bv_new_;
+}
+
+StepStats FlowSolver::step() {
+  const double dt = choose_time_step();
+  const double t_new = time_ + dt;
+  set_boundary_values(t_new, dt, false);
+  predict_momentum(dt);
+  face_predictor(dt, coupling_time(dt));
+  const PoissonSolveStats ps = solve_pressure_correction(dt);
+  update_velocity(dt);
+  for (int c = 0; c < dim(); ++c) std::swap(conv_old_[static_cast<std::size_t>(c)], conv_[static_cast<std::size_t>(c)]);
+  bv_ = bv_new_;
+  time_ = t_new;
+  dt_old_ = dt;
+  ++step_;
+  check_health(dt);
+  StepStats st;
+  st.step = step_;
+  st.time = time_;
+  st.dt = dt;
+  st.cfl = cfl(dt);
+  st.poisson_iterations = ps.iterations;
+  st.poisson_residual = ps.relative_residual;
+  st.helmholtz_iterations = last_helmholtz_iterations_;
+  st.max_divergence = max_divergence();
+  return st;
+}
+
+// ---- shared discrete operators -------------------------------------------------------------
+
+double FlowSolver::face_area(int d, int i, int j, int k) const {
+  switch (d) {
+    case 0: return grid_.dy(j) * grid_.dz(k);
+    case 1: return grid_.dx(i) * grid_.dz(k);
+    default: return grid_.dx(i) * grid_.dy(j);
+  }
+}
+
+std::size_t FlowSolver::side_index(Side s, int i, int j, int k) const {
+  const auto z = [](int v) { return static_cast<std::size_t>(v); };
+  switch (side_axis(s)) {
+    case 0: return z(j) + z(grid_.ny()) * z(k);
+    case 1: return z(i) + z(grid_.nx()) * z(k);
+    default: return z(i) + z(grid_.nx()) * z(j);
+  }
+}
+
+// Linear interpolation to the face between the centres of its two cells (second order on smooth
+// stretched grids: the weight accounts for the face not being midway between the centres). On a
+// non-periodic boundary: the Dirichlet value, or the cell value for a zero normal derivative.
+double FlowSolver::face_value(const Field& q, int c, int d, int i, int j, int k,
+                              const std::array<BoundaryValues, 3>& bv) const {
+  const Axis& ax = grid_.axis(d);
+  const int n = ax.size();
+  int idx[3] = {i, j, k};
+  const int f = idx[d];
+  int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+  if (f > 0 && f < n) {
+    lo[d] = f - 1;
+  } else if (bnd_.periodic(d)) {
+    lo[d] = n - 1;
+    hi[d] = 0;
+  } else {
+    const Side s = static_cast<Side>(2 * d + (f == n ? 1 : 0));
+    const auto& v = bv[static_cast<std::size_t>(c)][s];
+    if (!v.empty()) return v[side_index(s, i, j, k)];
+    idx[d] = f == n ? n - 1 : 0;
+    return q(idx[0], idx[1], idx[2]);
+  }
+  const double hl = ax.width(lo[d]), hr = ax.width(hi[d]);
+  const double wl = hr / (hl + hr);
+  return wl * q(lo[0], lo[1], lo[2]) + (1 - wl) * q(hi[0], hi[1], hi[2]);
+}
+
+// Compact gradient across the face; zero on non-periodic boundaries, where the pressure
+// correction satisfies a homogeneous Neumann condition (the boundary fluxes are prescribed).
+double FlowSolver::face_gradient(const Field& q, int d, int i, int j, int k) const {
+  const Axis& ax = grid_.axis(d);
+  const int n = ax.size();
+  const int f = d == 0 ? i : d == 1 ? j : k;
+  int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+  double dist;
+  if (f > 0 && f < n) {
+    lo[d] = f - 1;
+    dist = ax.centre(f) - ax.centre(f - 1);
+  } else if (bnd_.periodic(d)) {
+    lo[d] = n - 1;
+    hi[d] = 0;
+    dist = 0.5 * (ax.width(0) + ax.width(n - 1));
+  } else {
+    return 0.0;
+  }
+  return (q(hi[0], hi[1], hi[2]) - q(lo[0], lo[1], lo[2])) / dist;
+}
+
+// Cell-centred gradient: the mean of the two face gradients (the centre is midway between its
+// faces, so this is their linear interpolation). Next to a non-periodic boundary the boundary
+// face's gradient is not a property of the flow (it is the Neumann condition of the correction),
+// so the cell value is extrapolated linearly from the two nearest interior faces instead.
+void FlowSolver::cell_gradient(const Field& q, int d, Field& out) const {
+  const Axis& ax = grid_.axis(d);
+  const int n = ax.size();
+  const bool periodic = bnd_.periodic(d);
+  for_each_cell(grid_, [&](int i, int j, int k) {
+    const int idx[3] = {i, j, k};
+    const int m = idx[d];
+    int f1[3] = {i, j, k};
+    if (periodic || (m > 0 && m < n - 1)) {
+      f1[d] = m + 1;
+      out(i, j, k) = 0.5 * (face_gradient(q, d, i, j, k) + face_gradient(q, d, f1[0], f1[1], f1[2]));
+      return;
+    }
+    if (n == 1) {
+      out(i, j, k) = 0;
+      return;
+    }
+    // Boundary cell: interior faces a (nearest) and b (next).
+    const int fa = m == 0 ? 1 : n - 1;
+    f1[d] = fa;
+    const double ga = face_gradient(q, d, f1[0], f1[1], f1[2]);
+    if (n == 2) {
+      out(i, j, k) = ga;
+      return;
+    }
+    const int fb = m == 0 ? 2 : n - 2;
+    int f2[3] = {i, j, k};
+    f2[d] = fb;
+    const double gb = face_gradient(q, d, f2[0], f2[1], f2[2]);
+    out(i, j, k) = ga + (ax.centre(m) - ax.face(fa)) * (gb - ga) / (ax.face(fb) - ax.face(fa));
+  });
+}
+
+double FlowSolver::divergence(const FaceField& U, int i, int j, int k) const {
+  double s = 0;
+  for (int d = 0; d < dim(); ++d) {
+    int h[3] = {i, j, k};
+    ++h[d];
+    s += (U(d, h[0], h[1], h[2]) - U(d, i, j, k)) * face_area(d, i, j, k);
+  }
+  return s / grid_.volume(i, j, k);
+}
+
+// Brown, Cortez & Minion (2001): with Crank-Nicolson, p^{n+1/2} = p^{n-1/2} + phi - (nu dt/2) L phi
+// is the second-order pressure at the half step. Only for output: fed back into the predictor, the
+// extra term destabilises the scheme next to walls (phi's homogeneous Neumann condition is not the
+// pressure's, so L phi is O(1/h) there); the scheme's own p is Van Kan's.
+Field FlowSolver::pressure() const {
+  Field out = p_;
+  if (step_ == 0) return out;
+  Field phi = phi_, lap(grid_);
+  poisson_.op().apply(phi, lap);  // A phi = -V L phi
+  const double c = 0.5 * opt_.nu * dt_old_;
+  for_each_cell(grid_, [&](int i, int j, int k) { out(i, j, k) += c * lap(i, j, k) / grid_.volume(i, j, k); });
+  return out;
+}
+
+// ---- output and checkpoint state -------------------------------------------------------------
+
+std::vector<StateArray> FlowSolver::cell_output() const {
+  const std::size_t n = grid_.cells();
+  const Field ph = pressure();
+  StateArray vel{"velocity", std::vector<double>(3 * n, 0.0)}, pres{"pressure", std::vector<double>(n)},
+      div{"divergence", std::vector<double>(n)};
+  for_each_cell(grid_, [&](int i, int j, int k) {
+    const std::size_t m = static_cast<std::size_t>(i) +
+                          static_cast<std::size_t>(grid_.nx()) *
+                              (static_cast<std::size_t>(j) + static_cast<std::size_t>(grid_.ny()) * static_cast<std::size_t>(k));
+    for (int c = 0; c < dim(); ++c) vel.values[3 * m + static_cast<std::size_t>(c)] = u_[static_cast<std::size_t>(c)](i, j, k);
+    pres.values[m] = ph(i, j, k);
+    div.values[m] = divergence(U_, i, j, k);
+  });
+  return {vel, pres, div};
+}
+
+namespace {
+std::size_t raw_size(const Field& f) {
+  const std::size_t gz = f.dim() == 3 ? static_cast<std::size_t>(f.ghost()) : 0;
+  return static_cast<std::size_t>(f.stride_z()) * (static_cast<std::size_t>(f.nz()) + 2 * gz);
+}
+StateArray raw(const std::string& name, const Field& f) {
+  return {name, std::vector<double>(f.data(), f.data() + raw_size(f))};
+}
+void unraw(const StateArray& a, Field& f) {
+  if (a.values.size() != raw_size(f)) throw Error("flow solver restore: array '" + a.name + "' has the wrong size");
+  std::memcpy(f.data(), a.values.data(), a.values.size() * sizeof(double));
+}
+const char* comp_name(int c) { return c == 0 ? "x" : c == 1 ? "y" : "z"; }
+}  // namespace
+
+std::vector<StateArray> FlowSolver::state() const {
+  std::vector<StateArray> s;
+  s.push_back({"scalars", {static_cast<double>(step_), time_, dt_old_}});
+  s.push_back(raw("p", p_));
+  s.push_back(raw("phi", phi_));
+  for (int c = 0; c < dim(); ++c) {
+    const auto C = static_cast<std::size_t>(c);
+    s.push_back(raw(std::string("u_") + comp_name(c), u_[C]));
+    s.push_back(raw(std::string("convection_") + comp_name(c), conv_old_[C]));
+    s.push_back({std::string("face_velocity_") + comp_name(c), U_.values(c)});
+    for (int side = 0; side < 2 * dim(); ++side)
+      s.push_back({std::string("boundary_") + comp_name(c) + "_" + std::to_string(side),
+                   bv_[C].value[static_cast<std::size_t>(side)]});
+  }
+  return s;
+}
+
+void FlowSolver::restore(const std::vector<StateArray>& s) {
+  const std::vector<StateArray> expected = state();
+  if (s.size() != expected.size()) throw Error("flow solver restore: checkpoint does not match this set-up");
+  for (std::size_t a = 0; a < s.size(); ++a)
+    if (s[a].name != expected[a].name || s[a].values.size() != expected[a].values.size())
+      throw Error("flow solver restore: array '" + expected[a].name + "' missing or of the wrong size");
+  step_ = static_cast<long>(s[0].values[0]);
+  time_ = s[0].values[1];
+  dt_old_ = s[0].values[2];
+  std::size_t a = 1;
+  unraw(s[a++], p_);
+  unraw(s[a++], phi_);
+  for (int c = 0; c < dim(); ++c) {
+    const auto C = static_cast<std::size_t>(c);
+    unraw(s[a++], u_[C]);
+    unraw(s[a++], conv_old_[C]);
+    U_.values(c) = s[a++].values;
+    for (int side = 0; side < 2 * dim(); ++side) bv_[C].value[static_cast<std::size_t>(side)] = s[a++].values;
+  }
+}
+
+}  // namespace finverse::cfd

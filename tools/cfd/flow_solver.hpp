@@ -1,0 +1,169 @@
+// Incompressible Navier-Stokes solver on the stretched Cartesian grid (DESIGN.md section 5.1; seed
+// paper section 2.3), 2-D and 3-D:
+//
+//     du/dt + div(u u) = -grad p + nu lap u + f,     div u = 0     (p is kinematic, p / rho).
+//
+// Cell-centred collocated u, v, (w), p plus face-normal velocities U for continuity (Zang, Street &
+// Koseff 1994, J. Comput. Phys. 114:18), advanced by the second-order incremental pressure-correction
+// (fractional-step) method of Van Kan (1986, SIAM J. Sci. Stat. Comput. 7:870):
+//
+//   1. predictor (momentum_predictor.cpp):
+//        (u* - u^n)/dt = -[(1 + r/2) N^n - (r/2) N^{n-1}] - Gc p^n + nu/2 L(u* + u^n) + f^{n+1/2},
+//      N = div(U u) conservative with face velocities U^n, r = dt/dt_old (Adams-Bashforth 2 with
+//      variable steps; explicit Euler on the first step), Crank-Nicolson diffusion solved
+//      implicitly (helmholtz_solver.hpp);
+//   2. pressure correction (pressure_correction.cpp): the face predictor
+//        U* = I(u*) + tau (I Gc - Gf) q, q = p^n or an extrapolation of it (tau = dt: the classical
+//      U* = I(u* + dt Gc p^n) - dt Gf p^n; the face velocity feels the compact face gradient, so
+//      no pressure checkerboard), then  Df Gf phi = Df U* / dt  by MG-PCG (poisson_solver.hpp),
+//      warm started from the previous phi;
+//   3. update (velocity_update.cpp): U = U* - dt Gf phi (discretely divergence-free to the Poisson
+//      tolerance), u = u* - dt Gc phi, p^{n+1/2} = p^{n-1/2} + phi;
+//   4. time-step control and health (time_step_control.cpp): fixed dt or a target CFL number, and a
+//      one-line finverse::Error naming the step when the velocity is not finite or the CFL number
+//      exceeds its limit.
+// Boundary values for the new time level (inlet ramps, convective outlet, mass balance) are set in
+// boundary_values.cpp; diagnostics (divergence, energy, momentum, CFL) in flow_diagnostics.cpp.
+//
+// Every reduction is ordered (field.hpp), so a run is bitwise reproducible for any thread count,
+// and state()/restore() capture everything the future of a run depends on, so a restart from a
+// checkpoint continues bitwise as the uninterrupted run.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "cfd/boundary.hpp"
+#include "cfd/face_field.hpp"
+#include "cfd/field.hpp"
+#include "cfd/flow_boundary.hpp"
+#include "cfd/grid.hpp"
+#include "cfd/helmholtz_solver.hpp"
+#include "cfd/poisson_solver.hpp"
+
+namespace finverse::cfd {
+
+struct FlowOptions {
+  double nu = 1e-3;   // kinematic viscosity [m^2/s]
+  double dt = 0;      // > 0: fixed time step; 0: from the target CFL number
+  double cfl = 0.5;   // target convective CFL number when dt == 0
+  double dt_max = std::numeric_limits<double>::infinity();  // needed when dt == 0
+  double max_dt_growth = 1.2;  // per step, when dt == 0 (keeps AB2 with variable steps smooth)
+  double cfl_limit = 2.0;      // blow-up guard
+  // Pressure-coupling time tau of the face predictor (pressure_correction.cpp). 0: tau = dt every
+  // step (the classical form; the solution then carries an O(dt h^2) term). > 0: a fixed tau,
+  // clamped to dt/2, with the pressure extrapolated to the new time level, which makes the error
+  // O(h^2) + O(dt^2) with no mixed term: what a temporal convergence study at a fixed grid needs.
+  double coupling_time = 0;
+  bool convection = true;      // false: unsteady Stokes flow
+  double helmholtz_rtol = 1e-12;
+  int helmholtz_max_iterations = 1000;
+  PoissonSolverOptions poisson = [] {
+    PoissonSolverOptions o;
+    o.rtol = 1e-10;
+    return o;
+  }();
+  // Body force per unit mass, evaluated at cell centres at t^{n+1/2}.
+  VelocityFunction body_force;
+};
+
+struct StepStats {
+  long step = 0;
+  double time = 0, dt = 0, cfl = 0;
+  int poisson_iterations = 0;
+  double poisson_residual = 0;
+  int helmholtz_iterations = 0;  // summed over the components
+  double max_divergence = 0;     // max |Df U| after the step [1/s]
+};
+
+// One named array of the solver state (checkpoints).
+struct StateArray {
+  std::string name;
+  std::vector<double> values;
+};
+
+class FlowSolver {
+ public:
+  void setup(const StretchedGrid& grid, const FlowBoundary& boundary, const FlowOptions& options);
+
+  // Initial velocity (made discretely divergence-free by a projection) and pressure at time t0.
+  void initialise(const VelocityFunction& velocity,
+                  const std::function<double(double, double, double)>& pressure = {}, double t0 = 0);
+
+  StepStats step();
+
+  // Output: cell-centred velocity component c, kinematic pressure, face velocities.
+  const Field& u(int c) const { return u_[static_cast<std::size_t>(c)]; }
+  // Kinematic pressure of the scheme (Van Kan's p^{n+1/2}, first order at t - dt/2), and the
+  // output pressure: second order at t - dt/2 (Brown, Cortez & Minion 2001, J. Comput. Phys.
+  // 168:464, p + phi - (nu dt/2) L phi).
+  const Field& p() const { return p_; }
+  Field pressure() const;
+  const FaceField& face_velocity() const { return U_; }
+  const StretchedGrid& grid() const { return grid_; }
+  const FlowOptions& options() const { return opt_; }
+  const FlowBoundary& boundary() const { return bnd_; }
+  int dim() const { return grid_.dim(); }
+  double time() const { return time_; }
+  long steps() const { return step_; }
+  double last_dt() const { return dt_old_; }
+
+  // Cell-centred output arrays (interior cells, x fastest): "velocity" [n, 3], "pressure" [n]
+  // (kinematic), "divergence" [n] (of the face velocities).
+  std::vector<StateArray> cell_output() const;
+
+  // Diagnostics (flow_diagnostics.cpp), all deterministic.
+  double max_divergence() const;     // max over cells of |sum_f U_f A_f| / V
+  double kinetic_energy() const;     // sum V |u|^2 / 2
+  double momentum(int c) const;      // sum V u_c
+  double cfl(double dt) const;       // dt max sum_d |u_d| / h_d
+
+  // Checkpointing: every array the next steps depend on, and its inverse (same setup required).
+  std::vector<StateArray> state() const;
+  void restore(const std::vector<StateArray>& state);
+
+ private:
+  // time_step_control.cpp
+  double choose_time_step() const;
+  void check_health(double dt) const;
+  // boundary_values.cpp
+  void set_boundary_values(double t, double dt, bool initial);
+  // momentum_predictor.cpp
+  void convective_term(std::array<Field, 3>& out) const;
+  void predict_momentum(double dt);
+  // pressure_correction.cpp
+  void face_predictor(double dt, double tau);
+  double coupling_time(double dt) const;
+  PoissonSolveStats solve_pressure_correction(double dt);
+  // velocity_update.cpp
+  void update_velocity(double dt);
+  // Shared kernels (flow_solver.cpp).
+  double face_area(int d, int i, int j, int k) const;
+  double face_value(const Field& q, int c, int d, int i, int j, int k, const std::array<BoundaryValues, 3>& bv) const;
+  double face_gradient(const Field& q, int d, int i, int j, int k) const;
+  void cell_gradient(const Field& q, int d, Field& out) const;
+  double divergence(const FaceField& U, int i, int j, int k) const;
+  std::size_t side_index(Side s, int i, int j, int k) const;
+
+  StretchedGrid grid_;
+  FlowBoundary bnd_;
+  FlowOptions opt_;
+  FaceCoefficients beta_;
+  std::array<HelmholtzSolver, 3> helmholtz_;
+  PoissonSolver poisson_;
+
+  std::array<Field, 3> u_, ustar_, conv_, conv_old_, work_;
+  Field p_, phi_, rhs_, zero_, grad_, bterm_;
+  FaceField U_, Ustar_;
+  // Per component: boundary values at t^n and t^{n+1} (Dirichlet: the velocity on the face;
+  // Neumann: empty = zero normal derivative).
+  std::array<BoundaryValues, 3> bv_, bv_new_;
+  double time_ = 0, dt_old_ = 0;
+  long step_ = 0;
+  int last_helmholtz_iterations_ = 0;
+};
+
+}  // namespace finverse::cfd

@@ -1,0 +1,36 @@
+// A closed 2-D body for the sharp-interface ghost-cell immersed boundary (Mittal et al. 2008,
+// J. Comput. Phys. 227:4825; DESIGN.md section 5.1): a simple polygon, counter-clockwise, with
+// the geometry queries the ghost-cell method needs: inside/outside of a cell centre, and the
+// closest surface point with its outward normal (the boundary intercept of a ghost cell's probe).
+// The 3-D counterpart is a closed triangulated surface with the same queries.
+#pragma once
+
+#include <array>
+#include <vector>
+
+namespace finverse::cfd {
+
+struct SurfacePoint {
+  std::array<double, 2> point{};   // closest point on the polygon
+  std::array<double, 2> normal{};  // outward unit normal there
+  double distance = 0;             // signed: > 0 outside the body, < 0 inside
+};
+
+class Polygon {
+ public:
+  // At least 3 distinct vertices, no self-intersections (not checked); either orientation (stored
+  // counter-clockwise).
+  explicit Polygon(std::vector<std::array<double, 2>> vertices);
+  // A circle of radius r as a regular n-gon with the vertices on the circle.
+  static Polygon circle(double cx, double cy, double r, int n);
+
+  bool contains(double x, double y) const;  // crossing-number test
+  SurfacePoint closest(double x, double y) const;
+  double area() const;
+  const std::vector<std::array<double, 2>>& vertices() const { return v_; }
+
+ private:
+  std::vector<std::array<double, 2>> v_;
+};
+
+}  // namespace finverse::cfd

@@ -1,0 +1,28 @@
+// Step 3 of the fractional step: the projection onto (discretely) divergence-free faces,
+//     U^{n+1} = U* - dt Gf phi,   u^{n+1} = u* - dt Gc phi,
+//     p^{n+1/2} = p^{n-1/2} + phi      (Van Kan; the pressure lives at the Crank-Nicolson half steps;
+// FlowSolver::pressure() adds the Brown-Cortez-Minion term for output).
+// Df Gf is exactly the Poisson operator that phi solved, so Df U^{n+1} = 0 to the solver tolerance;
+// the cell velocities are corrected with the cell-centred gradient (Zang, Street & Koseff 1994) and
+// are divergence-free only to truncation error, as on every collocated grid. On non-periodic sides
+// Gf phi = 0 (homogeneous Neumann), so the prescribed boundary fluxes are kept.
+#include "cfd/flow_solver.hpp"
+#include "cfd/loops.hpp"
+
+namespace finverse::cfd {
+
+void FlowSolver::update_velocity(double dt) {
+  for (int d = 0; d < dim(); ++d) {
+    const auto D = static_cast<std::size_t>(d);
+    for_each_face(grid_, d, [&](int i, int j, int k) {
+      U_(d, i, j, k) = Ustar_(d, i, j, k) - dt * face_gradient(phi_, d, i, j, k);
+    });
+    cell_gradient(phi_, d, grad_);
+    Field& u = u_[D];
+    const Field& us = ustar_[D];
+    for_each_cell(grid_, [&](int i, int j, int k) { u(i, j, k) = us(i, j, k) - dt * grad_(i, j, k); });
+  }
+  for_each_cell(grid_, [&](int i, int j, int k) { p_(i, j, k) += phi_(i, j, k); });
+}
+
+}  // namespace finverse::cfd
