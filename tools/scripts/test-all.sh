@@ -16,8 +16,10 @@ echo "== Release tests"
 ctest --test-dir build -j "$jobs" --output-on-failure --timeout 900
 
 echo "== Debug + ASan/UBSan build"
-# -O1 keeps the sanitizers exact (ASan's own advice) and makes the sanitized tests several times faster than -O0.
-cmake -S . -B build-asan "${generator[@]}" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DFINVERSE_SANITIZE=ON -DFINVERSE_WERROR=ON
+# -O1 keeps the sanitizers exact (ASan's own advice) and makes the sanitized tests several times
+# faster than -O0. Warnings are errors only in the Release build: with sanitizer instrumentation
+# GCC 12 reports -Wmaybe-uninitialized inside libstdc++'s <regex>, a false positive.
+cmake -S . -B build-asan "${generator[@]}" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DFINVERSE_SANITIZE=ON -DFINVERSE_WERROR=OFF
 cmake --build build-asan -j "$jobs"
 echo "== Debug + ASan/UBSan unit tests"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
