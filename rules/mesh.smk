@@ -1,6 +1,7 @@
 # The front of the pipeline on the case's fin (DESIGN.md section 1): fin-synth renders the virtual
-# experiment, fin-mesh builds the structural and IBM meshes and carries the truth motion onto the
-# mesh nodes (truth.h5 stands in for kinematics.h5 until fin-track lands).
+# experiment, fin-track (rules/vision.smk) reconstructs its motion, fin-mesh builds the structural
+# and IBM meshes and carries the reconstructed motion (kinematics.h5) onto the mesh nodes; truth.h5
+# is only scored against (it stands in for kinematics.h5 when fin-track is not built).
 #
 #   snakemake -c2 results/<case>/motion.h5
 #
@@ -50,7 +51,8 @@ if have("fin-mesh"):
     rule mesh:
         input:
             exe=EXE("fin-mesh"),
-            truth=f"{_OUT}/truth.h5",
+            # The reconstructed motion (rules/vision.smk); the truth only where fin-track is not built.
+            motion_source=f"{_OUT}/kinematics.h5" if have("fin-track") else f"{_OUT}/truth.h5",
         output:
             mesh=f"{_OUT}/mesh.h5",
             vtu=f"{_OUT}/mesh.vtu",
@@ -65,7 +67,7 @@ if have("fin-mesh"):
             flags=_TEMPLATE_FLAGS,
         shell:
             "{input.exe} {params.flags} --mesh {output.mesh} --vtu {output.vtu}"
-            " --motion-source {input.truth} --motion {output.motion} --motion-pvd {output.pvd}"
+            " --motion-source {input.motion_source} --motion {output.motion} --motion-pvd {output.pvd}"
             " --threads {threads} 2> {log}"
 
     register_stage_output(f"{_OUT}/motion.h5")

@@ -1,0 +1,355 @@
+// fin-track: the fin's 3-D motion from synchronized multi-view frames (DESIGN.md sections 1 and
+// 5.5; seed paper section 2.1 step 1 and section 4.1). Per frame: segment the fin in every view,
+// then fit the virtual skeleton (ray chains with 3-DOF joints, the template skinned on it) so
+// that the projected template matches every silhouette, warm-started from and regularised
+// towards the previous frames' motion.
+//
+//   fin-track --frames results/c/frames --cameras results/c/cameras.yml --out results/c/kinematics.h5
+//
+// Frames are <frames>/<view>/NNNNNN.png (any format cv::imread reads), NNNNNN the frame index.
+// A view without frames, or a frame missing in some views, is warned about and fitted with the
+// views that are there. With --truth the reconstruction is scored (--summary), with --bench
+// timed (--bench-json).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <numbers>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "core/cli.hpp"
+#include "core/error.hpp"
+#include "core/hdf5_file.hpp"
+#include "core/log.hpp"
+#include "core/stage_files.hpp"
+#include "core/summary.hpp"
+#include "mesh/template_options.hpp"
+#include "vision/camera.hpp"
+#include "vision/fin_surface.hpp"
+#include "vision/skeleton_fit.hpp"
+#include "vision/tracking_score.hpp"
+
+namespace fs = std::filesystem;
+using namespace finverse;
+
+namespace {
+
+// frame index -> file, per view.
+std::map<long, fs::path> list_frames(const fs::path& dir) {
+  std::map<long, fs::path> out;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    const auto stem = e.path().stem().string();
+    if (stem.empty() || !std::all_of(stem.begin(), stem.end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))
+      continue;
+    out[std::stol(stem)] = e.path();
+  }
+  return out;
+}
+
+std::vector<std::size_t> trailing_edge(const vision::FinSurface& f) {
+  std::vector<std::size_t> te;
+  for (std::size_t v = 0; v < f.size(); ++v)
+    if (f.s[v] >= 1 - 1e-12) te.push_back(v);
+  return te;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fin-track: reconstruct the fin's 3-D motion from multi-view frames (skeleton fit to silhouettes)"};
+  cli::Standard standard(app, "fin-track");
+  mesh::TemplateOptions tmpl;
+  mesh::add_template_options(app, tmpl);
+  vision::FitOptions fo;
+  vision::SegmentationOptions so;
+  fs::path frames_dir, cameras_file, out, truth_file, summary_out, bench_out, mesh_summary;
+  double fps = 500, perturb_px = 0, velocity_factor = 0.5;
+  std::optional<double> period;
+  int subdivisions = 4, segments = 5;
+  std::uint64_t seed = 1;
+  std::vector<std::string> ignore_views, also_score;
+  app.add_option("--frames", frames_dir, "frames directory: <view>/NNNNNN.png")->required()->check(CLI::ExistingDirectory);
+  app.add_option("--cameras", cameras_file, "cameras.yml (OpenCV FileStorage)")->required()->check(CLI::ExistingFile);
+  app.add_option("--out", out, "output kinematics.h5")->required();
+  app.add_option("--fps", fps, "camera frame rate (1/s)")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--period", period, "period of the motion (s), stored as the T attribute when the record is periodic");
+  app.add_option("--surface-subdivisions", subdivisions, "template surface columns per gap between rays (even)")->capture_default_str();
+  app.add_option("--segments", segments, "skeleton segments per ray")->capture_default_str();
+  app.add_option("--iterations", fo.iterations, "LM iterations per frame")->capture_default_str();
+  app.add_option("--first-iterations", fo.first_iterations, "LM iterations for the first frame")->capture_default_str();
+  app.add_option("--temporal-sigma", fo.temporal_sigma, "temporal prior: rad (translation: chords)")->capture_default_str();
+  app.add_option("--neighbour-sigma", fo.neighbour_sigma, "prior on joint differences of neighbouring rays (rad)")->capture_default_str();
+  app.add_option("--out-of-plane-sigma", fo.out_of_plane_sigma, "prior on twist and in-plane bending (rad)")->capture_default_str();
+  app.add_option("--contour-stride", fo.silhouette.contour_stride, "use every n-th silhouette contour pixel")->capture_default_str();
+  app.add_option("--prediction-velocity", velocity_factor,
+                 "fraction of the last frame-to-frame change carried into the next frame's prediction (1: constant velocity)")
+      ->capture_default_str();
+  app.add_option("--ray-views", fo.ray_views, "views whose ray features are fitted (default: all)")->delimiter(',');
+  app.add_option("--ray-weight", fo.rays.weight, "weight of the ray-feature residuals (0: silhouettes only)")->capture_default_str();
+  app.add_option("--ray-contrast", fo.rays.min_contrast, "ray detection: black-hat threshold (8-bit levels)")->capture_default_str();
+  app.add_option("--min-contrast", so.min_contrast, "segmentation: smallest darkening that counts as fin (8-bit levels)")->capture_default_str();
+  app.add_option("--ignore-view", ignore_views, "leave these views out (validation: one view removed)")->delimiter(',');
+  app.add_option("--perturb-calibration-px", perturb_px, "shift every principal point by this many px in a seeded direction (validation)")
+      ->capture_default_str();
+  app.add_option("--seed", seed, "seed of --perturb-calibration-px")->capture_default_str();
+  app.add_option("--truth", truth_file, "truth.h5 of fin-synth: score the reconstruction")->check(CLI::ExistingFile);
+  auto* sum_opt = app.add_option("--summary", summary_out, "validation summary.json (needs --truth)");
+  app.add_option("--also-score", also_score, "label=kinematics.h5: score another reconstruction too (reported only)")->needs(sum_opt);
+  app.add_option("--bench-json", bench_out, "benchmark json: seconds per frame set");
+  app.add_option("--bench-mesh-summary", mesh_summary, "fin-mesh --summary file whose mesh_wall_time joins the benchmark")->check(CLI::ExistingFile);
+
+  return cli::run(app, standard, argc, argv, [&] {
+    if (!summary_out.empty() && truth_file.empty()) throw Error("--summary: needs --truth");
+    const auto fin = mesh::make_template(tmpl);
+    const auto surface = vision::make_fin_surface(fin, subdivisions);
+    const auto skeleton = vision::make_skeleton(fin, segments);
+    const auto binding = vision::bind_skin(fin, skeleton, surface.rest);
+
+    auto cameras = vision::read_cameras(cameras_file);
+    if (perturb_px > 0) {
+      std::mt19937_64 rng(seed);
+      for (auto& c : cameras) {
+        const double a = 2 * std::numbers::pi * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
+        c.K(0, 2) += perturb_px * std::cos(a);
+        c.K(1, 2) += perturb_px * std::sin(a);
+      }
+    }
+    // Views: the calibration defines them; the frames must not hold views it does not know.
+    std::set<std::string> known;
+    for (const auto& c : cameras) known.insert(c.name);
+    for (const auto& e : fs::directory_iterator(frames_dir))
+      if (e.is_directory() && !known.count(e.path().filename().string()))
+        throw Error(cameras_file.string() + ": calibration inconsistent with the frames: " + frames_dir.string() + " has view '" +
+                    e.path().filename().string() + "' but the camera file defines " + std::to_string(cameras.size()) + " view(s)");
+    const std::size_t nview = cameras.size();
+    std::vector<std::map<long, fs::path>> files(nview);
+    std::set<long> indices;
+    for (std::size_t v = 0; v < nview; ++v) {
+      const auto dir = frames_dir / cameras[v].name;
+      if (std::find(ignore_views.begin(), ignore_views.end(), cameras[v].name) != ignore_views.end()) {
+        log::info("view '" + cameras[v].name + "' left out (--ignore-view)");
+        continue;
+      }
+      if (!fs::is_directory(dir)) {
+        log::warn("view '" + cameras[v].name + "': no frames directory " + dir.string() + "; fitting without this view");
+        continue;
+      }
+      files[v] = list_frames(dir);
+      if (files[v].empty()) log::warn("view '" + cameras[v].name + "': no frames in " + dir.string() + "; fitting without this view");
+      for (const auto& [k, p] : files[v]) indices.insert(k);
+    }
+    if (indices.empty()) throw Error(frames_dir.string() + ": no frames (expected <view>/NNNNNN.png for the views in " + cameras_file.string() + ")");
+    const std::vector<long> frames(indices.begin(), indices.end());
+    for (std::size_t i = 1; i < frames.size(); ++i)
+      if (frames[i] != frames[i - 1] + 1)
+        log::warn("frames " + std::to_string(frames[i - 1] + 1) + ".." + std::to_string(frames[i] - 1) +
+                  " are missing in every view (dropped); fitting the frames that are there");
+    for (std::size_t v = 0; v < nview; ++v)
+      if (!files[v].empty() && files[v].size() < frames.size())
+        log::warn("view '" + cameras[v].name + "': " + std::to_string(frames.size() - files[v].size()) +
+                  " frame(s) missing; those frames are fitted from the other views");
+    const std::size_t nf = frames.size(), nv = surface.size(), nj = skeleton.joint_count();
+    log::info("template: " + std::to_string(nv) + " vertices, skeleton " + std::to_string(nj) + " joints (" +
+              std::to_string(skeleton.parameter_count()) + " parameters); " + std::to_string(nf) + " frames, " +
+              std::to_string(nview) + " views");
+
+    stage::Kinematics kin;
+    kin.template_points = surface.rest;
+    kin.template_triangles = surface.triangles;
+    {
+      std::vector<std::int32_t> off{0}, verts;
+      for (std::size_t r = 0; r < surface.rays; ++r) {
+        const double eta = 1.0 - 2.0 * static_cast<double>(r) / (surface.rays - 1);
+        std::vector<std::pair<double, std::int32_t>> on;
+        for (std::size_t v = 0; v < nv; ++v)
+          if (surface.ray_distance[v] == 0 && std::abs(surface.eta[v] - eta) < 1e-9) on.push_back({surface.s[v], static_cast<std::int32_t>(v)});
+        std::sort(on.begin(), on.end());
+        for (const auto& [s, v] : on) verts.push_back(v);
+        off.push_back(static_cast<std::int32_t>(verts.size()));
+      }
+      kin.ray_offsets = NdArray<std::int32_t>({off.size()}, off);
+      kin.ray_vertices = NdArray<std::int32_t>({verts.size()}, verts);
+    }
+    kin.time = NdArray<double>({nf});
+    kin.points = NdArray<double>({nf, nv, 3});
+    kin.joint_parent = NdArray<std::int32_t>({nj});
+    kin.joint_rest = NdArray<double>({nj, 3});
+    for (std::size_t j = 0; j < nj; ++j) {
+      kin.joint_parent(j) = skeleton.parent[j];
+      for (int d = 0; d < 3; ++d) kin.joint_rest(j, d) = skeleton.joint_rest[j][d];
+    }
+    kin.joint_angles = NdArray<double>({nf, nj, 3});
+    for (const auto& c : cameras) kin.views.push_back(c.name);
+    kin.silhouette_iou = NdArray<double>({nf, nview});
+    kin.reprojection_rms = NdArray<double>({nf, nview});
+    kin.view_valid = NdArray<std::uint8_t>({nf, nview});
+    kin.fps = fps;
+    if (period) {
+      if (!(*period > 0)) throw Error("--period: expected > 0");
+      kin.period = *period;
+    }
+
+    const vision::SkeletonFitter fitter(skeleton, binding, surface.triangles, std::vector<int>(kin.ray_vertices.data.begin(), kin.ray_vertices.data.end()), fo);
+    log::Progress progress("track", nf);
+    std::vector<vision::Pose> poses;
+    double fit_seconds = 0, first_seconds = 0;
+    double worst_iou = 1;
+    for (std::size_t i = 0; i < nf; ++i) {
+      const double t0 = log::elapsed_seconds();
+      std::vector<cv::Mat> images(nview);
+      std::vector<vision::ViewData> views(nview);
+      std::string failure;
+#pragma omp parallel for schedule(dynamic)
+      for (std::ptrdiff_t v = 0; v < static_cast<std::ptrdiff_t>(nview); ++v) {
+        try {
+          const auto it = files[v].find(frames[i]);
+          cv::Mat img;
+          if (it != files[v].end()) {
+            img = cv::imread(it->second.string(), cv::IMREAD_GRAYSCALE);
+            if (img.empty()) throw Error(it->second.string() + ": unreadable image");
+          }
+          views[v] = vision::prepare_view(cameras[v], img, so, fo.rays);
+        } catch (const std::exception& e) {
+#pragma omp critical
+          if (failure.empty()) failure = e.what();
+        }
+      }
+      if (!failure.empty()) throw Error(failure);
+      if (std::none_of(views.begin(), views.end(), [](const auto& w) { return w.valid; }))
+        throw Error(frames_dir.string() + ": frame " + std::to_string(frames[i]) + ": the fin is not visible in any view");
+      vision::FrameFit fit;
+      if (poses.empty()) {
+        fit = fitter.fit(views, vision::Pose::rest(skeleton), nullptr, fo.first_iterations);
+      } else {
+        // Prediction: the last pose plus a fraction of the last change (over the possibly uneven
+        // frame spacing). Less than the full velocity, so a direction the images barely constrain
+        // cannot keep drifting on its own momentum.
+        vision::Pose pred = poses.back();
+        if (poses.size() >= 2) {
+          const double ratio = static_cast<double>(frames[i] - frames[i - 1]) / static_cast<double>(frames[i - 1] - frames[i - 2]);
+          for (std::size_t p = 0; p < pred.p.size(); ++p)
+            pred.p[p] += velocity_factor * ratio * (poses.back().p[p] - poses[poses.size() - 2].p[p]);
+        }
+        fit = fitter.fit(views, pred, &pred, fo.iterations);
+      }
+      fit_seconds += log::elapsed_seconds() - t0;
+      if (i == 0) first_seconds = fit_seconds;
+      poses.push_back(fit.pose);
+      kin.time(i) = static_cast<double>(frames[i]) / fps;
+      std::copy(fit.points.data.begin(), fit.points.data.end(), kin.points.data.begin() + i * nv * 3);
+      for (std::size_t j = 0; j < nj; ++j)
+        for (int d = 0; d < 3; ++d) kin.joint_angles(i, j, d) = fit.pose.p[3 + 3 * j + d];
+      for (std::size_t v = 0; v < nview; ++v) {
+        kin.silhouette_iou(i, v) = fit.iou[v];
+        kin.reprojection_rms(i, v) = fit.rms_px[v];
+        kin.view_valid(i, v) = fit.valid[v];
+        if (fit.valid[v]) worst_iou = std::min(worst_iou, fit.iou[v]);
+      }
+      char status[96];
+      std::snprintf(status, sizeof status, "frame %ld, %d LM iterations, worst IoU so far %.4f", frames[i], fit.iterations, worst_iou);
+      progress.update(i + 1, status);
+    }
+    progress.finish();
+    // Steady state: the first frame starts cold from the rest pose and takes many more steps.
+    const double per_frame = nf > 1 ? (fit_seconds - first_seconds) / (nf - 1) : fit_seconds;
+    log::info("tracking: " + std::to_string(per_frame) + " s per frame set after the first (" + std::to_string(first_seconds) +
+              " s, cold start); " + std::to_string(nview) + " views, " + std::to_string(cli::threads_in_use()) +
+              " threads; worst silhouette IoU " + std::to_string(worst_iou));
+
+    Provenance prov{"fin-track", cli::effective_config(app), {cameras_file}};
+    if (!tmpl.file.empty()) prov.inputs.push_back(tmpl.file);
+    stage::write(out, kin, prov);
+    log::info("wrote " + out.string());
+
+    int status = kExitOk;
+    if (!summary_out.empty()) {
+      const auto truth = stage::read<stage::Truth>(truth_file);
+      const auto te = trailing_edge(surface);
+      std::vector<std::size_t> rows;  // truth frames matching the tracked ones
+      for (long k : frames) {
+        if (static_cast<std::size_t>(k) >= truth.time.size())
+          throw Error(truth_file.string() + ": /time: has " + std::to_string(truth.time.size()) + " frames, the frames go to " + std::to_string(k));
+        rows.push_back(static_cast<std::size_t>(k));
+      }
+      auto truth_rows = [&](const NdArray<double>& all) {
+        if (all.rank() != 3 || all.dim(1) != nv)
+          throw Error(truth_file.string() + ": /points: " + shape_string(all.shape) + ", expected [nf," + std::to_string(nv) +
+                      ",3] on the tracking template (same --surface-subdivisions as fin-synth)");
+        NdArray<double> sel({rows.size(), nv, 3});
+        for (std::size_t i = 0; i < rows.size(); ++i)
+          std::copy_n(all.data.begin() + rows[i] * nv * 3, nv * 3, sel.data.begin() + i * nv * 3);
+        return sel;
+      };
+      const auto truth_points = truth_rows(truth.points);
+      const auto sc = vision::score_tracking(kin.points, truth_points, fin.chord, te);
+      Summary sum("validation", "tracking",
+                  "fin-track on fin-synth frames (noise, blur) scored against truth.h5: vertex error, silhouette IoU, trailing-edge amplitude");
+      const std::string src = "issue 5 accuracy criteria";
+      sum.at_most("mean_vertex_error", sc.mean_error, 0.01, src + ": mean <= 1% of chord", "1");
+      sum.at_most("p95_vertex_error", sc.p95_error, 0.02, src + ": 95th percentile <= 2% of chord", "1");
+      sum.at_most("max_vertex_error", sc.max_error, 0.04, src + ": max <= 4% of chord", "1");
+      for (std::size_t v = 0; v < nview; ++v) {
+        double lo = 1;
+        bool any = false;
+        for (std::size_t i = 0; i < nf; ++i)
+          if (kin.view_valid(i, v)) lo = std::min(lo, kin.silhouette_iou(i, v)), any = true;
+        if (any) sum.at_most("iou_shortfall_" + cameras[v].name, 0.97 - lo, 0.0, src + ": silhouette IoU >= 0.97 in every frame (0.97 - worst IoU)", "1");
+        if (any) sum.info("worst_iou_" + cameras[v].name, lo, "1");
+      }
+      sum.at_most("te_amplitude_error", sc.te_amplitude_error, 0.02,
+                  src + ": trailing-edge peak-to-peak amplitude within 2% (worst TE vertex)", "1");
+      sum.info("te_amplitude_truth", sc.te_amplitude_truth, "m");
+      sum.info("te_amplitude_fit", sc.te_amplitude_fit, "m");
+      for (const auto& spec : also_score) {
+        const auto eq = spec.find('=');
+        if (eq == std::string::npos) throw Error("--also-score: expected label=kinematics.h5, got '" + spec + "'");
+        const auto label = spec.substr(0, eq);
+        const auto other = stage::read<stage::Kinematics>(spec.substr(eq + 1));
+        if (other.points.shape != kin.points.shape)
+          throw Error(spec.substr(eq + 1) + ": /points: " + shape_string(other.points.shape) + ", expected " + shape_string(kin.points.shape));
+        const auto o = vision::score_tracking(other.points, truth_points, fin.chord, te);
+        sum.info(label + "_mean_vertex_error", o.mean_error, "1");
+        sum.info(label + "_p95_vertex_error", o.p95_error, "1");
+        sum.info(label + "_max_vertex_error", o.max_error, "1");
+        sum.info(label + "_te_amplitude_error", o.te_amplitude_error, "1");
+      }
+      sum.info("frames", static_cast<double>(nf));
+      sum.info("seconds_per_frame_set", per_frame, "s");
+      sum.info("first_frame_seconds", first_seconds, "s");
+      sum.parameters() = cli::effective_config(app);
+      sum.set_timing(fit_seconds, cli::threads_in_use());
+      sum.write(summary_out);
+      log::info("mean / p95 / max vertex error " + std::to_string(100 * sc.mean_error) + " / " + std::to_string(100 * sc.p95_error) +
+                " / " + std::to_string(100 * sc.max_error) + " % of chord; TE amplitude error " + std::to_string(100 * sc.te_amplitude_error) + " %");
+      if (!sum.pass()) {
+        log::error("a validation metric failed: see " + summary_out.string());
+        status = kExitDifferent;
+      }
+    }
+    if (!bench_out.empty()) {
+      Summary b("bench", "track", "fin-track seconds per frame set (all views) and fin-mesh wall time, default resolution");
+      b.at_most("seconds_per_frame_set", per_frame, 0.5,
+                "issue 5: fin-track <= 0.5 s per frame set on 2 cores (load, segment, fit; warm-started frames)", "s");
+      b.info("first_frame_seconds", first_seconds, "s");
+      if (!mesh_summary.empty()) {
+        const auto ms = Summary::read(mesh_summary);
+        for (const auto& m : ms.metrics())
+          if (m.name == "mesh_wall_time") b.at_most("fin_mesh_wall_time", m.value, 5.0, "issue 5: fin-mesh <= 5 s for the default fin", "s");
+      }
+      b.info("frames", static_cast<double>(nf));
+      b.info("views", static_cast<double>(nview));
+      b.info("image_width", cameras[0].width, "px");
+      b.parameters() = cli::effective_config(app);
+      b.set_timing(fit_seconds, cli::threads_in_use());
+      b.write(bench_out);
+      if (!b.pass()) status = kExitDifferent;
+    }
+    return status;
+  });
+}

@@ -1,0 +1,185 @@
+// Background-model segmentation of the backlit fin (seed paper section 2.1, step 1).
+#include "vision/segmentation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Dense>
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.hpp"
+
+namespace finverse::vision {
+namespace {
+
+// Background surface b(x, y) = c0 + c1 x + c2 y + c3 r^2 + c4 r^4 in normalised coordinates
+// about the image centre: vignetting plus a tilt of the backlight.
+constexpr int kTerms = 5;
+void basis(double x, double y, double* f) {
+  const double r2 = x * x + y * y;
+  f[0] = 1;
+  f[1] = x;
+  f[2] = y;
+  f[3] = r2;
+  f[4] = r2 * r2;
+}
+
+}  // namespace
+
+Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
+  if (frame.empty() || frame.type() != CV_8UC1) throw Error("segmentation: expected a non-empty 8-bit grey frame");
+  const int W = frame.cols, H = frame.rows;
+  const double cx = 0.5 * (W - 1), cy = 0.5 * (H - 1), scale = 1.0 / std::hypot(cx, cy);
+  cv::Mat smooth;
+  frame.convertTo(smooth, CV_32F);
+  if (o.blur_sigma_px > 0) cv::GaussianBlur(smooth, smooth, cv::Size(0, 0), o.blur_sigma_px);
+
+  // Noise from the raw frame: median absolute difference of horizontal neighbours, robust to
+  // the fin's edges (sigma of a difference of two samples is sqrt(2) sigma).
+  std::vector<float> diffs;
+  diffs.reserve(static_cast<std::size_t>(W) * H / 4);
+  for (int y = 0; y < H; y += 2) {
+    const auto* row = frame.ptr<std::uint8_t>(y);
+    for (int x = 0; x + 1 < W; x += 2) diffs.push_back(static_cast<float>(std::abs(row[x + 1] - row[x])));
+  }
+  std::nth_element(diffs.begin(), diffs.begin() + diffs.size() / 2, diffs.end());
+  const double raw_sigma = 1.4826 * diffs[diffs.size() / 2] / std::sqrt(2.0);
+  // A Gaussian blur of sigma s reduces white noise by about 1 / (2 sqrt(pi) s).
+  const double blurred_sigma = o.blur_sigma_px > 0 ? raw_sigma / (2 * std::sqrt(std::numbers::pi) * o.blur_sigma_px) : raw_sigma;
+
+  // Robust least squares on a pixel lattice: start from every sample, drop the ones darker than
+  // the current surface (fin) and refit.
+  const int step = std::max(1, std::min(W, H) / 96);
+  std::vector<std::array<double, kTerms>> F;
+  std::vector<double> v;
+  for (int y = 0; y < H; y += step)
+    for (int x = 0; x < W; x += step) {
+      std::array<double, kTerms> f;
+      basis((x - cx) * scale, (y - cy) * scale, f.data());
+      F.push_back(f);
+      v.push_back(smooth.at<float>(y, x));
+    }
+  std::vector<char> use(v.size(), 1);
+  // First pass: the fin covers well under half the view, so the brightest samples are background.
+  {
+    std::vector<double> sorted = v;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    for (std::size_t i = 0; i < v.size(); ++i) use[i] = v[i] >= median - 3 * std::max(1.0, raw_sigma) - 0.1 * median;
+  }
+  Eigen::Matrix<double, kTerms, 1> c = Eigen::Matrix<double, kTerms, 1>::Zero();
+  for (int it = 0; it < std::max(1, o.background_iterations); ++it) {
+    Eigen::Matrix<double, kTerms, kTerms> A = Eigen::Matrix<double, kTerms, kTerms>::Zero();
+    Eigen::Matrix<double, kTerms, 1> b = Eigen::Matrix<double, kTerms, 1>::Zero();
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (!use[i]) continue;
+      const Eigen::Map<const Eigen::Matrix<double, kTerms, 1>> f(F[i].data());
+      A += f * f.transpose();
+      b += f * v[i];
+      ++n;
+    }
+    if (n < 4 * kTerms) throw Error("segmentation: too little background visible to model the backlight");
+    c = A.ldlt().solve(b);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const Eigen::Map<const Eigen::Matrix<double, kTerms, 1>> f(F[i].data());
+      use[i] = v[i] > f.dot(c) - 3 * std::max(0.5, blurred_sigma);
+    }
+  }
+
+  Segmentation s;
+  s.noise_sigma = raw_sigma;
+  s.threshold = std::max(o.min_contrast, o.noise_multiple * blurred_sigma);
+  s.background = cv::Mat(H, W, CV_32F);
+  s.mask = cv::Mat::zeros(H, W, CV_8U);
+  for (int y = 0; y < H; ++y) {
+    auto* bg = s.background.ptr<float>(y);
+    const auto* im = smooth.ptr<float>(y);
+    auto* m = s.mask.ptr<std::uint8_t>(y);
+    for (int x = 0; x < W; ++x) {
+      double f[kTerms];
+      basis((x - cx) * scale, (y - cy) * scale, f);
+      double b = 0;
+      for (int k = 0; k < kTerms; ++k) b += f[k] * c[k];
+      bg[x] = static_cast<float>(b);
+      m[x] = b - im[x] > s.threshold ? 255 : 0;
+    }
+  }
+  // Edge pixels are part fin, part background (anti-aliasing, blur): call a pixel fin when it
+  // darkens by at least half the full contrast of the fin next to it (the largest darkening
+  // within a few pixels), so the boundary sits where the coverage is one half.
+  // Only the rim is tested: inside the fin a lighter patch next to a dark ray is still fin.
+  cv::Mat dark = s.background - smooth;
+  cv::Mat local, core;
+  const auto disk = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * o.contrast_radius_px + 1, 2 * o.contrast_radius_px + 1));
+  cv::dilate(dark, local, disk);
+  cv::erode(s.mask, core, disk);
+  for (int y = 0; y < H; ++y) {
+    const auto* d = dark.ptr<float>(y);
+    const auto* l = local.ptr<float>(y);
+    const auto* k = core.ptr<std::uint8_t>(y);
+    auto* m = s.mask.ptr<std::uint8_t>(y);
+    for (int x = 0; x < W; ++x)
+      if (m[x] && !k[x] && d[x] < 0.5 * l[x]) m[x] = 0;
+  }
+  // One fin: keep the largest connected component (noise specks go), then fill its holes.
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(s.mask, labels, stats, centroids, 8, CV_32S);
+  int best = 0, best_area = 0;
+  for (int l = 1; l < n; ++l)
+    if (stats.at<int>(l, cv::CC_STAT_AREA) > best_area) best_area = stats.at<int>(l, cv::CC_STAT_AREA), best = l;
+  if (best == 0) return s;  // nothing darker than the background: an empty view
+  s.mask = labels == best;
+  cv::Mat outside = s.mask == 0;
+  const int nb = cv::connectedComponentsWithStats(outside, labels, stats, centroids, 4, CV_32S);
+  for (int l = 1; l < nb; ++l) {
+    const int x0 = stats.at<int>(l, cv::CC_STAT_LEFT), y0 = stats.at<int>(l, cv::CC_STAT_TOP);
+    const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
+    const bool touches_border = x0 == 0 || y0 == 0 || x0 + w == W || y0 + h == H;
+    if (!touches_border) s.mask.setTo(255, labels == l);
+  }
+  return s;
+}
+
+cv::Mat signed_distance(const cv::Mat& mask) {
+  cv::Mat inside = mask != 0, outside = mask == 0;
+  cv::Mat d_out, d_in;
+  // distanceTransform measures to the nearest zero pixel: d_out is the distance of an outside
+  // pixel to the fin, d_in of a fin pixel to the background.
+  cv::distanceTransform(outside, d_out, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::distanceTransform(inside, d_in, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::Mat sdf(mask.size(), CV_32F);
+  for (int y = 0; y < mask.rows; ++y) {
+    const auto* m = mask.ptr<std::uint8_t>(y);
+    const auto* a = d_out.ptr<float>(y);
+    const auto* b = d_in.ptr<float>(y);
+    auto* s = sdf.ptr<float>(y);
+    for (int x = 0; x < mask.cols; ++x) s[x] = m[x] ? 0.5f - b[x] : a[x] - 0.5f;
+  }
+  return sdf;
+}
+
+std::vector<cv::Point> inner_contour(const cv::Mat& mask) {
+  std::vector<cv::Point> out;
+  for (int y = 0; y < mask.rows; ++y) {
+    const auto* m = mask.ptr<std::uint8_t>(y);
+    const auto* up = y > 0 ? mask.ptr<std::uint8_t>(y - 1) : nullptr;
+    const auto* dn = y + 1 < mask.rows ? mask.ptr<std::uint8_t>(y + 1) : nullptr;
+    for (int x = 0; x < mask.cols; ++x) {
+      if (!m[x]) continue;
+      const bool edge = x == 0 || x + 1 == mask.cols || !m[x - 1] || !m[x + 1] || !up || !dn || !up[x] || !dn[x];
+      if (edge) out.emplace_back(x, y);
+    }
+  }
+  return out;
+}
+
+double mask_iou(const cv::Mat& a, const cv::Mat& b) {
+  if (a.size() != b.size()) throw Error("mask_iou: masks differ in size");
+  const double inter = cv::countNonZero((a != 0) & (b != 0));
+  const double uni = cv::countNonZero((a != 0) | (b != 0));
+  return uni > 0 ? inter / uni : 1.0;
+}
+
+}  // namespace finverse::vision

@@ -1,0 +1,42 @@
+// Segmentation of the fin in a camera frame (DESIGN.md section 5.5, fin-track; seed paper
+// section 2.1 step 1: the fin outline in every view). The tank is backlit, so the background is
+// bright and smooth and the translucent fin darkens it. The background is modelled per frame as
+// a smooth radial surface (vignetting) fitted robustly to the pixels that are not fin; the fin is
+// every pixel darker than that model by more than a threshold set from the estimated noise, after
+// a small Gaussian blur, and by at least half the fin's local contrast (sub-pixel-unbiased edge). The mask is cleaned (one connected fin, holes filled) and turned into a
+// signed distance field, which is what the silhouette residuals sample.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace finverse::vision {
+
+struct SegmentationOptions {
+  double blur_sigma_px = 0.7;      // pre-smoothing of the frame
+  int contrast_radius_px = 3;      // neighbourhood giving the fin's full local contrast
+  double min_contrast = 6.0;       // 8-bit levels below the background, at least
+  double noise_multiple = 4.0;     // ... and at least this many (blurred) noise sigmas
+  int background_iterations = 4;   // robust refits of the background surface
+};
+
+struct Segmentation {
+  cv::Mat mask;              // CV_8U, 255 on the fin
+  cv::Mat background;        // CV_32F, fitted background in 8-bit levels
+  double noise_sigma = 0;    // estimated sensor noise (8-bit levels) of the raw frame
+  double threshold = 0;      // darkening (levels) that counts as fin
+};
+
+// `frame`: 8-bit grey (CV_8U). Throws finverse::Error if the frame is empty or not grey.
+Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& options = {});
+
+// Signed distance (pixels, CV_32F) to the mask's boundary: positive outside, negative inside,
+// zero half-way between an inside and an outside pixel centre.
+cv::Mat signed_distance(const cv::Mat& mask);
+
+// Pixels of `mask` with a 4-neighbour outside it (the inner contour), as (x, y).
+std::vector<cv::Point> inner_contour(const cv::Mat& mask);
+
+// Intersection over union of two masks of the same size.
+double mask_iou(const cv::Mat& a, const cv::Mat& b);
+
+}  // namespace finverse::vision

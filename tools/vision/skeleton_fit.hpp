@@ -1,0 +1,72 @@
+// Per-frame fit of the virtual skeleton to the segmented views (seed paper section 2.1 step 1;
+// DESIGN.md section 5.5, fin-track). Levenberg-Marquardt on the pose parameters (root
+// translation and every joint's rotation vector) minimising
+//   sum over views of the silhouette chamfer residuals (silhouette_residual.hpp), in pixels,
+//   + the distances of the projected ray axes to the detected rays (ray_features.hpp), pixels,
+//   + a temporal prior: the pose stays near the constant-velocity prediction from the previous
+//     two frames (smooth motion; also the warm start),
+//   + weak spatial priors: neighbouring rays bend alike (the membrane couples them), and
+//     rotations out of the flapping plane (twist, in-plane bending) stay small unless the
+//     images ask for them.
+// The Jacobian is the chain rule of the skinning Jacobian (finite differences on the joint
+// chain) and the camera projection. Views are linearised in parallel (OpenMP) and summed in a
+// fixed order, so results do not depend on the thread count.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vision/ray_features.hpp"
+#include "vision/silhouette_residual.hpp"
+#include "vision/skeleton.hpp"
+#include "vision/skinning.hpp"
+
+namespace finverse::vision {
+
+struct FitOptions {
+  SilhouetteOptions silhouette;
+  RayFeatureOptions rays;
+  std::vector<std::string> ray_views;  // views whose ray features are used (empty: all)
+  int iterations = 12;              // LM iterations per frame (warm started)
+  int first_iterations = 60;        // ... for the first frame, from the rest pose
+  double temporal_sigma = 0.05;     // rad (translation: chords) from the prediction
+  double neighbour_sigma = 0.05;    // rad between the same joint of neighbouring rays
+  double out_of_plane_sigma = 0.05; // rad, rotations about x and y of the ray joints
+  double joint_sigma = 1.5;         // rad, every ray joint rotation (fixes the root/ray gauge)
+  double max_step = 0.1;           // largest change of one parameter per LM step (rad, chords)
+  double tolerance = 1e-5;          // stop when the cost falls by less than this fraction
+};
+
+struct FrameFit {
+  Pose pose;
+  NdArray<double> points;            // [nv,3] skinned template
+  std::vector<double> iou, rms_px;   // per view; NaN where the view is missing
+  std::vector<char> valid;
+  int iterations = 0;
+  double cost = 0;
+};
+
+class SkeletonFitter {
+ public:
+  // ray_vertices: template vertices on the ray axes (the points the ray features pull on).
+  SkeletonFitter(const Skeleton& skeleton, const SkinBinding& binding, const NdArray<std::int32_t>& triangles,
+                 std::vector<int> ray_vertices, const FitOptions& options);
+
+  // Fits one frame from `start`. `prediction` (may be null) is the temporal prior's centre.
+  FrameFit fit(const std::vector<ViewData>& views, const Pose& start, const Pose* prediction, int max_iterations) const;
+
+  const Skeleton& skeleton() const { return s_; }
+
+ private:
+  struct Linearisation;
+  Linearisation linearise(const std::vector<ViewData>& views, const Pose& pose, const Pose* prediction, double neighbour_sigma,
+                          bool use_rays) const;
+
+  const Skeleton& s_;
+  const SkinBinding& b_;
+  const NdArray<std::int32_t>& tri_;
+  std::vector<int> ray_vertices_;
+  FitOptions o_;
+};
+
+}  // namespace finverse::vision

@@ -1,0 +1,128 @@
+// Linear blend skinning of the fin template on the ray chains (seed paper section 2.1, step 1).
+#include "vision/skinning.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+
+namespace finverse::vision {
+namespace {
+
+struct Foot {
+  double distance, s;  // in-plane distance to the ray polyline, arc-length fraction of the foot
+};
+
+Foot nearest_on_ray(const std::vector<mesh::Point2>& pts, const std::vector<double>& frac, double x, double z) {
+  Foot best{std::numeric_limits<double>::max(), 0};
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+    const double ax = pts[i][0], az = pts[i][1], ux = pts[i + 1][0] - ax, uz = pts[i + 1][1] - az;
+    const double L2 = ux * ux + uz * uz;
+    const double u = L2 > 0 ? std::clamp(((x - ax) * ux + (z - az) * uz) / L2, 0.0, 1.0) : 0.0;
+    const double d = std::hypot(x - ax - u * ux, z - az - u * uz);
+    if (d < best.distance) best = {d, frac[i] + u * (frac[i + 1] - frac[i])};
+  }
+  return best;
+}
+
+}  // namespace
+
+SkinBinding bind_skin(const mesh::FinTemplate& t, const Skeleton& s, const NdArray<double>& rest) {
+  if (rest.rank() != 2 || rest.dim(1) != 3) throw Error("skinning: rest positions must be [nv,3]");
+  if (t.ray_count() != s.rays) throw Error("skinning: skeleton and template differ in ray count");
+  const std::size_t nv = rest.dim(0), nr = s.rays, S = s.segments;
+  std::vector<std::vector<double>> frac(nr);
+  for (std::size_t r = 0; r < nr; ++r) frac[r] = t.arc_fractions(r);
+  SkinBinding b;
+  b.rest = rest;
+  b.joint.resize(nv);
+  b.weight.resize(nv);
+  b.depends.resize(nv);
+  std::vector<Foot> feet(nr);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const double x = rest(v, 0), z = rest(v, 2);
+    for (std::size_t r = 0; r < nr; ++r) feet[r] = nearest_on_ray(t.rays[r].points, frac[r], x, z);
+    std::size_t r1 = 0;
+    for (std::size_t r = 1; r < nr; ++r)
+      if (feet[r].distance < feet[r1].distance) r1 = r;
+    std::size_t r2 = r1 == 0 ? 1 : r1 == nr - 1 ? nr - 2 : (feet[r1 - 1].distance < feet[r1 + 1].distance ? r1 - 1 : r1 + 1);
+    const double d1 = feet[r1].distance, d2 = feet[r2].distance;
+    const double w1 = d1 + d2 > 0 ? d2 / (d1 + d2) : 1.0;
+    const std::size_t rr[2] = {r1, r2};
+    const double wr[2] = {w1, 1 - w1};
+    for (int k = 0; k < 2; ++k) {
+      // Segment k covers s in [k/S, (k+1)/S]; blend linearly between neighbouring segment centres.
+      const double u = std::clamp(feet[rr[k]].s * S - 0.5, 0.0, S - 1.0);
+      const auto lo = static_cast<std::size_t>(std::min(std::floor(u), S - 1.0));
+      const std::size_t hi = std::min(lo + 1, S - 1);
+      const double a = u - lo;
+      b.joint[v][2 * k] = static_cast<int>(s.joint(rr[k], lo));
+      b.weight[v][2 * k] = wr[k] * (1 - a);
+      b.joint[v][2 * k + 1] = static_cast<int>(s.joint(rr[k], hi));
+      b.weight[v][2 * k + 1] = wr[k] * a;
+    }
+    auto& dep = b.depends[v];
+    for (int k = 0; k < SkinBinding::kInfluences; ++k)
+      for (int j = b.joint[v][k]; j >= 0; j = s.parent[static_cast<std::size_t>(j)])
+        if (std::find(dep.begin(), dep.end(), j) == dep.end()) dep.push_back(j);
+    std::sort(dep.begin(), dep.end());
+  }
+  return b;
+}
+
+namespace {
+cv::Vec3d skin_vertex(const SkinBinding& b, const JointFrames& f, std::size_t v) {
+  const cv::Vec3d x(b.rest(v, 0), b.rest(v, 1), b.rest(v, 2));
+  cv::Vec3d X(0, 0, 0);
+  for (int k = 0; k < SkinBinding::kInfluences; ++k) {
+    const double w = b.weight[v][k];
+    if (w == 0) continue;
+    const auto j = static_cast<std::size_t>(b.joint[v][k]);
+    X += w * (f.R[j] * x + f.t[j]);
+  }
+  return X;
+}
+}  // namespace
+
+NdArray<double> skin(const SkinBinding& b, const JointFrames& f) {
+  NdArray<double> out({b.size(), 3});
+  for (std::size_t v = 0; v < b.size(); ++v) {
+    const auto X = skin_vertex(b, f, v);
+    for (int d = 0; d < 3; ++d) out(v, d) = X[d];
+  }
+  return out;
+}
+
+SkinJacobian skin_jacobian(const SkinBinding& b, const Skeleton& s, const Pose& pose, double h) {
+  const std::size_t nv = b.size(), nj = s.joint_count();
+  SkinJacobian J;
+  J.cols.resize(nv);
+  J.vals.resize(nv);
+  // Which vertices each joint moves, and where its columns go in their lists.
+  std::vector<std::vector<std::size_t>> moved(nj);
+  for (std::size_t v = 0; v < nv; ++v) {
+    J.cols[v] = {0, 1, 2};
+    J.vals[v] = {{s.chord, 0, 0}, {0, s.chord, 0}, {0, 0, s.chord}};
+    for (int j : b.depends[v]) {
+      moved[static_cast<std::size_t>(j)].push_back(v);
+      for (int c = 0; c < 3; ++c) J.cols[v].push_back(3 + 3 * j + c);
+    }
+  }
+  Pose q = pose;
+  for (std::size_t j = 0; j < nj; ++j) {
+    if (moved[j].empty()) continue;
+    for (int c = 0; c < 3; ++c) {
+      const std::size_t i = 3 + 3 * j + c;
+      q.p[i] = pose.p[i] + h;
+      const auto fp = forward_kinematics(s, q);
+      q.p[i] = pose.p[i] - h;
+      const auto fm = forward_kinematics(s, q);
+      q.p[i] = pose.p[i];
+      for (std::size_t v : moved[j]) J.vals[v].push_back((skin_vertex(b, fp, v) - skin_vertex(b, fm, v)) / (2 * h));
+    }
+  }
+  return J;
+}
+
+}  // namespace finverse::vision
