@@ -6,6 +6,13 @@
 //   fin-fem cantilever_vibration
 //   fin-fem sze_end_shear --reference data/reference/structures.json
 //   fin-fem turek_hron_csm3 --reference data/reference/turek_hron.json --coarse
+//   fin-fem hybrid_plate_static --case data/cases/hybrid_plate.json
+//       --reference data/reference/hybrid_plate_calculix.json
+//
+// File-driven mode (tools/fem/io/file_run.hpp): a structural run from stage files, writing the
+// node positions over time in the finverse/motion schema plus a ParaView series; exit 0 or 2.
+//   fin-fem run --mesh mesh.h5 --materials materials.json --loads loads.h5 --motion motion.h5
+//       --analysis quasi_static --out response.h5 [--pvd response.pvd]
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -15,7 +22,9 @@
 
 #include "core/cli.hpp"
 #include "core/summary.hpp"
+#include "fem/io/file_run.hpp"
 #include "fem/validation/cases.hpp"
+#include "fem/validation/hybrid_plate.hpp"
 #include "fem/validation/shell_cases.hpp"
 #include "fem/validation/turek_hron_csm.hpp"
 
@@ -131,9 +140,66 @@ int main(int argc, char** argv) {
       "turek_hron.json");
   for (auto* sc : {c1, c2, c3}) sc->add_flag("--coarse", coarse, "the CI variant (coarser meshes, one time step)");
 
+  // Hybrid plate (seed paper sec. 3.4) against the CalculiX reference.
+  fv::HybridPlateOptions hybrid;
+  auto* hs = with_reference(app.add_subcommand("hybrid_plate_static", "hybrid plate under a dead pressure vs CalculiX"),
+                            "hybrid_plate_calculix.json (calculix_hybrid_plate.py --reference-out)");
+  auto* hd = with_reference(app.add_subcommand("hybrid_plate_dynamic", "hybrid plate heaved at the leading edge vs CalculiX"),
+                            "hybrid_plate_calculix.json (calculix_hybrid_plate.py --reference-out)");
+  std::string hybrid_case;
+  for (auto* sc : {hs, hd}) {
+    sc->add_option("--case", hybrid_case, "data/cases/hybrid_plate.json")->required();
+    sc->add_option("--nx", hybrid.nx, "cells along the chord")->capture_default_str();
+    sc->add_option("--nz", hybrid.nz, "cells along the span")->capture_default_str();
+  }
+  hd->add_option("--periods", hybrid.periods, "heave periods simulated (0: the case's)")->capture_default_str();
+
+  namespace fio = finverse::fem::io;
+  fio::FileRunOptions file_run;
+  std::string mesh_path, materials_path, loads_path, motion_path, out_path, pvd_path;
+  std::string analysis = "quasi_static", root_rotation = "fit";
+  std::vector<double> gravity{0, 0, 0};
+  auto* rn = app.add_subcommand("run", "structural run from stage files (mesh, materials, loads, motion)");
+  rn->add_option("--mesh", mesh_path, "mesh.h5 (finverse/mesh)")->required();
+  rn->add_option("--materials", materials_path, "materials JSON (tools/fem/io/material_spec.hpp)")->required();
+  rn->add_option("--loads", loads_path, "loads.h5 (finverse/loads): nodal forces over time");
+  rn->add_option("--motion", motion_path, "motion.h5 (finverse/motion): root-node motion over time");
+  rn->add_option("--out", out_path, "response file, finverse/motion schema")->required();
+  rn->add_option("--pvd", pvd_path, "ParaView series of the shell surface (default: none)");
+  rn->add_option("--analysis", analysis, "static, quasi_static (paper eq. 2) or dynamic")->capture_default_str();
+  rn->add_option("--root-rotation", root_rotation, "root rotations: fit (rigid fit of the root nodes) or zero")
+      ->capture_default_str();
+  rn->add_option("--ramp", file_run.ramp, "s of ramp from rest before the first frame (0: ten frame intervals)")
+      ->capture_default_str();
+  rn->add_option("--ramp-steps", file_run.run.ramp_steps, "static load steps through the ramp")->capture_default_str();
+  rn->add_option("--substeps", file_run.run.substeps, "dynamic: time steps per frame interval")->capture_default_str();
+  rn->add_option("--rho-inf", file_run.run.dynamic_options.spectral_radius, "dynamic: generalized-alpha rho_inf")
+      ->capture_default_str();
+  rn->add_option("--max-iterations", file_run.run.static_options.max_iterations, "Newton iterations per step")
+      ->capture_default_str();
+  rn->add_option("--gravity", gravity, "gravity vector [m/s^2]")->expected(3)->capture_default_str();
+  rn->add_flag("--unsymmetric-tangent", file_run.run.static_options.unsymmetric_tangent,
+               "static/quasi_static: full non-symmetric tangent with UMFPACK LU");
+
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     const auto start = std::chrono::steady_clock::now();
     const auto backend = finverse::fem::parse_solver_backend(solver);
+    if (*rn) {
+      file_run.mesh = mesh_path;
+      file_run.materials = materials_path;
+      file_run.out = out_path;
+      if (!loads_path.empty()) file_run.loads = loads_path;
+      if (!motion_path.empty()) file_run.motion = motion_path;
+      if (!pvd_path.empty()) file_run.pvd = pvd_path;
+      file_run.run.analysis = finverse::fem::parse_analysis(analysis);
+      file_run.root_rotation = finverse::fem::parse_root_rotation(root_rotation);
+      file_run.gravity = {gravity[0], gravity[1], gravity[2]};
+      file_run.run.static_options.backend = file_run.run.dynamic_options.backend = backend;
+      const auto summary = fio::run_from_files(file_run, finverse::cli::effective_config(app));
+      std::cerr << "fin-fem run: " << summary.frames << " frames, " << summary.newton_iterations
+                << " Newton iterations, wrote " << out_path << "\n";
+      return 0;
+    }
     auto seconds = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
@@ -154,6 +220,11 @@ int main(int argc, char** argv) {
         auto& o = *c1 ? csm1 : csm2;
         o.coarse = coarse;
         return fv::run_turek_hron_csm_static(configure(o));
+      }
+      if (*hs || *hd) {
+        hybrid.case_file = hybrid_case;
+        configure(hybrid);
+        return *hs ? fv::run_hybrid_plate_static(hybrid) : fv::run_hybrid_plate_dynamic(hybrid);
       }
       if (*c3) {
         csm3.coarse = coarse;

@@ -42,7 +42,8 @@ void for_each_element(int n, Body&& body) {
 }
 }  // namespace
 
-Assembler::Assembler(const Model& model, const DofMap& dofs) : model_(model), dofs_(dofs) {
+Assembler::Assembler(const Model& model, const DofMap& dofs, bool full_matrix)
+    : model_(model), dofs_(dofs), full_(full_matrix) {
   const auto& elems = model.elements();
   const int ne = static_cast<int>(elems.size());
   vec_offset_.resize(ne + 1);
@@ -69,7 +70,8 @@ Assembler::Assembler(const Model& model, const DofMap& dofs) : model_(model), do
         vec_src_[fill[global_dof(*elems[e], i)]++] = vec_offset_[e] + i;
   }
 
-  // Matrix pattern: upper triangle (row <= col) of the free block, CSC order, then element order.
+  // Matrix pattern: upper triangle (row <= col; all rows if full_) of the free block, CSC order,
+  // then element order.
   struct Entry {
     int col, row, src;
   };
@@ -81,7 +83,7 @@ Assembler::Assembler(const Model& model, const DofMap& dofs) : model_(model), do
       if (j < 0) continue;
       for (int a = 0; a < n; ++a) {
         const int i = dofs.equation(global_dof(*elems[e], a));
-        if (i < 0 || i > j) continue;
+        if (i < 0 || (!full_ && i > j)) continue;
         entries.push_back({j, i, mat_offset_[e] + a + b * n});
       }
     }
@@ -127,19 +129,25 @@ void Assembler::assemble(const NodalState& state, const AssemblyRequest& req) {
   if (req.mass_times) fm_.resize(vec_offset_[ne]);
   if (req.stiffness_times) fk_.resize(vec_offset_[ne]);
 
+  const StiffnessField& field = model_.stiffness_field();
   for_each_element(ne, [&](int e) {
     const Element& el = *elems[e];
     const int n = el.size();
+    // Forces and tangent are linear in E (stiffness_field.hpp).
+    const double scale = field.uniform() ? 1.0 : field.scale(e, req.time);
     Eigen::Map<Eigen::VectorXd> f(fe_.data() + vec_offset_[e], n);
     if (need_k) {
       Eigen::Map<Eigen::MatrixXd> K(ke_.data() + mat_offset_[e], n, n);
       Element::MatrixRef Kr(K);
       el.internal_force(state, f, &Kr);
-      for (int b = 0; b < n; ++b)
-        for (int a = 0; a < b; ++a) K(a, b) = K(b, a) = 0.5 * (K(a, b) + K(b, a));
+      if (!full_)
+        for (int b = 0; b < n; ++b)
+          for (int a = 0; a < b; ++a) K(a, b) = K(b, a) = 0.5 * (K(a, b) + K(b, a));
+      if (scale != 1.0) K *= scale;
     } else {
       el.internal_force(state, f, nullptr);
     }
+    if (scale != 1.0) f *= scale;
     if (need_m) {
       Eigen::Map<Eigen::MatrixXd> M(me_.data() + mat_offset_[e], n, n);
       el.mass_matrix(state, M);
@@ -182,11 +190,12 @@ void Assembler::assemble(const NodalState& state, const AssemblyRequest& req) {
   }
 }
 
-double Assembler::strain_energy(const NodalState& state) const {
+double Assembler::strain_energy(const NodalState& state, double time) const {
   const auto& elems = model_.elements();
   const int ne = static_cast<int>(elems.size());
   std::vector<double> u(ne);
-  for_each_element(ne, [&](int e) { u[e] = elems[e]->strain_energy(state); });
+  const StiffnessField& field = model_.stiffness_field();
+  for_each_element(ne, [&](int e) { u[e] = field.scale(e, time) * elems[e]->strain_energy(state); });
   return std::accumulate(u.begin(), u.end(), 0.0);  // fixed order
 }
 

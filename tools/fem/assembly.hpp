@@ -16,6 +16,9 @@
 // which vanish at equilibrium, so Newton with the symmetric part still converges quadratically
 // near the solution while we keep the cheaper symmetric factorisation (LDL^T / Cholesky instead
 // of LU). Its sparsity pattern is fixed at construction, so the symbolic factorisation is reused.
+// With full_matrix the whole free block is assembled and K is not symmetrised: the consistent
+// non-symmetric tangent, for an LU solver (dead end moments, where the skew part does not vanish
+// at equilibrium; StaticOptions::unsymmetric_tangent).
 #pragma once
 
 #include <vector>
@@ -34,13 +37,14 @@ struct AssemblyRequest {
   double mass_coefficient = 0.0;
   const Eigen::VectorXd* mass_times = nullptr;       // full-length vector a: also compute M a
   const Eigen::VectorXd* stiffness_times = nullptr;  // full-length vector v: also compute K v
+  double time = 0;  // evaluates the model's stiffness field (per-element E, E(t)) at this time
 };
 
 class Assembler {
  public:
   using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
-  Assembler(const Model& model, const DofMap& dofs);
+  Assembler(const Model& model, const DofMap& dofs, bool full_matrix = false);
 
   // Always computes the internal force; the rest as requested.
   void assemble(const NodalState& state, const AssemblyRequest& request);
@@ -48,9 +52,10 @@ class Assembler {
   const Eigen::VectorXd& internal_force() const { return f_int_; }        // full length
   const Eigen::VectorXd& mass_product() const { return f_mass_; }         // full length
   const Eigen::VectorXd& stiffness_product() const { return f_stiff_; }   // full length
-  const SparseMatrix& matrix() const { return matrix_; }                  // upper, free DOFs
+  const SparseMatrix& matrix() const { return matrix_; }  // upper (or full), free DOFs
+  bool full_matrix() const { return full_; }
 
-  double strain_energy(const NodalState& state) const;
+  double strain_energy(const NodalState& state, double time = 0) const;
   // 1/2 v^T M v with M at the given configuration.
   double kinetic_energy(const NodalState& state, const Eigen::VectorXd& velocity);
 
@@ -62,6 +67,7 @@ class Assembler {
 
   const Model& model_;
   const DofMap& dofs_;
+  bool full_ = false;
   std::vector<int> vec_offset_, mat_offset_;  // per element
   std::vector<double> fe_, fm_, fk_, ke_, me_;
   // Vector gather: contributions of global dof g are vec_src_[vec_ptr_[g] .. vec_ptr_[g+1]).

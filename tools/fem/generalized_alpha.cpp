@@ -58,6 +58,7 @@ void GeneralizedAlpha::store_old_terms(const DynamicState& s) {
   Eigen::VectorXd w = s.acceleration * am_ + s.velocity * (af_ * opt_.rayleigh_mass);
   req.mass_times = &w;
   if (stiff_damping) req.stiffness_times = &s.velocity;
+  req.time = s.time;
   assembler_.assemble(s.configuration, req);
   old_terms_ = assembler_.mass_product() + af_ * (assembler_.internal_force() -
                                                   model_.external_load(s.time));
@@ -82,6 +83,7 @@ void GeneralizedAlpha::initialize(DynamicState& s) {
   Eigen::VectorXd w = s.acceleration + opt_.rayleigh_mass * s.velocity;
   req.mass_times = &w;
   if (opt_.rayleigh_stiffness != 0) req.stiffness_times = &s.velocity;
+  req.time = s.time;
   assembler_.assemble(s.configuration, req);
   Eigen::VectorXd rhs = model_.external_load(s.time) - assembler_.internal_force() -
                         assembler_.mass_product();
@@ -118,6 +120,7 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s) {
   req.matrix = true;
   req.stiffness_coefficient = (1 - af_) * (1 + aK * c_v);
   req.mass_coefficient = (1 - am_) * c_a + (1 - af_) * aM * c_v;
+  req.time = t1;
 
   DynamicStepInfo info;
   Eigen::VectorXd a1, v1, w;
@@ -198,7 +201,7 @@ double GeneralizedAlpha::kinetic_energy(const DynamicState& s) {
 }
 
 double GeneralizedAlpha::strain_energy(const DynamicState& s) const {
-  return assembler_.strain_energy(s.configuration);
+  return assembler_.strain_energy(s.configuration, s.time);
 }
 
 }  // namespace finverse::fem

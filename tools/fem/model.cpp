@@ -57,14 +57,76 @@ int Model::add_beam(int node1, int node2, int material_id, const TaperedRectangl
     throw InvalidInput("beam: material id " + std::to_string(material_id) + " out of range");
   Material m = materials_[material_id];
   if (youngs_modulus) m.youngs_modulus = *youngs_modulus;
+  fem::validate(m);
   return add_element(std::make_unique<CorotationalBeam>(
-      node1, node2, reference_[node1], reference_[node2], y_axis_hint, m, section, options));
+                         node1, node2, reference_[node1], reference_[node2], y_axis_hint, m, section, options),
+                     material_id, m.youngs_modulus);
 }
 
-int Model::add_element(std::unique_ptr<Element> element) {
+int Model::add_element(std::unique_ptr<Element> element, int region, std::optional<double> E) {
   for (int n : element->nodes()) check_node(n, "element");
+  if (region >= 0) check_region(region, "element");
+  // Unknown base modulus (no region, no E): NaN, so that set_element_youngs_modulus refuses.
+  const double e0 = E ? *E : (region >= 0 ? materials_[region].youngs_modulus : std::nan(""));
+  if (E && (!std::isfinite(e0) || e0 <= 0))
+    throw InvalidInput("element " + std::to_string(elements_.size()) + ": Young's modulus " +
+                       std::to_string(e0) + ", expected a finite value > 0");
   elements_.push_back(std::move(element));
+  element_region_.push_back(region);
+  element_modulus_.push_back(e0);
+  stiffness_.resize(static_cast<int>(elements_.size()));
   return static_cast<int>(elements_.size()) - 1;
+}
+
+void Model::check_region(int region, const char* what) const {
+  if (region < 0 || region >= static_cast<int>(materials_.size()))
+    throw InvalidInput(std::string(what) + ": material region " + std::to_string(region) +
+                       " out of range (" + std::to_string(materials_.size()) + " regions)");
+}
+
+void Model::set_element_youngs_modulus(int e, double E) {
+  if (e < 0 || e >= static_cast<int>(elements_.size()))
+    throw InvalidInput("element " + std::to_string(e) + " out of range");
+  if (!std::isfinite(E) || E <= 0) {
+    std::ostringstream os;
+    os << "element " << e << ": Young's modulus E = " << E << ", expected a finite value > 0";
+    throw InvalidInput(os.str());
+  }
+  if (!std::isfinite(element_modulus_[e]))
+    throw InvalidInput("element " + std::to_string(e) + ": built without a known Young's modulus");
+  stiffness_.set_factor(e, E / element_modulus_[e]);
+}
+
+void Model::set_region_youngs_modulus(int region, double E) {
+  check_region(region, "region modulus");
+  if (!std::isfinite(E) || E <= 0) {
+    std::ostringstream os;
+    os << "material '" << materials_[region].name << "': Young's modulus E = " << E
+       << ", expected a finite value > 0";
+    throw InvalidInput(os.str());
+  }
+  for (int e = 0; e < static_cast<int>(elements_.size()); ++e)
+    if (element_region_[e] == region) set_element_youngs_modulus(e, E);
+}
+
+void Model::set_element_modulation(int e, const ModulusModulation& m) {
+  if (e < 0 || e >= static_cast<int>(elements_.size()))
+    throw InvalidInput("element " + std::to_string(e) + " out of range");
+  stiffness_.set_modulation(e, m);
+}
+
+void Model::set_region_modulation(int region, const ModulusModulation& m) {
+  check_region(region, "region modulation");
+  for (int e = 0; e < static_cast<int>(elements_.size()); ++e)
+    if (element_region_[e] == region) stiffness_.set_modulation(e, m);
+}
+
+void Model::set_load_history(LoadHistory history) {
+  if (!history.empty() && history.at(history.times().front()).size() != kDofsPerNode * node_count())
+    throw InvalidInput("load history: load vectors have " +
+                       std::to_string(history.at(history.times().front()).size()) +
+                       " entries, expected 6 per node (" + std::to_string(kDofsPerNode * node_count()) + ")");
+  load_history_ = std::move(history);
 }
 
 void Model::fix(int node, int dof) { prescribe(node, dof, {}); }
@@ -159,6 +221,7 @@ Eigen::VectorXd Model::external_load(double t) const {
     throw InvalidInput(os.str());
   }
   Eigen::VectorXd f = lf * reference_load();
+  if (!load_history_.empty()) f += load_history_.at(t);
   if (gravity_.squaredNorm() > 0) f += gravity_load();
   return f;
 }

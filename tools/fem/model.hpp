@@ -2,7 +2,7 @@
 // loads and gravity. A model is built once and then read by the solvers; the configuration lives
 // in NodalState.
 //
-// Loads: f_ext(t) = load_factor(t) * (sum of nodal loads) + gravity loads. The static solver uses
+// Loads: f_ext(t) = load_factor(t) * (sum of nodal loads) + load_history(t) + gravity loads. The static solver uses
 // the load factor lambda itself as "time", so the same model serves a load-controlled static
 // solve and a dynamic one.
 // Prescribed DOFs: value(t) is a displacement for DOFs 0-2 and a rotation-vector component for
@@ -22,8 +22,10 @@
 #include "beam_section.hpp"
 #include "corotational_beam.hpp"
 #include "element.hpp"
+#include "load_history.hpp"
 #include "material.hpp"
 #include "nodal_state.hpp"
+#include "stiffness_field.hpp"
 
 namespace finverse::fem {
 
@@ -52,8 +54,23 @@ class Model {
   int add_beam(int node1, int node2, int material_id, const TaperedRectangle& section,
                const Vec3& y_axis_hint, std::optional<double> youngs_modulus = std::nullopt,
                CorotationalBeam::Options options = {});
-  // Any other element type (shell, solid) built by the caller.
-  int add_element(std::unique_ptr<Element> element);
+  // Any other element type (shell, solid) built by the caller. region: its material region
+  // (-1: none); youngs_modulus: the E it was built with (default: the region's; unknown without a region), the
+  // base of set_element_youngs_modulus.
+  int add_element(std::unique_ptr<Element> element, int region = -1,
+                  std::optional<double> youngs_modulus = std::nullopt);
+
+  // Material fields (stiffness_field.hpp). Each throws InvalidInput for E <= 0 / non-finite or
+  // an index out of range.
+  void set_element_youngs_modulus(int element, double E);
+  void set_region_youngs_modulus(int region, double E);  // every element of the region
+  void set_element_modulation(int element, const ModulusModulation& modulation);
+  void set_region_modulation(int region, const ModulusModulation& modulation);
+  int element_region(int element) const { return element_region_.at(element); }
+  double element_youngs_modulus(int element, double t = 0) const {
+    return element_modulus_.at(element) * stiffness_.scale(element, t);
+  }
+  const StiffnessField& stiffness_field() const { return stiffness_; }
 
   void fix(int node, int dof);
   void fix_node(int node);  // all 6 DOFs
@@ -61,6 +78,9 @@ class Model {
   void add_nodal_load(int node, int dof, double value);
   void set_gravity(const Vec3& g);
   void set_load_factor(TimeFunction f) { load_factor_ = std::move(f); }
+  // Tabulated nodal loads (loads.h5), added to the nodal loads; its vectors must be full length.
+  void set_load_history(LoadHistory history);
+  const LoadHistory& load_history() const { return load_history_; }
 
   int node_count() const { return static_cast<int>(reference_.size()); }
   const std::vector<Vec3>& reference_positions() const { return reference_; }
@@ -83,7 +103,7 @@ class Model {
   Eigen::VectorXd reference_load() const;
   // Full-length gravity load (dead, from the reference configuration).
   Eigen::VectorXd gravity_load() const;
-  // f_ext(t) = load_factor(t) * reference_load + gravity_load
+  // f_ext(t) = load_factor(t) * reference_load + load_history(t) + gravity_load
   Eigen::VectorXd external_load(double t) const;
 
   // Throws InvalidInput naming the first problem: no elements, indices out of range, NaN loads.
@@ -92,10 +112,15 @@ class Model {
  private:
   void check_node(int node, const char* what) const;
   void check_dof(int dof, const char* what) const;
+  void check_region(int region, const char* what) const;
 
   std::vector<Vec3> reference_;
   std::vector<Material> materials_;
   std::vector<std::unique_ptr<Element>> elements_;
+  std::vector<int> element_region_;
+  std::vector<double> element_modulus_;  // E each element was built with
+  StiffnessField stiffness_;
+  LoadHistory load_history_;
   std::vector<PrescribedDof> prescribed_;
   std::vector<NodalLoad> loads_;
   Vec3 gravity_ = Vec3::Zero();

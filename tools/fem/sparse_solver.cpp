@@ -6,6 +6,8 @@
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#include <Eigen/UmfPackSupport>
 
 #include "errors.hpp"
 
@@ -30,7 +32,9 @@ constexpr double kSingularPivotRatio = 1e-13;
 struct SparseSolver::Impl {
   CholmodLLT cholmod;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper> ldlt;
-  bool cholmod_analysed = false, ldlt_analysed = false;
+  Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu;
+  Eigen::UmfPackLU<SparseMatrix> umfpack;
+  bool cholmod_analysed = false, ldlt_analysed = false, lu_analysed = false;
 };
 
 SolverBackend parse_solver_backend(const std::string& name) {
@@ -40,7 +44,13 @@ SolverBackend parse_solver_backend(const std::string& name) {
 }
 
 const char* to_string(SolverBackend b) {
-  return b == SolverBackend::cholmod ? "cholmod" : "simplicial_ldlt";
+  switch (b) {
+    case SolverBackend::cholmod: return "cholmod";
+    case SolverBackend::simplicial_ldlt: return "simplicial_ldlt";
+    case SolverBackend::sparse_lu: return "sparse_lu";
+    case SolverBackend::umfpack: return "umfpack";
+  }
+  return "?";
 }
 
 SparseSolver::SparseSolver(SolverBackend backend)
@@ -70,12 +80,34 @@ void SparseSolver::factorize(const SparseMatrix& A, const std::string& what) {
   if (new_pattern) {
     outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
     inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-    impl_->cholmod_analysed = impl_->ldlt_analysed = false;
+    impl_->cholmod_analysed = impl_->ldlt_analysed = impl_->lu_analysed = false;
   }
   for (Eigen::Index k = 0; k < A.nonZeros(); ++k)
     if (!std::isfinite(A.valuePtr()[k]))
       throw NotConverged(what + " contains NaN/Inf entries (the solution diverged)");
   ++numeric_count_;
+  if (backend_ == SolverBackend::sparse_lu) {
+    auto& lu = impl_->lu;
+    if (!impl_->lu_analysed) {
+      lu.analyzePattern(A);
+      impl_->lu_analysed = true;
+      ++symbolic_count_;
+    }
+    lu.factorize(A);
+    if (lu.info() != Eigen::Success) singular(what, -1, 0.0);
+    return;
+  }
+  if (backend_ == SolverBackend::umfpack) {
+    auto& lu = impl_->umfpack;
+    if (!impl_->lu_analysed) {
+      lu.analyzePattern(A);
+      impl_->lu_analysed = true;
+      ++symbolic_count_;
+    }
+    lu.factorize(A);
+    if (lu.info() != Eigen::Success) singular(what, -1, 0.0);
+    return;
+  }
   use_ldlt_now_ = backend_ == SolverBackend::simplicial_ldlt;
   if (!use_ldlt_now_) {
     if (!impl_->cholmod_analysed) {
@@ -108,6 +140,8 @@ void SparseSolver::factorize(const SparseMatrix& A, const std::string& what) {
 }
 
 Eigen::VectorXd SparseSolver::solve(const Eigen::VectorXd& b) const {
+  if (backend_ == SolverBackend::sparse_lu) return impl_->lu.solve(b);
+  if (backend_ == SolverBackend::umfpack) return impl_->umfpack.solve(b);
   if (use_ldlt_now_) return impl_->ldlt.solve(b);
   return impl_->cholmod.solve(b);
 }

@@ -53,15 +53,18 @@ StaticSolver::StaticSolver(const Model& model, StaticOptions options)
     : model_(model),
       opt_(options),
       dofs_((model.validate(), model)),
-      assembler_(model_, dofs_),
-      solver_(options.backend),
+      assembler_(model_, dofs_, options.unsymmetric_tangent),
+      solver_(!options.unsymmetric_tangent ? options.backend
+              : options.backend == SolverBackend::sparse_lu ? SolverBackend::sparse_lu
+                                                             : SolverBackend::umfpack),
       lchar_(model.characteristic_length()) {
   if (opt_.steps < 1) throw InvalidInput("static solver: steps must be >= 1");
   solver_.set_equation_names([this](int eq) { return describe_equation(dofs_, eq); });
 }
 
-int StaticSolver::newton(NodalState& state, double lam, double& residual) {
-  const Eigen::VectorXd f_ext = model_.external_load(lam);
+int StaticSolver::newton(NodalState& state, double lam, const Eigen::VectorXd* offset,
+                         double& residual) {
+  Eigen::VectorXd f_ext = model_.external_load(lam);
   if (!f_ext.allFinite()) {
     for (int g = 0; g < f_ext.size(); ++g)
       if (!std::isfinite(f_ext(g))) {
@@ -71,9 +74,11 @@ int StaticSolver::newton(NodalState& state, double lam, double& residual) {
         throw InvalidInput(os.str());
       }
   }
+  if (offset) f_ext -= *offset;
   const Eigen::VectorXd f_ext_free = dofs_.gather_free(f_ext);
   AssemblyRequest req;
   req.matrix = true;
+  req.time = lam;
   double r0 = 0, floor = 0;
   for (int it = 0; it <= opt_.max_iterations; ++it) {
     assembler_.assemble(state, req);
@@ -110,7 +115,8 @@ int StaticSolver::newton(NodalState& state, double lam, double& residual) {
   return -1;
 }
 
-StaticResult StaticSolver::solve(NodalState& state, double lam0, double lam1) {
+StaticResult StaticSolver::solve(NodalState& state, double lam0, double lam1,
+                                 const Eigen::VectorXd* offset) {
   StaticResult result;
   const double step0 = (lam1 - lam0) / opt_.steps;
   double step = step0;
@@ -121,7 +127,7 @@ StaticResult StaticSolver::solve(NodalState& state, double lam0, double lam1) {
     const double target = lam + step;
     apply_prescribed(model_, lam, target, trial);
     double residual = 0;
-    const int its = newton(trial, target, residual);
+    const int its = newton(trial, target, offset, residual);
     if (its < 0) {
       result.total_iterations += opt_.max_iterations;
       ++result.step_cuts;
@@ -144,8 +150,11 @@ StaticResult StaticSolver::solve(NodalState& state, double lam0, double lam1) {
     if (std::abs(step) < std::abs(step0)) step = std::min(1.5 * std::abs(step), std::abs(step0)) * (step0 > 0 ? 1 : -1);
   }
   // Reactions at the converged state.
-  assembler_.assemble(state, AssemblyRequest{});
-  const Eigen::VectorXd f_ext = model_.external_load(lam1);
+  AssemblyRequest reaction_request;
+  reaction_request.time = lam1;
+  assembler_.assemble(state, reaction_request);
+  Eigen::VectorXd f_ext = model_.external_load(lam1);
+  if (offset) f_ext -= *offset;
   result.reaction = Eigen::VectorXd::Zero(dofs_.total());
   for (int g = 0; g < dofs_.total(); ++g)
     if (dofs_.is_prescribed(g)) result.reaction(g) = assembler_.internal_force()(g) - f_ext(g);

@@ -30,6 +30,11 @@ struct StaticOptions {
   double increment_tolerance = 1e-10;
   double min_step_fraction = 1e-4;  // smallest step, as a fraction of the initial step
   SolverBackend backend = SolverBackend::cholmod;
+  // Full consistent tangent (not symmetrised) factorised by LU instead of its symmetric part by
+  // Cholesky/LDL^T: needed under dead end moments, whose tangent keeps a skew part at equilibrium
+  // (assembly.hpp). LU backend: umfpack, or sparse_lu if `backend` names it (umfpack measured
+  // ~2x faster per refactorisation, solver_bench.cpp).
+  bool unsymmetric_tangent = false;
 };
 
 struct StaticStepInfo {
@@ -57,8 +62,14 @@ class StaticSolver {
   StaticSolver(const Model& model, StaticOptions options = {});
 
   // Solves from lambda_begin (state must be in equilibrium there, e.g. the reference state at 0)
-  // to lambda_end.
-  StaticResult solve(NodalState& state, double lambda_begin, double lambda_end);
+  // to lambda_end. With base_offset (full length), the balance is
+  // f_int(x) + base_offset = f_ext(lambda) instead: quasi_static_increment.hpp uses it to take
+  // a base state as in equilibrium whether it is or not.
+  StaticResult solve(NodalState& state, double lambda_begin, double lambda_end,
+                     const Eigen::VectorXd* base_offset = nullptr);
+
+  const Model& model() const { return model_; }
+  const StaticOptions& options() const { return opt_; }
 
   const DofMap& dofs() const { return dofs_; }
   Assembler& assembler() { return assembler_; }
@@ -67,7 +78,7 @@ class StaticSolver {
  private:
   // One Newton solve at load factor lam, starting from state (prescribed DOFs already applied).
   // Returns iterations used, or -1 on non-convergence (state then undefined).
-  int newton(NodalState& state, double lam, double& residual);
+  int newton(NodalState& state, double lam, const Eigen::VectorXd* offset, double& residual);
 
   const Model& model_;
   StaticOptions opt_;

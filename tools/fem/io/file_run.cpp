@@ -1,0 +1,69 @@
+// Stage files -> structural run -> stage files (see file_run.hpp).
+#include "file_run.hpp"
+
+#include <sstream>
+
+#include "core/log.hpp"
+#include "core/stage_files.hpp"
+#include "fem/errors.hpp"
+#include "fin_model.hpp"
+#include "material_spec.hpp"
+#include "run_output.hpp"
+
+namespace finverse::fem::io {
+
+FileRunSummary run_from_files(const FileRunOptions& o, const nlohmann::json& config) {
+  const stage::Mesh mesh = stage::read<stage::Mesh>(o.mesh);
+  const MaterialSpec spec = read_material_spec(o.materials);
+  std::optional<stage::Loads> loads;
+  std::optional<stage::Motion> motion;
+  if (o.loads) loads = stage::read<stage::Loads>(*o.loads);
+  if (o.motion) motion = stage::read<stage::Motion>(*o.motion);
+  if (!loads && !motion) throw InvalidInput("fin-fem run: give --loads and/or --motion (they define the output times)");
+
+  const std::vector<double>& times = loads ? loads->time.data : motion->time.data;
+  if (loads && motion &&
+      (times.front() < motion->time.data.front() - 1e-12 || times.back() > motion->time.data.back() + 1e-12))
+    throw InvalidInput(o.loads->string() + ": load times [" + std::to_string(times.front()) + ", " +
+                       std::to_string(times.back()) + "] reach outside the motion times of " + o.motion->string());
+  double ramp = o.ramp;
+  if (ramp == 0) ramp = times.size() > 1 ? 10 * (times[1] - times[0]) : 1.0;
+  if (!(ramp > 0)) throw InvalidInput("fin-fem run: --ramp must be > 0");
+
+  FinModel fm = build_fin_model(mesh, spec, o.mesh.string());
+  if (loads) apply_loads(fm.model, *loads, ramp, o.loads->string());
+  if (motion) apply_root_motion(fm.model, mesh, *motion, o.root_rotation, ramp, o.motion->string());
+  fm.model.set_gravity(Vec3(o.gravity[0], o.gravity[1], o.gravity[2]));
+
+  RunOptions run = o.run;
+  run.start_time = times.front() - ramp;
+  run.dynamic_options.rayleigh_mass = spec.rayleigh_mass;
+  run.dynamic_options.rayleigh_stiffness = spec.rayleigh_stiffness;
+  if (run.analysis != Analysis::dynamic && (spec.rayleigh_mass != 0 || spec.rayleigh_stiffness != 0))
+    log::warn("Rayleigh damping is ignored by the " + std::string(to_string(run.analysis)) + " analysis");
+
+  std::ostringstream head;
+  head << to_string(run.analysis) << " run: " << fm.model.node_count() << " nodes, "
+       << fm.model.elements().size() << " elements, " << times.size() << " frames from t = " << times.front()
+       << " s (ramp " << ramp << " s)";
+  log::info(head.str());
+  log::Progress progress("fin-fem " + std::string(to_string(run.analysis)), times.size());
+  FileRunSummary summary;
+  const auto frames = run_structural_analysis(fm.model, run, times, [&](int k, const RunFrame& f) {
+    summary.newton_iterations += f.iterations;
+    std::ostringstream st;
+    st << "t = " << f.time << " s, " << f.iterations << " Newton its";
+    progress.update(static_cast<std::size_t>(k + 1), st.str());
+  });
+  progress.finish();
+  summary.frames = static_cast<int>(frames.size());
+
+  std::vector<std::filesystem::path> inputs{o.mesh, o.materials};
+  if (o.loads) inputs.push_back(*o.loads);
+  if (o.motion) inputs.push_back(*o.motion);
+  std::optional<double> period = loads ? loads->period : motion->period;
+  write_run_output(o.out, o.pvd, mesh, frames, period, Provenance{"fin-fem", config, inputs});
+  return summary;
+}
+
+}  // namespace finverse::fem::io

@@ -1,0 +1,38 @@
+// A structural run from stage files to stage files (the body of `fin-fem run`): read mesh.h5,
+// the materials file, optional loads.h5 and motion.h5; build the model (fin_model.hpp); run the
+// analysis over the output times (structural_run.hpp) with progress and ETA on stderr; write the
+// response (run_output.hpp). Output times: those of loads.h5, else those of motion.h5 (one of
+// the two is required; with both, the load times must lie within the motion's).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "fem/root_motion.hpp"
+#include "fem/structural_run.hpp"
+
+namespace finverse::fem::io {
+
+struct FileRunOptions {
+  std::filesystem::path mesh, materials, out;
+  std::optional<std::filesystem::path> loads, motion, pvd;
+  RunOptions run;
+  RootRotation root_rotation = RootRotation::fit;
+  double ramp = 0;  // s before the first output time; 0: ten output intervals
+  std::array<double, 3> gravity{0, 0, 0};
+};
+
+struct FileRunSummary {
+  int frames = 0;
+  long newton_iterations = 0;
+};
+
+// Throws (InvalidInput, SingularMatrix, NotConverged, finverse::Error for file problems) before
+// anything is written.
+FileRunSummary run_from_files(const FileRunOptions& options, const nlohmann::json& config);
+
+}  // namespace finverse::fem::io
