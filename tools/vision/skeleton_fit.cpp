@@ -65,6 +65,19 @@ SkeletonFitter::Linearisation SkeletonFitter::linearise(const std::vector<ViewDa
         L.ne.add(b, -1.0);
         L.ne.commit(pose.p[a] - pose.p[b], 1.0 / (neighbour_sigma * neighbour_sigma));
       }
+  // Across the span the joint angles vary smoothly (U-shaped amplitudes, W-shaped phases): a
+  // prior on their second difference over three neighbouring rays leaves linear trends free.
+  if (o_.span_curvature_sigma > 0)
+    for (std::size_t r = 1; r + 1 < s_.rays; ++r)
+      for (std::size_t k = 0; k < s_.segments; ++k)
+        for (int c = 0; c < 3; ++c) {
+          const int a = static_cast<int>(3 + 3 * s_.joint(r - 1, k)) + c, b = static_cast<int>(3 + 3 * s_.joint(r, k)) + c,
+                    d = static_cast<int>(3 + 3 * s_.joint(r + 1, k)) + c;
+          L.ne.add(a, 1.0);
+          L.ne.add(b, -2.0);
+          L.ne.add(d, 1.0);
+          L.ne.commit(pose.p[a] - 2 * pose.p[b] + pose.p[d], 1.0 / (o_.span_curvature_sigma * o_.span_curvature_sigma));
+        }
   return L;
 }
 
@@ -93,6 +106,7 @@ FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& sta
       // hold only for small changes (a tenth of a radian, a tenth of a chord).
       const double largest = delta.cwiseAbs().maxCoeff();
       if (largest > o_.max_step) delta *= o_.max_step / largest;
+      const double largest_taken = std::min(largest, o_.max_step);
       Pose cand = pose;
       for (std::size_t i = 0; i < P; ++i) cand.p[i] += delta[i];
       auto Lc = linearise(views, cand, prediction, nsig, rays);
@@ -105,7 +119,7 @@ FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& sta
         pose = std::move(cand);
         L = std::move(Lc);
         lambda = std::max(lambda / 3, 1e-4);
-        if (drop < o_.tolerance) break;
+        if (drop < o_.tolerance || largest_taken < o_.step_tolerance) break;
       } else {
         lambda *= 4;
         if (lambda > 1e8) break;

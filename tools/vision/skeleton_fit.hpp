@@ -5,9 +5,12 @@
 //   + the distances of the projected ray axes to the detected rays (ray_features.hpp), pixels,
 //   + a temporal prior: the pose stays near the constant-velocity prediction from the previous
 //     two frames (smooth motion; also the warm start),
-//   + weak spatial priors: neighbouring rays bend alike (the membrane couples them), and
-//     rotations out of the flapping plane (twist, in-plane bending) stay small unless the
-//     images ask for them.
+//   + spatial priors: neighbouring rays bend alike (the membrane couples them; a weak prior on
+//     first differences across the span and a stiffer one on second differences, which leaves
+//     the smooth U/W-shaped spanwise trends free but stops single rays folding where no
+//     silhouette sees them), and rotations about x and y (the ray points leaving their lateral
+//     plane: twist, in-plane bending) stay small unless the images ask for them. Without these
+//     the interior ray tips drift over a record, their silhouettes hidden by the other rays.
 // The Jacobian is the chain rule of the skinning Jacobian (finite differences on the joint
 // chain) and the camera projection. Views are linearised in parallel (OpenMP) and summed in a
 // fixed order, so results do not depend on the thread count.
@@ -30,11 +33,13 @@ struct FitOptions {
   int iterations = 12;              // LM iterations per frame (warm started)
   int first_iterations = 60;        // ... for the first frame, from the rest pose
   double temporal_sigma = 0.05;     // rad (translation: chords) from the prediction
-  double neighbour_sigma = 0.05;    // rad between the same joint of neighbouring rays
-  double out_of_plane_sigma = 0.05; // rad, rotations about x and y of the ray joints
+  double neighbour_sigma = 0.02;    // rad between the same joint of neighbouring rays
+  double out_of_plane_sigma = 0.003; // rad, rotations about x and y of the ray joints
+  double span_curvature_sigma = 0.003;  // rad, second difference across three neighbouring rays (0: off)
   double joint_sigma = 1.5;         // rad, every ray joint rotation (fixes the root/ray gauge)
   double max_step = 0.1;           // largest change of one parameter per LM step (rad, chords)
-  double tolerance = 1e-5;          // stop when the cost falls by less than this fraction
+  double tolerance = 1e-3;          // stop when the cost falls by less than this fraction
+  double step_tolerance = 1e-4;     // ... or when no parameter moved by more than this (rad, chords)
 };
 
 struct FrameFit {
