@@ -8,6 +8,7 @@
 
 # Reference numbers from the literature, kept in the repository (data/reference).
 _FEM_REFERENCE = os.path.join(REPO, "data", "reference")
+_HYBRID_CASE = os.path.join(REPO, "data", "cases", "hybrid_plate.json")
 
 # case -> (description, reference file or None, flags of the full case, flags of the coarse one)
 _FEM_CASES = {
@@ -27,10 +28,10 @@ _FEM_CASES = {
     # Hybrid plate of the seed paper's sec. 3.4 against CalculiX; the reference is written by
     # tools/scripts/calculix_hybrid_plate.py --reference-out (rule regenerate_hybrid_plate_reference).
     "hybrid_plate_static": ("hybrid plate (shell + 3 beams) under pressure vs CalculiX", "hybrid_plate_calculix.json",
-                            "--case data/cases/hybrid_plate.json", "--case data/cases/hybrid_plate.json --nx 12 --nz 12"),
+                            "--case " + _HYBRID_CASE, "--case " + _HYBRID_CASE + " --nx 12 --nz 12"),
     "hybrid_plate_dynamic": ("hybrid plate heaved at the leading edge vs CalculiX", "hybrid_plate_calculix.json",
-                             "--case data/cases/hybrid_plate.json",
-                             "--case data/cases/hybrid_plate.json --nx 8 --nz 8 --periods 0.5"),
+                             "--case " + _HYBRID_CASE,
+                             "--case " + _HYBRID_CASE + " --nx 8 --nz 8 --periods 0.5"),
 }
 # The dynamic case is graded only against a stored CalculiX history; without one (ccx's dynamic
 # run of this model does not converge yet, see calculix_hybrid_plate.py) it is not in the DAG.
@@ -88,8 +89,8 @@ import shutil
 if shutil.which("ccx"):
     rule regenerate_hybrid_plate_reference:
         input:
-            script="tools/scripts/calculix_hybrid_plate.py",
-            case="data/cases/hybrid_plate.json",
+            script=os.path.join(SCRIPTS, "calculix_hybrid_plate.py"),
+            case=os.path.join(REPO, "data", "cases", "hybrid_plate.json"),
         output:
             runs="results/calculix/hybrid_plate_runs.json",
         log:
