@@ -19,3 +19,7 @@ endif()
 # The Navier-Stokes solver's validation cases (rules/cfd.smk).
 add_executable(fin-cfd ${CMAKE_CURRENT_LIST_DIR}/fin_cfd.cpp)
 target_link_libraries(fin-cfd PRIVATE finverse_cfd finverse_cfd_io finverse_core finverse_vtkio finverse_warnings)
+
+# The flow solver's benchmark file results/bench/cfd.json (rules/bench.smk).
+add_executable(fin-cfd-bench ${CMAKE_CURRENT_LIST_DIR}/fin_cfd_bench.cpp)
+target_link_libraries(fin-cfd-bench PRIVATE finverse_cfd finverse_core finverse_warnings)

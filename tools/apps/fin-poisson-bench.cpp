@@ -45,12 +45,13 @@ int main(int argc, char** argv) {
   finverse::cli::Standard standard(app, "fin-poisson-bench");
   std::vector<int> sizes{128};
   std::string json_path, peer_path, method = "pcg", smoother = "rb", cycle = "V";
-  double rtol = 1e-8, ratio = 1.1;
-  int repeats = 1;
+  double rtol = 1e-8, ratio = 1.1, coarsening_ratio = MultigridOptions{}.coarsening_ratio, relaxation = 0;
+  int repeats = 1, pre = MultigridOptions{}.pre_sweeps, post = MultigridOptions{}.post_sweeps;
   bool mask = false;
   app.add_option("-n,--size", sizes, "cells per axis (one or more sizes, each a multiple of 8)")->capture_default_str();
   app.add_option("--rtol", rtol, "relative residual to reach")->capture_default_str();
-  app.add_option("--ratio", ratio, "maximum geometric stretch ratio")->capture_default_str();
+  app.add_option("--ratio", ratio, "maximum geometric stretch ratio (1: uniform grid over the same box)")
+      ->capture_default_str();
   app.add_option("--method", method, "pcg (MG-preconditioned CG) or mg (plain cycles)")
       ->check(CLI::IsMember({"pcg", "mg"}))
       ->capture_default_str();
@@ -58,6 +59,13 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"rb", "zebra"}))
       ->capture_default_str();
   app.add_option("--cycle", cycle, "V, W or F")->check(CLI::IsMember({"V", "W", "F"}))->capture_default_str();
+  app.add_option("--coarsening-ratio", coarsening_ratio,
+                 "merge cells no wider than this times the narrowest (<= 0: halve every axis)")
+      ->capture_default_str();
+  app.add_option("--relaxation", relaxation, "red-black over-relaxation (0: the default per dimension)")
+      ->capture_default_str();
+  app.add_option("--pre", pre, "pre-smoothing sweeps")->capture_default_str();
+  app.add_option("--post", post, "post-smoothing sweeps")->capture_default_str();
   app.add_flag("--mask", mask, "immerse a sphere (beta = 0 on the faces of its cells)");
   app.add_option("--repeats", repeats, "solves per size (the fastest is reported)")->capture_default_str();
   app.add_option("--json", json_path, "write a finverse/summary bench file here");
@@ -90,6 +98,10 @@ int main(int argc, char** argv) {
       opt.method = method == "pcg" ? PoissonMethod::MultigridPCG : PoissonMethod::MultigridCycles;
       opt.multigrid.smoother = smoother == "rb" ? SmootherKind::RedBlack : SmootherKind::ZebraLines;
       opt.multigrid.cycle = cycle == "V" ? CycleType::V : cycle == "W" ? CycleType::W : CycleType::F;
+      opt.multigrid.coarsening_ratio = coarsening_ratio;
+      opt.multigrid.relaxation = relaxation;
+      opt.multigrid.pre_sweeps = pre;
+      opt.multigrid.post_sweeps = post;
 
       auto t0 = clock_type::now();
       PoissonSolver solver;
@@ -132,6 +144,8 @@ int main(int argc, char** argv) {
     if (!json_path.empty()) {
       summary.parameters() = {{"sizes", sizes}, {"rtol", rtol}, {"max_stretch_ratio", ratio}, {"method", method},
                               {"smoother", smoother}, {"cycle", cycle}, {"mask", mask}, {"repeats", repeats},
+                              {"coarsening_ratio", coarsening_ratio}, {"relaxation", relaxation}, {"pre_sweeps", pre},
+                              {"post_sweeps", post},
                               {"peer", peer.is_null() ? nlohmann::json(nullptr) : peer}};
       summary.set_timing(seconds_since(t_all), threads);
       summary.write(json_path);

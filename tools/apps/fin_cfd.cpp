@@ -4,20 +4,36 @@
 //   fin-cfd channel [--checkpoint-every N] [--restart FILE] [--vtk]
 //                                       parabolic inlet, convective outlet, no-slip walls: the
 //                                       developed profile and dp/dx = -8 nu Um / H^2
+//   fin-cfd dfg_2d1 | dfg_2d2 [--cells-per-diameter N] [--t-end T]
+//                                       DFG cylinder benchmarks (Schaefer & Turek 1996) with the
+//                                       ghost-cell immersed boundary; forces.csv force history
+//   fin-cfd turek_hron_cfd2 | turek_hron_cfd3 [--cells-per-diameter N] [--t-end T]
+//                                       Turek-Hron rigid-flag benchmarks (Turek & Hron 2006) with
+//                                       the ghost-cell immersed boundary; forces.csv force history
+//   fin-cfd ib_couette                  Couette flow between two immersed circles: observed order
+//   fin-cfd cylinder_towed              towed cylinder vs fixed cylinder in a stream (moving body)
+//   fin-cfd cylinder_oscillating        in-line oscillating cylinder: force spikes from cleared cells
 //
 // Each writes <out-dir>/<case>/summary.json; exit 1 when a graded metric misses its tolerance.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cfd/checkpoint.hpp"
+#include "cfd/dfg_benchmark.hpp"
 #include "cfd/flow_solver.hpp"
+#include "cfd/ib_couette.hpp"
+#include "cfd/moving_cylinder.hpp"
 #include "cfd/taylor_green.hpp"
+#include "cfd/turek_hron_cfd.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/atomic_file.hpp"
 #include "core/log.hpp"
 #include "core/summary.hpp"
 #include "core/vtk_output.hpp"
@@ -197,6 +213,345 @@ int channel(const ChannelArgs& a, const std::filesystem::path& out, double& wall
   return finish(s, dir, wall_out);
 }
 
+// ---- DFG cylinder benchmarks ---------------------------------------------------------------------
+
+struct DfgArgs {
+  int cells_per_diameter = 0;  // 0: the case's default
+  double t_end = 0;            // 0: the case's default
+  std::string reference = "data/reference/schaefer_turek.json";
+};
+
+int dfg(int variant, bool coarse, const DfgArgs& a, const std::filesystem::path& out, double& wall_out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  nlohmann::json ref;
+  {
+    std::ifstream in(a.reference);
+    if (!in) throw Error("--reference: cannot read " + a.reference);
+    try {
+      in >> ref;
+    } catch (const std::exception&) {
+      throw Error("--reference: " + a.reference + " is not valid JSON");
+    }
+  }
+  const std::string key = variant == 1 ? "2D-1" : "2D-2";
+  if (!ref.contains(key)) throw Error("--reference: " + a.reference + " has no '" + key + "' entry");
+  const nlohmann::json& R = ref[key];
+  const std::string name = variant == 1 ? "dfg_2d1" : "dfg_2d2";
+  DfgSetup ds;
+  ds.variant = variant;
+  ds.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : (coarse ? 12 : 48);
+  ds.t_end = a.t_end > 0 ? a.t_end : variant == 1 ? (coarse ? 4.0 : 8.0) : (coarse ? 2.0 : 10.0);
+  ds.window = variant == 2 ? std::min(3.0, 0.4 * ds.t_end) : 0.0;
+  const std::size_t expected = static_cast<std::size_t>(std::ceil(ds.t_end / (ds.cfl * 0.1 / ds.cells_per_diameter / 1.8 /
+                                                                              (variant == 1 ? 0.3 : 1.5))));
+  log::Progress progress(name + " step", expected);
+  ds.progress = [&](const StepStats& st) {
+    progress.update(static_cast<std::size_t>(st.step),
+                    "t " + fmt("%.4f s", st.time) + "  dt " + fmt("%.3g", st.dt) + "  CFL " + fmt("%.3f", st.cfl) +
+                        "  Poisson " + std::to_string(st.poisson_iterations) + " it  momentum " +
+                        std::to_string(st.helmholtz_iterations) + " it  div " + fmt("%.1e", st.max_divergence));
+  };
+  const DfgResult r = run_dfg(ds);
+  progress.finish("t " + fmt("%.4f s", r.history.back().t));
+
+  const std::filesystem::path dir = out / name;
+  std::filesystem::create_directories(dir);
+  std::ostringstream csv;
+  csv << "t,cd,cl,dp\n";
+  char line[128];
+  for (const DfgSample& q : r.history) {
+    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.9g\n", q.t, q.cd, q.cl, q.dp);
+    csv << line;
+  }
+  write_text_atomic(dir / "forces.csv", csv.str());
+
+  Summary s("validation", name,
+            variant == 1 ? "DFG 2D-1 (Re 20, steady): drag, lift and pressure difference of the ghost-cell immersed "
+                           "cylinder against the published bounds"
+                         : "DFG 2D-2 (Re 100, periodic): maximum drag and lift and Strouhal number of the ghost-cell "
+                           "immersed cylinder against the published bounds");
+  const std::string src = ref.value("source", std::string("Schaefer & Turek 1996"));
+  // Goal: within 1% of the midpoint of each published bound interval (inside the bounds is better).
+  const auto graded = [&](const std::string& metric, const std::string& field, double value) {
+    const auto& bounds = R.at(field).at("bounds");
+    const double lo = bounds[0].get<double>(), hi = bounds[1].get<double>();
+    const double mid = 0.5 * (lo + hi);
+    if (coarse) s.info(metric, value);
+    else s.relative(metric, value, mid, 0.01, src + ", bounds [" + fmt("%g", lo) + ", " + fmt("%g", hi) + "]");
+    s.info(metric + "_inside_bounds", value >= lo && value <= hi ? 1.0 : 0.0);
+  };
+  if (variant == 1) {
+    graded("CD", "CD", r.cd);
+    graded("CL", "CL", r.cl);
+    graded("dp", "dp", r.dp);
+    s.info("CD_drift_last_second", r.cd_drift);
+  } else {
+    graded("CD_max", "CD_max", r.cd_max);
+    graded("CL_max", "CL_max", r.cl_max);
+    graded("St", "St", r.st);
+    s.info("periods_in_window", r.periods);
+  }
+  s.info("steps", static_cast<double>(r.steps));
+  s.info("cells", static_cast<double>(r.cells));
+  s.info("ghost_cells", static_cast<double>(r.ghost_cells));
+  s.info("mean_poisson_iterations", r.mean_poisson_iterations);
+  s.info("max_poisson_iterations", r.max_poisson_iterations);
+  s.info("mean_momentum_iterations_all_components", r.mean_momentum_iterations);
+  s.info("solver_seconds", r.cpu_seconds, "s");
+  s.parameters() = {{"coarse", coarse}, {"cells_per_diameter", ds.cells_per_diameter}, {"t_end", ds.t_end},
+                    {"window", ds.window}, {"cfl", ds.cfl}, {"ramp_time", ds.ramp_time},
+                    {"polygon_vertices", ds.polygon_vertices}, {"reference", a.reference}};
+  log::info(name + ": " +
+            (variant == 1 ? "CD " + fmt("%.5f", r.cd) + "  CL " + fmt("%.5f", r.cl) + "  dp " + fmt("%.5f", r.dp)
+                          : "CD_max " + fmt("%.5f", r.cd_max) + "  CL_max " + fmt("%.5f", r.cl_max) + "  St " +
+                                fmt("%.5f", r.st)) +
+            "  (" + std::to_string(r.steps) + " steps, " + fmt("%.1f s", r.cpu_seconds) + ")");
+  wall_out = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return finish(s, dir, wall_out);
+}
+
+// ---- Turek-Hron CFD2 / CFD3 (rigid flag) ----------------------------------------------------------
+
+struct TurekHronArgs {
+  int cells_per_diameter = 0;  // 0: the case's default
+  double t_end = 0;            // 0: the case's default
+  std::string reference = "data/reference/turek_hron.json";
+};
+
+int turek_hron(int variant, bool coarse, const TurekHronArgs& a, const std::filesystem::path& out, double& wall_out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  nlohmann::json ref;
+  {
+    std::ifstream in(a.reference);
+    if (!in) throw Error("--reference: cannot read " + a.reference);
+    try {
+      in >> ref;
+    } catch (const std::exception&) {
+      throw Error("--reference: " + a.reference + " is not valid JSON");
+    }
+  }
+  const std::string key = variant == 2 ? "CFD2" : "CFD3";
+  if (!ref.contains("cases") || !ref["cases"].contains(key))
+    throw Error("--reference: " + a.reference + " has no 'cases." + key + "' entry");
+  const nlohmann::json& R = ref["cases"][key];
+  const std::string name = variant == 2 ? "turek_hron_cfd2" : "turek_hron_cfd3";
+  TurekHronSetup ts;
+  ts.variant = variant;
+  ts.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : (coarse ? 12 : 32);
+  ts.t_end = a.t_end > 0 ? a.t_end : variant == 2 ? (coarse ? 2.0 : 10.0) : (coarse ? 1.0 : 10.0);
+  ts.window = variant == 3 ? std::min(1.0, 0.4 * ts.t_end) : 0.0;
+  // Once developed, the fastest flow past the body is about 1.8 Um: dt = cfl h / (1.8 Um).
+  const double um = variant == 2 ? 1.5 : 3.0;
+  const std::size_t expected =
+      static_cast<std::size_t>(std::ceil(ts.t_end / (ts.cfl * 0.1 / ts.cells_per_diameter / 1.8 / um)));
+  log::Progress progress(name + " step", expected);
+  ts.progress = [&](const StepStats& st) {
+    progress.update(static_cast<std::size_t>(st.step),
+                    "t " + fmt("%.4f s", st.time) + "  dt " + fmt("%.3g", st.dt) + "  CFL " + fmt("%.3f", st.cfl) +
+                        "  Poisson " + std::to_string(st.poisson_iterations) + " it  div " +
+                        fmt("%.1e", st.max_divergence));
+  };
+  const TurekHronResult r = run_turek_hron(ts);
+  progress.finish("t " + fmt("%.4f s", r.history.back().t));
+
+  const std::filesystem::path dir = out / name;
+  std::filesystem::create_directories(dir);
+  std::ostringstream csv;
+  csv << "t,drag,lift\n";
+  char line[128];
+  for (const TurekHronSample& q : r.history) {
+    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g\n", q.t, q.drag, q.lift);
+    csv << line;
+  }
+  write_text_atomic(dir / "forces.csv", csv.str());
+
+  Summary s("validation", name,
+            variant == 2 ? "Turek-Hron CFD2 (Re 100, steady, rigid flag): drag and lift [N/m] on cylinder + flag of the "
+                           "ghost-cell immersed body"
+                         : "Turek-Hron CFD3 (Re 200, periodic, rigid flag): drag and lift [N/m] mean and amplitude and "
+                           "the lift frequency of the ghost-cell immersed body");
+  const std::string src = ref.value("source", std::string("Turek & Hron 2006"));
+  const auto graded = [&](const std::string& metric, double value, double reference, double tol, const std::string& u) {
+    if (coarse) s.info(metric, value, u);
+    else s.relative(metric, value, reference, tol, src, u);
+  };
+  if (variant == 2) {
+    // Issue 4 goal: drag within 2 %, lift within 5 %.
+    graded("drag", r.drag, R.at("drag").get<double>(), 0.02, "N/m");
+    graded("lift", r.lift, R.at("lift").get<double>(), 0.05, "N/m");
+    s.info("drag_drift_last_second", r.drag_drift, "N/m");
+  } else {
+    // Drag mean within 2 %, amplitudes and frequency within 3 %. The lift mean (-11.9 N/m) is a
+    // small difference of large swings: graded absolutely, to 5 % of the lift amplitude.
+    const double dm = R.at("drag")[0].get<double>(), da = R.at("drag")[1].get<double>();
+    const double lm = R.at("lift")[0].get<double>(), la = R.at("lift")[1].get<double>();
+    graded("drag_mean", r.drag_mean, dm, 0.02, "N/m");
+    graded("drag_amplitude", r.drag_amplitude, da, 0.03, "N/m");
+    if (coarse) s.info("lift_mean", r.lift_mean, "N/m");
+    else s.absolute("lift_mean", r.lift_mean, lm, 0.05 * la, src + "; tolerance 5 % of the lift amplitude", "N/m");
+    graded("lift_amplitude", r.lift_amplitude, la, 0.03, "N/m");
+    graded("frequency", r.frequency, R.at("freq").get<double>(), 0.03, "Hz");
+    s.info("periods_in_window", r.periods);
+  }
+  s.info("steps", static_cast<double>(r.steps));
+  s.info("cells", static_cast<double>(r.cells));
+  s.info("ghost_cells", static_cast<double>(r.ghost_cells));
+  s.info("h", r.h, "m");
+  s.info("mean_poisson_iterations", r.mean_poisson_iterations);
+  s.info("max_poisson_iterations", r.max_poisson_iterations);
+  s.info("solver_seconds", r.cpu_seconds, "s");
+  s.parameters() = {{"coarse", coarse}, {"cells_per_diameter", ts.cells_per_diameter}, {"t_end", ts.t_end},
+                    {"window", ts.window}, {"cfl", ts.cfl}, {"ramp_time", ts.ramp_time},
+                    {"circle_vertices", ts.circle_vertices}, {"reference", a.reference}};
+  log::info(name + ": " +
+            (variant == 2 ? "drag " + fmt("%.4f", r.drag) + "  lift " + fmt("%.4f", r.lift)
+                          : "drag " + fmt("%.3f", r.drag_mean) + " +- " + fmt("%.3f", r.drag_amplitude) + "  lift " +
+                                fmt("%.3f", r.lift_mean) + " +- " + fmt("%.3f", r.lift_amplitude) + "  f " +
+                                fmt("%.4f", r.frequency)) +
+            "  (" + std::to_string(r.steps) + " steps, " + fmt("%.1f s", r.cpu_seconds) + ")");
+  wall_out = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return finish(s, dir, wall_out);
+}
+
+// ---- Couette flow between immersed circles --------------------------------------------------------
+
+int ib_couette(bool coarse, const std::filesystem::path& out, double& wall_out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Summary s("validation", "ib_couette",
+            "circular Couette flow between two immersed concentric circles (inner turning, outer at rest) on a "
+            "non-conforming Cartesian grid: observed L2 order of the velocity with the ghost-cell boundary");
+  const std::vector<int> ns = coarse ? std::vector<int>{32, 64} : std::vector<int>{32, 64, 128};
+  std::vector<IbCouetteResult> r;
+  for (int n : ns) {
+    IbCouetteSetup cs;
+    cs.n = n;
+    r.push_back(run_ib_couette(cs));
+    log::info("ib_couette n=" + std::to_string(n) + ": u L2 " + fmt("%.4e", r.back().u_l2) + ", max " +
+              fmt("%.4e", r.back().u_max) + ", " + std::to_string(r.back().steps) + " steps, Poisson " +
+              fmt("%.1f", r.back().mean_poisson_iterations) + " it/step, momentum " +
+              fmt("%.1f", r.back().mean_momentum_iterations) + " it/step, " + fmt("%.1fs", r.back().cpu_seconds));
+    s.info("u_l2_n" + std::to_string(n), r.back().u_l2, "m/s");
+    s.info("u_max_n" + std::to_string(n), r.back().u_max, "m/s");
+    s.info("mean_poisson_iterations_n" + std::to_string(n), r.back().mean_poisson_iterations);
+    s.info("mean_momentum_iterations_n" + std::to_string(n), r.back().mean_momentum_iterations);
+  }
+  const std::size_t m = r.size() - 1;
+  const double order = std::log2(r[m - 1].u_l2 / r[m].u_l2);
+  const std::string src = "exact circular Couette solution u_theta = A r + B / r; issue 4 goal: order >= 1.8";
+  // Second order expected; the band [1.8, 2.2] is the issue's floor and the same margin above.
+  if (coarse) s.info("order_velocity_l2", order);
+  else s.absolute("order_velocity_l2", order, 2.0, 0.2, src);
+  s.info("order_velocity_max", std::log2(r[m - 1].u_max / r[m].u_max));
+  const IbCouetteSetup d;
+  s.parameters() = {{"coarse", coarse}, {"grids", ns}, {"r1", d.r1}, {"r2", d.r2}, {"omega", d.omega}, {"nu", d.nu},
+                    {"t_end", d.t_end}, {"box", "[-0.6,0.6]^2"}, {"polygon_vertices", d.polygon_vertices}};
+  wall_out = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return finish(s, out / "ib_couette", wall_out);
+}
+
+// ---- Moving immersed body: towed and oscillating cylinders -----------------------------------------
+
+int cylinder_towed(bool coarse, const std::filesystem::path& out, double& wall_out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  TowedCylinderSetup ts;
+  if (coarse) {
+    ts.cells_per_diameter = 8;
+    ts.t_end = 3;
+    ts.t_compare = 1.5;
+    ts.half_height = 6;
+    ts.polygon_vertices = 128;
+    ts.cfl = 0.4;
+  }
+  log::Progress progress("cylinder_towed step", static_cast<std::size_t>(std::ceil(ts.t_end / (ts.cfl / ts.cells_per_diameter))));
+  ts.progress = [&](const StepStats& st) {
+    progress.update(static_cast<std::size_t>(st.step), "t " + fmt("%.3f", st.time) + "  Poisson " +
+                                                          std::to_string(st.poisson_iterations) + " it");
+  };
+  const TowedCylinderResult r = run_towed_cylinder(ts);
+  progress.finish("t " + fmt("%.3f", r.time.back()));
+  const std::filesystem::path dir = out / "cylinder_towed";
+  std::filesystem::create_directories(dir);
+  std::ostringstream csv;
+  csv << "t,cd_towed,cd_fixed\n";
+  char line[96];
+  for (std::size_t n = 0; n < r.time.size(); ++n) {
+    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g\n", r.time[n], r.cd_towed[n], r.cd_fixed[n]);
+    csv << line;
+  }
+  write_text_atomic(dir / "forces.csv", csv.str());
+  log::info("cylinder_towed: CD towed " + fmt("%.5f", r.cd_towed_end) + ", fixed " + fmt("%.5f", r.cd_fixed_end) +
+            " (averaged over " + std::to_string(ts.filter_cells) + " cell crossings), max relative difference over t >= " +
+            fmt("%g", ts.t_compare) + ": " + fmt("%.3e", r.max_relative_difference) + " averaged, " +
+            fmt("%.3e", r.max_relative_difference_raw) + " raw (" + fmt("%.1f s", r.cpu_seconds) + ")");
+  Summary s("validation", "cylinder_towed",
+            "cylinder towed at constant speed through fluid at rest against the fixed cylinder in a uniform stream "
+            "(same Re, grid spacing and solver): Galilean invariance of the moving ghost-cell boundary");
+  // Issue 4 goal: the same drag within 1% after start-up (the coarse grid only reports).
+  if (coarse) s.info("max_relative_drag_difference", r.max_relative_difference);
+  else s.at_most("max_relative_drag_difference", r.max_relative_difference, 0.01, "issue 4: towed = fixed drag within 1%");
+  s.info("max_relative_drag_difference_raw", r.max_relative_difference_raw);
+  s.info("CD_towed_end", r.cd_towed_end);
+  s.info("CD_fixed_end", r.cd_fixed_end);
+  s.info("steps", static_cast<double>(r.steps));
+  s.info("cells_both_runs", static_cast<double>(r.cells));
+  s.info("solver_seconds", r.cpu_seconds, "s");
+  s.parameters() = {{"coarse", coarse}, {"re", ts.re}, {"cells_per_diameter", ts.cells_per_diameter},
+                    {"t_end", ts.t_end}, {"t_compare", ts.t_compare}, {"half_height", ts.half_height},
+                    {"filter_cells", ts.filter_cells}, {"cfl", ts.cfl}, {"coupling_fraction", ts.coupling_fraction},
+                    {"polygon_vertices", ts.polygon_vertices}};
+  wall_out = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return finish(s, dir, wall_out);
+}
+
+int cylinder_oscillating(bool coarse, const std::filesystem::path& out, double& wall_out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  OscillatingCylinderSetup os;
+  if (coarse) {
+    os.cells_per_diameter = 8;
+    os.steps_per_period = 100;
+    os.periods = 2;
+    os.periods_analysed = 1;
+    os.half_width = 5;
+    os.polygon_vertices = 128;
+  }
+  Summary s("validation", "cylinder_oscillating",
+            "in-line oscillating cylinder in fluid at rest (KC 5, Re 100, Duetsch et al. 1998): high-frequency content "
+            "of the force history with and without the freshly-cleared-cell treatment (information)");
+  const std::filesystem::path dir = out / "cylinder_oscillating";
+  std::filesystem::create_directories(dir);
+  std::vector<OscillatingCylinderResult> r;
+  for (bool treatment : {true, false}) {
+    os.fresh_cell_treatment = treatment;
+    r.push_back(run_oscillating_cylinder(os));
+    const OscillatingCylinderResult& q = r.back();
+    const std::string tag = treatment ? "with_treatment" : "without_treatment";
+    log::info("cylinder_oscillating " + tag + ": energy above 10 f " + fmt("%.3e", q.high_frequency_fraction) +
+              ", max |d2F| / max|F| " + fmt("%.3e", q.max_second_difference) + ", Cd " + fmt("%.3f", q.cd_morison) +
+              ", Ca " + fmt("%.3f", q.ca_morison) + ", " + std::to_string(q.cleared_cells) + " cleared cells (" +
+              fmt("%.1f s", q.cpu_seconds) + ")");
+    s.info("high_frequency_energy_fraction_" + tag, q.high_frequency_fraction);
+    s.info("max_second_difference_over_amplitude_" + tag, q.max_second_difference);
+    s.info("cd_morison_" + tag, q.cd_morison);
+    s.info("ca_morison_" + tag, q.ca_morison);
+    s.info("cleared_cells_" + tag, static_cast<double>(q.cleared_cells));
+  }
+  s.info("high_frequency_reduction_factor", r[1].high_frequency_fraction / std::max(r[0].high_frequency_fraction, 1e-300));
+  std::ostringstream csv;
+  csv << "t,fx_with_treatment,fx_without_treatment\n";
+  char line[96];
+  for (std::size_t n = 0; n < r[0].time.size(); ++n) {
+    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g\n", r[0].time[n], r[0].fx[n], r[1].fx[n]);
+    csv << line;
+  }
+  write_text_atomic(dir / "forces.csv", csv.str());
+  s.parameters() = {{"coarse", coarse}, {"kc", os.kc}, {"re", os.re}, {"cells_per_diameter", os.cells_per_diameter},
+                    {"steps_per_period", os.steps_per_period}, {"periods", os.periods},
+                    {"periods_analysed", os.periods_analysed}, {"half_width", os.half_width},
+                    {"polygon_vertices", os.polygon_vertices}};
+  wall_out = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return finish(s, dir, wall_out);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -214,9 +569,37 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   chan->add_option("--restart", ch.restart, "continue from this checkpoint file")->check(CLI::ExistingFile);
   chan->add_flag("--vtk", ch.vtk, "also write <out>/channel/flow.pvd (ParaView)");
+  auto* couette = app.add_subcommand("ib_couette", "Couette flow between two immersed circles: observed order");
+  auto* towed = app.add_subcommand("cylinder_towed", "towed cylinder against the fixed cylinder in a stream (Re 20)");
+  auto* oscillating = app.add_subcommand("cylinder_oscillating", "in-line oscillating cylinder (KC 5, Re 100): force spikes");
+  DfgArgs dfg_args;
+  auto* d1 = app.add_subcommand("dfg_2d1", "DFG 2D-1 cylinder benchmark (Re 20, steady), immersed boundary");
+  auto* d2 = app.add_subcommand("dfg_2d2", "DFG 2D-2 cylinder benchmark (Re 100, periodic), immersed boundary");
+  for (auto* sc : {d1, d2}) {
+    sc->add_option("--cells-per-diameter", dfg_args.cells_per_diameter, "grid: h = D / N in the box around the cylinder")
+        ->check(CLI::Range(4, 1000));
+    sc->add_option("--t-end", dfg_args.t_end, "simulated time [s]")->check(CLI::PositiveNumber);
+    sc->add_option("--reference", dfg_args.reference, "reference bounds (JSON)")->capture_default_str();
+  }
+  TurekHronArgs th_args;
+  auto* th2 = app.add_subcommand("turek_hron_cfd2", "Turek-Hron CFD2 (Re 100, steady, rigid flag), immersed boundary");
+  auto* th3 = app.add_subcommand("turek_hron_cfd3", "Turek-Hron CFD3 (Re 200, periodic, rigid flag), immersed boundary");
+  for (auto* sc : {th2, th3}) {
+    sc->add_option("--cells-per-diameter", th_args.cells_per_diameter, "grid: h = D / N in the box around the body")
+        ->check(CLI::Range(4, 1000));
+    sc->add_option("--t-end", th_args.t_end, "simulated time [s]")->check(CLI::PositiveNumber);
+    sc->add_option("--reference", th_args.reference, "reference values (JSON)")->capture_default_str();
+  }
   return cli::run(app, standard, argc, argv, [&]() -> int {
     double wall = 0;
     if (*tg) return taylor_green(coarse, out_dir, wall);
+    if (*couette) return ib_couette(coarse, out_dir, wall);
+    if (*towed) return cylinder_towed(coarse, out_dir, wall);
+    if (*oscillating) return cylinder_oscillating(coarse, out_dir, wall);
+    if (*d1) return dfg(1, coarse, dfg_args, out_dir, wall);
+    if (*d2) return dfg(2, coarse, dfg_args, out_dir, wall);
+    if (*th2) return turek_hron(2, coarse, th_args, out_dir, wall);
+    if (*th3) return turek_hron(3, coarse, th_args, out_dir, wall);
     ch.coarse = coarse;
     return channel(ch, out_dir, wall);
   });

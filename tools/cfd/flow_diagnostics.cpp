@@ -1,5 +1,6 @@
 // Diagnostics of the flow state: divergence of the face velocities (continuity), kinetic energy and
-// momentum (conservation checks in a periodic box), and the convective CFL number. Sums are
+// momentum (conservation checks in a periodic box), and the convective CFL number (fluid cells
+// only where a body is immersed). Sums are
 // ordered per grid line (field.hpp), so they are bitwise independent of the thread count.
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,8 @@ double FlowSolver::max_divergence() const {
   double m = 0;
   for (int k = 0; k < grid_.nz(); ++k)
     for (int j = 0; j < grid_.ny(); ++j)
-      for (int i = 0; i < grid_.nx(); ++i) m = std::max(m, std::abs(divergence(U_, i, j, k)));
+      for (int i = 0; i < grid_.nx(); ++i)
+        if (fluid(i, j, k)) m = std::max(m, std::abs(divergence(U_, i, j, k)));
   return m;
 }
 
@@ -42,6 +44,7 @@ double FlowSolver::cfl(double dt) const {
   for (int k = 0; k < grid_.nz(); ++k)
     for (int j = 0; j < grid_.ny(); ++j)
       for (int i = 0; i < grid_.nx(); ++i) {
+        if (!fluid(i, j, k)) continue;  // ghost values are reflections, not velocities
         double s = 0;
         for (int d = 0; d < dim(); ++d)
           s += std::abs(u_[static_cast<std::size_t>(d)](i, j, k)) / grid_.axis(d).width(d == 0 ? i : d == 1 ? j : k);

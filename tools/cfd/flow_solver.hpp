@@ -22,6 +22,24 @@
 //   4. time-step control and health (time_step_control.cpp): fixed dt or a target CFL number, and a
 //      one-line finverse::Error naming the step when the velocity is not finite or the CFL number
 //      exceeds its limit.
+// Immersed body (immerse(), Mittal et al. 2008 ghost-cell method; ghost_cells.hpp): the momentum
+// system gets the ghost rows (immersed_momentum_solver.hpp); the pressure-correction Poisson
+// equation stays symmetric: the faces of every non-fluid cell are closed with the face mask (zero
+// correction flux), the face velocity on a fluid/ghost face is the interpolation of the
+// ghost-extended u* (a second-order flux; their net over the body is removed, so no mass crosses
+// the body), and phi and p get ghost values by the Neumann condition dp/dn = 0 at the boundary
+// intercept, so the cell-centred pressure gradient next to the body is the sharp one. At a
+// steady state phi = 0 and the solution is the fixed point of the sharp discrete momentum and
+// continuity equations; the masked correction only shapes the path to it.
+// Moving rigid body (immerse(MovingBody), rigid_motion.hpp; Mittal et al. 2008 section 2.4): at the
+// start of every step the body is placed at t^{n+1} and the cells re-classified; the ghost cells
+// impose u_B = U + Omega x r at their boundary intercepts, the pressure ghosts dp/dn = -a_B . n.
+// A freshly cleared cell (solid at t^n, fluid at t^{n+1}) has no fluid history: its u^n (and p^n)
+// is interpolated from its neighbours and its own boundary intercept with the same substituted
+// bilinear stencil as an image point (ghost_cells.hpp), carrying the no-slip (Neumann) datum, and
+// its old convective term N^{n-1}, which it never had, is replaced by N^n (Adams-Bashforth falls
+// back to explicit Euler in that cell for one step). Without this (fresh_cell_treatment = false)
+// the cell starts from its stale ghost value, a jump that shows as spikes in the force history.
 // Boundary values for the new time level (inlet ramps, convective outlet, mass balance) are set in
 // boundary_values.cpp; diagnostics (divergence, energy, momentum, CFL) in flow_diagnostics.cpp.
 //
@@ -33,6 +51,7 @@
 #include <array>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,9 +59,12 @@
 #include "cfd/face_field.hpp"
 #include "cfd/field.hpp"
 #include "cfd/flow_boundary.hpp"
+#include "cfd/ghost_cells.hpp"
+#include "cfd/immersed_momentum_solver.hpp"
 #include "cfd/grid.hpp"
 #include "cfd/helmholtz_solver.hpp"
 #include "cfd/poisson_solver.hpp"
+#include "cfd/rigid_motion.hpp"
 
 namespace finverse::cfd {
 
@@ -66,6 +88,9 @@ struct FlowOptions {
     o.rtol = 1e-10;
     return o;
   }();
+  // Moving body: give freshly cleared cells interpolated values (false only to measure the spikes
+  // that the treatment removes).
+  bool fresh_cell_treatment = true;
   // Body force per unit mass, evaluated at cell centres at t^{n+1/2}.
   VelocityFunction body_force;
 };
@@ -88,6 +113,22 @@ struct StateArray {
 class FlowSolver {
  public:
   void setup(const StretchedGrid& grid, const FlowBoundary& boundary, const FlowOptions& options);
+
+  // A fixed closed body (2-D); after setup, before initialise. Throws finverse::Error when the body
+  // is too close to the domain boundary.
+  void immerse(const Polygon& body);
+  // Fixed solid regions whose walls may move tangentially (geometry at rest): the no-slip velocity
+  // at a boundary intercept is wall_velocity(x, y, z, t) there (empty: zero). Fixed in time.
+  void immerse(const std::vector<SolidRegion>& regions, const VelocityFunction& wall_velocity = {});
+  // A rigidly moving closed body (2-D); after setup, before initialise (see the header comment).
+  void immerse(const MovingBody& body);
+  const MovingBody* moving_body() const { return moving_ ? &*moving_ : nullptr; }
+  const RigidState& body_state() const { return body_state_; }  // at time()
+  const Polygon& body_polygon() const { return body_now_; }     // moving body at time()
+  // Cells that were cleared at the start of the last step.
+  const std::vector<std::array<int, 2>>& freshly_cleared() const { return fresh_; }
+  const GhostCellSet* immersed() const { return ib_ ? &*ib_ : nullptr; }
+  bool fluid(int i, int j, int k) const { return !ib_ || k != 0 || ib_->kind(i, j) == CellKind::Fluid; }
 
   // Initial velocity (made discretely divergence-free by a projection) and pressure at time t0.
   void initialise(const VelocityFunction& velocity,
@@ -147,6 +188,15 @@ class FlowSolver {
   void cell_gradient(const Field& q, int d, Field& out) const;
   double divergence(const FaceField& U, int i, int j, int k) const;
   std::size_t side_index(Side s, int i, int j, int k) const;
+  // Face (d; i, j, k) between two cells of which at least one is not fluid (closed for phi).
+  bool masked_face(int d, int i, int j, int k) const;
+  // Immersed boundary: ghost values of the velocity (Dirichlet) and of a pressure-like field
+  // (homogeneous Neumann); face velocities on the body's faces with zero net flux.
+  void impose_body_velocity();
+  // Moving body: geometry, ghost data and pressure operator at time t; the step to t.
+  void place_body(double t);
+  void move_body(double t);
+  void body_face_velocities(FaceField& U, const std::array<Field, 3>& u) const;
 
   StretchedGrid grid_;
   FlowBoundary bnd_;
@@ -154,6 +204,14 @@ class FlowSolver {
   FaceCoefficients beta_;
   std::array<HelmholtzSolver, 3> helmholtz_;
   PoissonSolver poisson_;
+  std::optional<GhostCellSet> ib_;
+  std::array<std::vector<double>, 3> ib_wall_;  // per component, per ghost cell: u_B (empty: 0)
+  ImmersedMomentumSolver ib_momentum_;
+  std::vector<double> ib_dpdn_;  // per ghost cell: dp/dn at the intercept (empty: 0)
+  std::optional<MovingBody> moving_;
+  RigidState body_state_;
+  Polygon body_now_ = Polygon::circle(0, 0, 1, 3);
+  std::vector<std::array<int, 2>> fresh_;
 
   std::array<Field, 3> u_, ustar_, conv_, conv_old_, work_;
   Field p_, phi_, rhs_, zero_, grad_, bterm_;

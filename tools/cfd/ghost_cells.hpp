@@ -7,10 +7,17 @@
 // condition at B to second order:
 //     Dirichlet (velocity):  phi_G = 2 phi_B - phi_I
 //     Neumann (pressure):    phi_G = phi_I - |I - G| dphi/dn(B)
-// Where the image point's stencil contains a non-fluid cell, Mittal et al. replace that node by
-// the boundary intercept; that substitution and the coupling of the ghost values into the
-// momentum and pressure systems are the next step (not implemented here): this file provides the
-// classification, the probes and the interpolation stencils.
+// Where the image point's stencil contains the ghost cell itself or a solid (non-ghost) cell,
+// Mittal et al. replace that node by the boundary intercept B, carrying the boundary condition:
+// the interpolant phi = c1 + c2 x + c3 y + c4 x y is fitted to the remaining cell values and to
+// phi(B) = phi_B (Dirichlet) or n . grad phi(B) = dphi/dn (Neumann), which gives the image value as
+// sum_k w_k phi_k + w_B (boundary datum) (PointStencil). Other ghost cells in the stencil stay as
+// unknowns: the ghost values are solved for together (implicitly in the momentum system, by
+// sweeps in impose_*). Where the substitution leaves fewer than four usable points, or the
+// bilinear fit is singular (two nodes replaced by one intercept), the fit falls back to the linear
+// interpolant by least squares, still exact for linear fields. The stencil structures carry 3-D
+// indices and up to 8 nodes, so the trilinear 3-D version (triangulated bodies) fills the same
+// types; the classification and geometry here are 2-D (Polygon).
 #pragma once
 
 #include <array>
@@ -25,6 +32,24 @@ namespace finverse::cfd {
 
 enum class CellKind : unsigned char { Fluid = 0, Solid = 1, Ghost = 2 };
 
+enum class BoundaryCondition { Dirichlet, Neumann, None };
+
+// The value at a point as a linear combination of cell values plus one boundary datum.
+struct PointStencil {
+  int count = 0;
+  std::array<std::array<int, 3>, 8> cell{};
+  std::array<double, 8> weight{};
+  double boundary_weight = 0;  // multiplies phi_B (Dirichlet) or dphi/dn at B (Neumann)
+  double apply(const Field& q, double boundary_datum) const {
+    double s = boundary_weight * boundary_datum;
+    for (int k = 0; k < count; ++k) {
+      const auto& c = cell[static_cast<std::size_t>(k)];
+      s += weight[static_cast<std::size_t>(k)] * q(c[0], c[1], c[2]);
+    }
+    return s;
+  }
+};
+
 struct GhostCell {
   int i = 0, j = 0;
   SurfacePoint boundary;               // intercept B, outward normal, signed distance of G (<= 0)
@@ -32,6 +57,7 @@ struct GhostCell {
   std::array<int, 2> stencil{};        // lower-left cell (i0, j0) of the bilinear stencil of I
   std::array<double, 4> weights{};     // for (i0,j0), (i0+1,j0), (i0,j0+1), (i0+1,j0+1)
   bool stencil_all_fluid = true;       // false: needs the boundary-intercept substitution
+  PointStencil dirichlet, neumann;     // image value with the boundary-intercept substitution
   double probe_length() const { return 2 * std::abs(boundary.distance); }  // |I - G|
 };
 
@@ -40,6 +66,8 @@ class GhostCellSet {
   // Classifies the cells of a 2-D grid against the body. Throws finverse::Error when an image point
   // leaves the grid (the body too close to the domain boundary).
   GhostCellSet(const StretchedGrid& grid, const Polygon& body);
+  // Several solid regions (disjoint; each ghost cell takes the surface closest to it).
+  GhostCellSet(const StretchedGrid& grid, const std::vector<SolidRegion>& regions);
 
   CellKind kind(int i, int j) const { return kind_[static_cast<std::size_t>(i + grid_.nx() * j)]; }
   bool solid(int i, int j) const { return kind(i, j) != CellKind::Fluid; }
@@ -54,6 +82,24 @@ class GhostCellSet {
   double neumann_ghost(const Field& q, const GhostCell& g, double normal_derivative) const {
     return image_value(q, g) - g.probe_length() * normal_derivative;
   }
+
+  // Interpolation stencil at point x from the four surrounding cell centres; fluid and ghost cells
+  // are used (except the cell `self`), other nodes are replaced by the boundary point b with the
+  // condition bc (None: dropped). Throws finverse::Error when x is outside the centres' range.
+  PointStencil stencil(const std::array<double, 2>& x, const SurfacePoint& b, BoundaryCondition bc,
+                       std::array<int, 2> self = {-1, -1}) const;
+
+  // Ghost values that impose the conditions with the substituted stencils, by Gauss-Seidel sweeps
+  // over the ghost cells (they couple where one ghost cell's image stencil holds another):
+  //   Dirichlet: phi_G = 2 phi_B - phi_I, phi_B = boundary_value[g] (empty: 0);
+  //   Neumann, homogeneous: phi_G = phi_I.
+  void impose_dirichlet(Field& q, const std::vector<double>& boundary_value) const;
+  void impose_neumann(Field& q) const;
+  //   Neumann, inhomogeneous: phi_G = phi_I - |I - G| dphi/dn, dphi/dn = normal_derivative[g] at B
+  //   (a moving body's pressure, rigid_motion.hpp).
+  void impose_neumann(Field& q, const std::vector<double>& normal_derivative) const;
+  // Sets every solid non-ghost cell to value.
+  void fill_solid(Field& q, double value) const;
 
  private:
   StretchedGrid grid_;

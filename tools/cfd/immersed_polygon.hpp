@@ -33,4 +33,22 @@ class Polygon {
   std::vector<std::array<double, 2>> v_;
 };
 
+// A solid region of the immersed boundary: the inside of a closed polygon (a body), or with
+// outside = true its outside (the polygon encloses the fluid, e.g. the outer cylinder of a
+// Couette cell). closest() then reports the normal pointing into the fluid and the distance
+// positive in the fluid, as for a body.
+struct SolidRegion {
+  Polygon polygon;
+  bool outside = false;
+  bool contains(double x, double y) const { return polygon.contains(x, y) != outside; }
+  SurfacePoint closest(double x, double y) const {
+    SurfacePoint s = polygon.closest(x, y);
+    if (outside) {
+      s.normal = {-s.normal[0], -s.normal[1]};
+      s.distance = -s.distance;
+    }
+    return s;
+  }
+};
+
 }  // namespace finverse::cfd

@@ -8,7 +8,10 @@
 // finite-volume Laplacian with the boundary values b of that time level. The convective term is
 // conservative, N = (1/V) sum_f (U_f A_f) u_f, with the solenoidal face velocities U^n and
 // linearly interpolated face values u_f: it conserves momentum exactly in a periodic box and, on a
-// uniform grid, kinetic energy too (skew-symmetric for a divergence-free U).
+// uniform grid, kinetic energy too (skew-symmetric for a divergence-free U). With an immersed body
+// the ghost and solid rows of the implicit system carry the body's velocity condition
+// (immersed_momentum_solver.hpp); the explicit terms of fluid cells next to the body use the ghost
+// values of u^n and p^n, which hold the sharp boundary conditions.
 #include "cfd/flow_solver.hpp"
 #include "cfd/loops.hpp"
 #include <cmath>
@@ -40,6 +43,12 @@ void FlowSolver::predict_momentum(double dt) {
   if (opt_.convection) convective_term(conv_);
   else
     for (int c = 0; c < dim(); ++c) conv_[static_cast<std::size_t>(c)].fill(0.0);
+  // A freshly cleared cell has no N^{n-1} of its own (its stored value is a ghost cell's or a
+  // solid cell's): Adams-Bashforth falls back to explicit Euler there for this step.
+  if (opt_.fresh_cell_treatment)
+    for (const auto& f : fresh_)
+      for (int c = 0; c < dim(); ++c)
+        conv_old_[static_cast<std::size_t>(c)](f[0], f[1], 0) = conv_[static_cast<std::size_t>(c)](f[0], f[1], 0);
   const double r = dt_old_ > 0 ? dt / dt_old_ : 0.0;
   const double ab_new = 1 + 0.5 * r, ab_old = -0.5 * r;
   const double half_nu = 0.5 * opt_.nu;
@@ -68,7 +77,10 @@ void FlowSolver::predict_momentum(double dt) {
     });
     Field& us = ustar_[C];
     copy_interior(un, us);
-    const HelmholtzStats st = hs.solve(1.0 / dt, half_nu, rhs_, us, opt_.helmholtz_rtol, opt_.helmholtz_max_iterations);
+    const HelmholtzStats st =
+        ib_ ? ib_momentum_.solve(hs, *ib_, 1.0 / dt, half_nu, rhs_, ib_wall_[C], 0.0, us, opt_.helmholtz_rtol,
+                                 opt_.helmholtz_max_iterations)
+            : hs.solve(1.0 / dt, half_nu, rhs_, us, opt_.helmholtz_rtol, opt_.helmholtz_max_iterations);
     if (!std::isfinite(st.relative_residual))
       throw Error("flow solver: step " + std::to_string(step_ + 1) + ": momentum right-hand side of component " +
                   std::to_string(c) + " is not finite (blow-up)");

@@ -6,20 +6,6 @@
 
 namespace finverse::cfd {
 
-namespace {
-
-// Which axes the next level halves (see multigrid.hpp); all false means stop.
-std::array<bool, 3> coarsening(const PoissonOperator& op) {
-  std::array<bool, 3> c{false, false, false};
-  for (int d = 0; d < op.dim(); ++d) {
-    const int n = op.grid().n(d);
-    const bool periodic = op.bc().periodic(d);
-    c[static_cast<std::size_t>(d)] = n % 2 == 0 && n >= 4 && (!periodic || n % 4 == 0);
-  }
-  return c;
-}
-
-}  // namespace
 
 void Multigrid::setup(const PoissonOperator& fine, const MultigridOptions& options) {
   if (options.pre_sweeps < 0 || options.post_sweeps < 0 || options.pre_sweeps + options.post_sweeps == 0)
@@ -28,21 +14,23 @@ void Multigrid::setup(const PoissonOperator& fine, const MultigridOptions& optio
     if (fine.bc().periodic(d) && fine.grid().n(d) % 2 != 0 && fine.grid().cells() > options.coarsest_max_cells)
       throw std::invalid_argument("Multigrid: a periodic axis needs an even cell count (red-black colouring)");
   options_ = options;
+  omega_ = options.relaxation > 0 ? options.relaxation : fine.dim() == 3 ? 1.2 : 1.0;
   ops_.assign(1, &fine);
   owned_.clear();
   transfers_.clear();
-  std::vector<std::array<bool, 3>> coarsened;
+  coarsenings_.clear();
   while (static_cast<int>(ops_.size()) < options.max_levels) {
     const PoissonOperator& op = *ops_.back();
     if (op.grid().cells() <= options.coarsest_max_cells) break;
-    const auto c = coarsening(op);
-    if (!c[0] && !c[1] && !c[2]) break;
-    owned_.push_back(std::make_unique<PoissonOperator>(op.coarsened(c)));
+    Coarsening c = choose_coarsening(op, options.coarsening_ratio);
+    if (!coarsens(c)) c = choose_coarsening(op, 0.0);  // nothing is narrow enough: halve anyway
+    if (!coarsens(c)) break;
+    owned_.push_back(std::make_unique<PoissonOperator>(coarsen_operator(op, c)));
     ops_.push_back(owned_.back().get());
-    coarsened.push_back(c);
+    coarsenings_.push_back(std::move(c));
   }
   transfers_.resize(ops_.size() - 1);
-  for (std::size_t l = 0; l + 1 < ops_.size(); ++l) transfers_[l].setup(*ops_[l], *ops_[l + 1], coarsened[l]);
+  for (std::size_t l = 0; l + 1 < ops_.size(); ++l) transfers_[l].setup(*ops_[l], *ops_[l + 1], coarsenings_[l]);
   x_.clear();
   b_.clear();
   r_.clear();
@@ -63,7 +51,7 @@ void Multigrid::cycle_level(int l, const Field& b, Field& x, CycleType type) {
     coarse_.solve(b, x);
     return;
   }
-  for (int s = 0; s < options_.pre_sweeps; ++s) smooth(options_.smoother, op, b, x, true);
+  for (int s = 0; s < options_.pre_sweeps; ++s) smooth(options_.smoother, op, b, x, true, omega_);
   op.residual(b, x, r_[sl]);
   transfers_[sl].restrict_residual(r_[sl], b_[sl + 1]);
   x_[sl + 1].fill(0.0);
@@ -79,7 +67,7 @@ void Multigrid::cycle_level(int l, const Field& b, Field& x, CycleType type) {
       break;
   }
   transfers_[sl].prolongate_add(x_[sl + 1], x);
-  for (int s = 0; s < options_.post_sweeps; ++s) smooth(options_.smoother, op, b, x, false);
+  for (int s = 0; s < options_.post_sweeps; ++s) smooth(options_.smoother, op, b, x, false, omega_);
 }
 
 std::string Multigrid::describe() const {

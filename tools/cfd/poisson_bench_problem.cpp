@@ -6,8 +6,10 @@
 namespace finverse::cfd {
 
 PoissonBenchProblem make_poisson_bench_problem(int n, double ratio, bool mask) {
-  const StretchedGrid grid(Axis::stretched_count(-4, 8, -0.5, 1.5, n, ratio), Axis::stretched_count(-4, 4, -0.5, 0.5, n, ratio),
-                           Axis::stretched_count(-3, 4, -0.25, 1.25, n, ratio));
+  const auto axis = [&](double lo, double hi, double ulo, double uhi) {
+    return ratio == 1.0 ? Axis::uniform(lo, hi, n) : Axis::stretched_count(lo, hi, ulo, uhi, n, ratio);
+  };
+  const StretchedGrid grid(axis(-4, 8, -0.5, 1.5), axis(-4, 4, -0.5, 0.5), axis(-3, 4, -0.25, 1.25));
   FaceCoefficients beta(grid, 1.0);
   if (mask)
     beta.mask_cells([&](int i, int j, int k) {

@@ -20,7 +20,8 @@ struct PoissonBenchProblem {
   Field source;  // f of div(beta grad p) = f
 };
 
-// n cells per axis, maximum stretch ratio `ratio`.
+// n cells per axis, maximum stretch ratio `ratio`; ratio 1 gives the uniform grid of the same box
+// (cells of aspect ratio up to 1.7), the reference for how much the stretching costs.
 PoissonBenchProblem make_poisson_bench_problem(int n, double ratio, bool mask);
 
 }  // namespace finverse::cfd

@@ -54,10 +54,8 @@ class PoissonOperator {
   // b = -f V + sum over Dirichlet faces T_b p_b + sum over Neumann faces beta A dp/dn.
   void assemble_rhs(const Field& f, const BoundaryValues& values, Field& b) const;
 
-  // The operator of the next coarser multigrid level: beta averaged over the fine faces that make
-  // up each coarse face, weighted by face area, then rediscretised on the coarse grid. This keeps
-  // stretching, variable coefficients and immersed-boundary masks on every level.
-  PoissonOperator coarsened(const std::array<bool, 3>& coarsen) const;
+  // The multigrid's coarse operators are rediscretisations of this one: coarsen_operator in
+  // coarsening.hpp.
 
   // Stencil access for smoothers, transfers and the direct coarse solver. Transmissibilities are
   // indexed like FaceCoefficients; for a periodic axis face n(d) duplicates face 0.
@@ -93,6 +91,7 @@ class PoissonOperator {
 
  private:
   void build_connectivity();
+  bool single_open_component();
 
   StretchedGrid grid_;
   FaceCoefficients beta_;

@@ -18,7 +18,9 @@
 // Boundary faces carry the prescribed fluxes (boundary_values.cpp).
 //
 // Correction: phi = p^{n+1/2} - p^{n-1/2} from  Df Gf phi = Df U* / dt  with homogeneous Neumann
-// conditions on non-periodic sides, by MG-PCG warm-started from the previous step's phi.
+// conditions on non-periodic sides, by MG-PCG warm-started from the previous step's phi. With an
+// immersed body the faces of non-fluid cells are closed (flow_solver.hpp): they keep the
+// interpolated face velocity of u*, and phi gets its ghost values from the Neumann condition.
 #include <algorithm>
 #include <string>
 
@@ -48,14 +50,17 @@ void FlowSolver::face_predictor(double dt, double tau) {
     for_each_face(grid_, d, [&](int i, int j, int k) {
       const int f = d == 0 ? i : d == 1 ? j : k;
       if (!periodic && (f == 0 || f == n)) return;  // prescribed boundary flux
+      if (masked_face(d, i, j, k)) return;             // immersed body: body_face_velocities
       Ustar_(d, i, j, k) = face_value(w, d, d, i, j, k, bv_new_) - tau * face_gradient(q, d, i, j, k);
     });
   }
+  if (ib_) body_face_velocities(Ustar_, ustar_);
 }
 
 PoissonSolveStats FlowSolver::solve_pressure_correction(double dt) {
   for_each_cell(grid_, [&](int i, int j, int k) { rhs_(i, j, k) = divergence(Ustar_, i, j, k) / dt; });
   const PoissonSolveStats st = poisson_.solve(rhs_, BoundaryValues{}, phi_);
+  if (ib_) ib_->impose_neumann(phi_);  // ghost values: dphi/dn = 0 at the boundary intercept
   if (!st.converged)
     throw Error("flow solver: step " + std::to_string(step_ + 1) + ": pressure-correction solve did not converge (" +
                 std::to_string(st.iterations) + " iterations, relative residual " +

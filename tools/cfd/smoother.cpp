@@ -11,7 +11,7 @@ namespace {
 // Updates the cells of one colour: x_P = (b_P + sum_f T_f x_N) / diag_P. Inactive cells have
 // inverse diagonal 0 and stay at 0.
 template <int D>
-void colour_update(const PoissonOperator& op, const Field& b, Field& x, int colour) {
+void colour_update(const PoissonOperator& op, const Field& b, Field& x, int colour, double omega) {
   const StretchedGrid& g = op.grid();
   const int nx = g.nx(), ny = g.ny(), nz = g.nz();
   const double* tx = op.transmissibility(0).data();
@@ -35,7 +35,7 @@ void colour_update(const PoissonOperator& op, const Field& b, Field& x, int colo
       double s = bb[i] + txr[i] * xc[i - 1] + txr[i + 1] * xc[i + 1] + tys[i] * xc[i - sy] +
                  tyn[i] * xc[i + sy];
       if constexpr (D == 3) s += tzb[i] * xc[i - sz] + tzt[i] * xc[i + sz];
-      xc[i] = s * inv[i];
+      xc[i] = inv[i] > 0 ? xc[i] + omega * (s * inv[i] - xc[i]) : 0.0;
     }
   }
 }
@@ -158,10 +158,10 @@ void line_update(const PoissonOperator& op, const Field& b, Field& x, int a, int
 }
 
 template <int D>
-void rb(const PoissonOperator& op, const Field& b, Field& x, bool forward) {
+void rb(const PoissonOperator& op, const Field& b, Field& x, bool forward, double omega) {
   for (int c : {0, 1}) {
     op.fill_ghosts(x);
-    colour_update<D>(op, b, x, forward ? c : 1 - c);
+    colour_update<D>(op, b, x, forward ? c : 1 - c, omega);
   }
 }
 
@@ -178,9 +178,9 @@ void zebra(const PoissonOperator& op, const Field& b, Field& x, bool forward) {
 
 }  // namespace
 
-void red_black_sweep(const PoissonOperator& op, const Field& b, Field& x, bool forward) {
-  if (op.dim() == 3) rb<3>(op, b, x, forward);
-  else rb<2>(op, b, x, forward);
+void red_black_sweep(const PoissonOperator& op, const Field& b, Field& x, bool forward, double omega) {
+  if (op.dim() == 3) rb<3>(op, b, x, forward, omega);
+  else rb<2>(op, b, x, forward, omega);
 }
 
 void zebra_line_sweep(const PoissonOperator& op, const Field& b, Field& x, bool forward) {

@@ -4,7 +4,7 @@
 namespace finverse::cfd {
 
 void GridTransfer::setup(const PoissonOperator& fine, const PoissonOperator& coarse,
-                         const std::array<bool, 3>& coarsened) {
+                         const Coarsening& coarsening) {
   fine_ = &fine;
   coarse_ = &coarse;
   const StretchedGrid& fg = fine.grid();
@@ -18,13 +18,15 @@ void GridTransfer::setup(const PoissonOperator& fine, const PoissonOperator& coa
     pr.assign(static_cast<std::size_t>(nf), {});
     for (int i = 0; i < nf; ++i) {
       auto& e = pr[static_cast<std::size_t>(i)];
-      if (!coarsened[sd] || d >= fg.dim()) {
-        e[0] = {i, 1.0};
-        e[1] = {i, 0.0};
+      const AxisCoarsening& m = coarsening[sd];
+      const int I = m.parent[static_cast<std::size_t>(i)];
+      if (d >= fg.dim() || m.children(I) == 1) {
+        e[0] = {I, 1.0};
+        e[1] = {I, 0.0};
         continue;
       }
-      const int I = i / 2;
-      const int nb = (i % 2 == 0) ? I - 1 : I + 1;  // coarse neighbour on the fine cell's side
+      const bool low_child = i == m.first[static_cast<std::size_t>(I)];
+      const int nb = low_child ? I - 1 : I + 1;  // coarse neighbour on the fine cell's side
       const double xf = fa.centre(i), xp = ca.centre(I);
       double xn;
       bool constant = false;
@@ -41,8 +43,7 @@ void GridTransfer::setup(const PoissonOperator& fine, const PoissonOperator& coa
       e[0] = {I, 1.0 - wn};
       e[1] = {constant ? I : nb, wn};
     }
-    auto& rs = restr_[sd];
-    rs.assign(static_cast<std::size_t>(nc), {});
+    std::vector<std::vector<std::pair<int, double>>> rs(static_cast<std::size_t>(nc));
     for (int i = 0; i < nf; ++i)
       for (const Entry& e : pr[static_cast<std::size_t>(i)]) {
         if (e.w == 0.0) continue;
@@ -53,7 +54,16 @@ void GridTransfer::setup(const PoissonOperator& fine, const PoissonOperator& coa
         }
         rs[static_cast<std::size_t>(C)].emplace_back(i, e.w);
       }
+    rptr_[sd].assign(1, 0);
+    ridx_[sd].clear();
+    rw_[sd].clear();
+    for (const auto& row : rs) {
+      for (const auto& [i, w] : row) ridx_[sd].push_back(i), rw_[sd].push_back(w);
+      rptr_[sd].push_back(static_cast<int>(ridx_[sd].size()));
+    }
   }
+  tx_.assign(static_cast<std::size_t>(cg.nx()) * fg.ny() * fg.nz(), 0.0);
+  txy_.assign(static_cast<std::size_t>(cg.nx()) * cg.ny() * fg.nz(), 0.0);
 
   // Renormalisation around immersed bodies: weights of inactive coarse cells are removed and the
   // rest scaled to sum to one; inactive fine cells get scale 0.
@@ -109,32 +119,61 @@ void GridTransfer::prolongate_add(Field& ce, Field& fx) const {
 
 void GridTransfer::restrict_residual(const Field& fr, Field& cb) const {
   const StretchedGrid& cg = coarse_->grid();
-  const int nx = cg.nx(), ny = cg.ny(), nz = cg.nz();
-  const int fnx = fine_->grid().nx();
+  const StretchedGrid& fg = fine_->grid();
+  const int cnx = cg.nx(), cny = cg.ny(), cnz = cg.nz();
+  const int fnx = fg.nx(), fny = fg.ny(), fnz = fg.nz();
   const double* sc = scale_.empty() ? nullptr : scale_.data();
-  const int fny = fine_->grid().ny();
-#pragma omp parallel for schedule(static) if (static_cast<long>(fine_->grid().cells()) >= parallel_min_cells)
-  for (int l = 0; l < ny * nz; ++l) {
-    const int J = l % ny, K = l / ny;
-    const auto& ly = restr_[1][static_cast<std::size_t>(J)];
-    const auto& lz = restr_[2][static_cast<std::size_t>(K)];
-    for (int I = 0; I < nx; ++I) {
+  const bool par = static_cast<long>(fg.cells()) >= parallel_min_cells;
+  const auto row = [](std::size_t n, int j, int k, int ny) {
+    return n * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(k));
+  };
+  double* tx = tx_.data();
+  double* txy = txy_.data();
+  // x: gather each fine line onto the coarse x positions (with the immersed-boundary scaling).
+#pragma omp parallel for schedule(static) if (par)
+  for (int l = 0; l < fny * fnz; ++l) {
+    const int j = l % fny, k = l / fny;
+    const double* r = &fr(0, j, k);
+    const double* s = sc ? sc + row(static_cast<std::size_t>(fnx), j, k, fny) : nullptr;
+    double* out = tx + row(static_cast<std::size_t>(cnx), j, k, fny);
+    const int* ptr = rptr_[0].data();
+    const int* idx = ridx_[0].data();
+    const double* w = rw_[0].data();
+    for (int I = 0; I < cnx; ++I) {
       double v = 0;
-      if (coarse_->active(I, J, K)) {
-        const auto& lx = restr_[0][static_cast<std::size_t>(I)];
-        for (const auto& [k, wz] : lz)
-          for (const auto& [j, wy] : ly) {
-            const double* r = &fr(0, j, k);
-            const double* s = sc ? sc + static_cast<std::size_t>(fnx) * (static_cast<std::size_t>(j) +
-                                                                         static_cast<std::size_t>(fny) * k)
-                                 : nullptr;
-            double vx = 0;
-            for (const auto& [i, wx] : lx) vx += wx * (s ? s[i] * r[i] : r[i]);
-            v += wz * wy * vx;
-          }
-      }
-      cb(I, J, K) = v;
+      if (s)
+        for (int q = ptr[I]; q < ptr[I + 1]; ++q) v += w[q] * s[idx[q]] * r[idx[q]];
+      else
+        for (int q = ptr[I]; q < ptr[I + 1]; ++q) v += w[q] * r[idx[q]];
+      out[I] = v;
     }
+  }
+  // y: coarse row (J, k) = sum of weighted fine rows (j, k); contiguous in I.
+#pragma omp parallel for schedule(static) if (par)
+  for (int l = 0; l < cny * fnz; ++l) {
+    const int J = l % cny, k = l / cny;
+    double* out = txy + row(static_cast<std::size_t>(cnx), J, k, cny);
+    for (int I = 0; I < cnx; ++I) out[I] = 0;
+    for (int q = rptr_[1][static_cast<std::size_t>(J)]; q < rptr_[1][static_cast<std::size_t>(J) + 1]; ++q) {
+      const double w = rw_[1][static_cast<std::size_t>(q)];
+      const double* in = tx + row(static_cast<std::size_t>(cnx), ridx_[1][static_cast<std::size_t>(q)], k, fny);
+      for (int I = 0; I < cnx; ++I) out[I] += w * in[I];
+    }
+  }
+  // z: likewise into the coarse right-hand side; inactive coarse cells get none.
+#pragma omp parallel for schedule(static) if (par)
+  for (int l = 0; l < cny * cnz; ++l) {
+    const int J = l % cny, K = l / cny;
+    double* out = &cb(0, J, K);
+    for (int I = 0; I < cnx; ++I) out[I] = 0;
+    for (int q = rptr_[2][static_cast<std::size_t>(K)]; q < rptr_[2][static_cast<std::size_t>(K) + 1]; ++q) {
+      const double w = rw_[2][static_cast<std::size_t>(q)];
+      const double* in = txy + row(static_cast<std::size_t>(cnx), J, ridx_[2][static_cast<std::size_t>(q)], cny);
+      for (int I = 0; I < cnx; ++I) out[I] += w * in[I];
+    }
+    if (coarse_->active_cells() != cg.cells())
+      for (int I = 0; I < cnx; ++I)
+        if (!coarse_->active(I, J, K)) out[I] = 0;
   }
 }
 

@@ -2,7 +2,8 @@
 // grid) and restriction R = P^T (fine residual to coarse right-hand side).
 //
 // P is the tensor product of 1-D linear interpolations between cell centres at their true
-// (stretched) positions: a fine cell takes its parent and the coarse neighbour on its side. At a
+// (stretched) positions: a fine cell takes its parent and the coarse neighbour on its side; along
+// an axis where the cell was not merged (semi-coarsening, coarsening.hpp) it takes its parent only. At a
 // Dirichlet wall the neighbour is the wall itself with correction 0, at a Neumann wall the
 // correction is extended constantly (zero gradient), across a periodic boundary the neighbour
 // wraps. Coarse cells that are inactive (inside an immersed body) are dropped and the remaining
@@ -20,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "cfd/coarsening.hpp"
 #include "cfd/field.hpp"
 #include "cfd/poisson_operator.hpp"
 
@@ -27,7 +29,8 @@ namespace finverse::cfd {
 
 class GridTransfer {
  public:
-  void setup(const PoissonOperator& fine, const PoissonOperator& coarse, const std::array<bool, 3>& coarsened);
+  // `coarsening` maps the fine cells onto the coarse ones (coarsening.hpp).
+  void setup(const PoissonOperator& fine, const PoissonOperator& coarse, const Coarsening& coarsening);
 
   // coarse_b = R fine_r.
   void restrict_residual(const Field& fine_r, Field& coarse_b) const;
@@ -42,8 +45,15 @@ class GridTransfer {
   const PoissonOperator* coarse_ = nullptr;
   const PoissonOperator* fine_ = nullptr;
   std::array<std::vector<std::array<Entry, 2>>, 3> prol_;  // per axis, per fine index
-  std::array<std::vector<std::vector<std::pair<int, double>>>, 3> restr_;  // per axis, per coarse index
+  // R = P^T per axis in compressed rows: coarse index C gathers fine indices ridx_[q] with weights
+  // rw_[q], q in [rptr_[C], rptr_[C+1]). Applied axis by axis (x, then y, then z), so only the x
+  // pass gathers and the others are contiguous row updates.
+  std::array<std::vector<int>, 3> rptr_, ridx_;
+  std::array<std::vector<double>, 3> rw_;
   std::vector<double> scale_;  // per fine cell renormalisation; empty when every cell is active
+  // Scratch of restrict_residual (after the x and after the y pass): one restriction at a time per
+  // transfer, which is how the multigrid cycle uses it.
+  mutable std::vector<double> tx_, txy_;
 };
 
 }  // namespace finverse::cfd

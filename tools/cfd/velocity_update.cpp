@@ -5,7 +5,8 @@
 // Df Gf is exactly the Poisson operator that phi solved, so Df U^{n+1} = 0 to the solver tolerance;
 // the cell velocities are corrected with the cell-centred gradient (Zang, Street & Koseff 1994) and
 // are divergence-free only to truncation error, as on every collocated grid. On non-periodic sides
-// Gf phi = 0 (homogeneous Neumann), so the prescribed boundary fluxes are kept.
+// Gf phi = 0 (homogeneous Neumann), so the prescribed boundary fluxes are kept; so are the fluxes
+// on the closed faces of an immersed body, whose ghost cells then get the velocity condition again.
 #include "cfd/flow_solver.hpp"
 #include "cfd/loops.hpp"
 
@@ -15,7 +16,7 @@ void FlowSolver::update_velocity(double dt) {
   for (int d = 0; d < dim(); ++d) {
     const auto D = static_cast<std::size_t>(d);
     for_each_face(grid_, d, [&](int i, int j, int k) {
-      U_(d, i, j, k) = Ustar_(d, i, j, k) - dt * face_gradient(phi_, d, i, j, k);
+      U_(d, i, j, k) = Ustar_(d, i, j, k) - (masked_face(d, i, j, k) ? 0.0 : dt * face_gradient(phi_, d, i, j, k));
     });
     cell_gradient(phi_, d, grad_);
     Field& u = u_[D];
@@ -23,6 +24,10 @@ void FlowSolver::update_velocity(double dt) {
     for_each_cell(grid_, [&](int i, int j, int k) { u(i, j, k) = us(i, j, k) - dt * grad_(i, j, k); });
   }
   for_each_cell(grid_, [&](int i, int j, int k) { p_(i, j, k) += phi_(i, j, k); });
+  if (ib_) {
+    impose_body_velocity();
+    ib_->impose_neumann(p_, ib_dpdn_);
+  }
 }
 
 }  // namespace finverse::cfd

@@ -96,7 +96,7 @@ TEST(GhostCells, ClassificationProbesAndSecondOrderGhostValues) {
     // I = 2B - G lies within about one cell of the surface, so for a circle resolved by 16 (uniform)
     // or 25 (stretched core) cells per diameter only a third to a half of the image stencils are purely fluid (measured: 14 of 42
     // uniform, 32 of 68 stretched): the boundary-intercept substitution of Mittal et al. is not
-    // optional, and it is the next step.
+    // optional (GhostCell::dirichlet / neumann; tested in test_immersed_boundary.cpp).
     std::printf("%s grid: %zu ghost cells, %d with all-fluid image stencils\n", stretched ? "stretched" : "uniform",
                 set.ghosts().size(), all_fluid);
     EXPECT_GT(all_fluid, 0);

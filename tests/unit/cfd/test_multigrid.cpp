@@ -5,10 +5,12 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 
+#include "cfd/coarsening.hpp"
 #include "cfd/poisson_solver.hpp"
 #include "support.hpp"
 
@@ -65,8 +67,9 @@ void report(const char* name, const StretchedGrid& g, const SolveRun& r) {
               r.stats.convergence_factor, g.max_aspect_ratio(), g.axis(0).max_stretch_ratio(), r.levels.c_str());
 }
 
-// Red-black V(2,2) on uniform grids: measured mean factors 0.14 (32^2) / 0.155 (128^2) in 2-D and
-// 0.18-0.20 (16^3 / 64^3) in 3-D, the same on both sizes.
+// Red-black V(2,2) on uniform grids: measured mean factors 0.14 (32^2) / 0.155 (128^2) in 2-D
+// (Gauss-Seidel) and, with the 3-D over-relaxation omega = 1.2, 0.16-0.18 (16^3 / 64^3) in 3-D
+// (0.18-0.20 with omega = 1), the same on both sizes.
 TEST(Multigrid, VCycleFactorUniformIsSmallAndGridIndependent) {
   for (int dim : {2, 3}) {
     for (BcType type : {BcType::Dirichlet, BcType::Neumann}) {
@@ -78,7 +81,7 @@ TEST(Multigrid, VCycleFactorUniformIsSmallAndGridIndependent) {
       report(type == BcType::Dirichlet ? "uniform Dirichlet V(2,2)" : "uniform Neumann V(2,2)", gc, rc);
       report(type == BcType::Dirichlet ? "uniform Dirichlet V(2,2)" : "uniform Neumann V(2,2)", gf, rf);
       EXPECT_TRUE(rc.stats.converged && rf.stats.converged);
-      const double bound = dim == 2 ? 0.165 : 0.215;
+      const double bound = dim == 2 ? 0.165 : 0.19;
       EXPECT_LT(rc.stats.convergence_factor, bound);
       EXPECT_LT(rf.stats.convergence_factor, bound);
       EXPECT_LT(rf.stats.convergence_factor, rc.stats.convergence_factor + 0.03) << "h-dependence, dim " << dim;
@@ -86,9 +89,9 @@ TEST(Multigrid, VCycleFactorUniformIsSmallAndGridIndependent) {
   }
 }
 
-// Stretched grids with cell aspect ratios up to ~9: point red-black smoothing alone stalls there
-// (factor ~0.87), alternating zebra-line smoothing restores fast, grid-independent V-cycles in 2-D,
-// and MG-PCG with the cheap red-black cycle converges in a bounded number of iterations.
+// Stretched grids with cell aspect ratios up to ~9: with plain full coarsening, point red-black
+// smoothing stalled there (factor ~0.87); coarsening towards isotropy (coarsening.hpp) makes the
+// red-black cycle fast and grid-independent, and alternating zebra lines stay an option.
 TEST(Multigrid, StretchedGridsConvergeGridIndependently) {
   const auto bc = BoundaryConditions::all(BcType::Neumann);
   {
@@ -112,11 +115,11 @@ TEST(Multigrid, StretchedGridsConvergeGridIndependently) {
     report("stretched MG-PCG red-black", gc, rc);
     report("stretched MG-PCG red-black", gf, rf);
     EXPECT_TRUE(rc.stats.converged && rf.stats.converged);
-    // Not h-independent: point smoothing leaves the anisotropic far field to CG, whose iteration
-    // count grows slowly with refinement (measured 2-D 64^2: 21 -> 128^2: 32; 3-D 16^3: 20 ->
-    // 64^3: 37). Bounded here so a regression shows.
-    EXPECT_LE(rf.stats.iterations, 45);
-    EXPECT_LE(rf.stats.iterations, 2 * rc.stats.iterations) << "h-dependence, dim " << dim;
+    // h-independent with coarsening towards isotropy: measured 2-D 64^2 / 128^2: 8 / 9 iterations,
+    // factor 0.054 / 0.063; 3-D 16^3 / 64^3: 9 / 9, factor 0.061 / 0.072 (with full coarsening
+    // 21 -> 32 and 20 -> 37 iterations).
+    EXPECT_LT(rf.stats.convergence_factor, 0.12);
+    EXPECT_LE(rf.stats.iterations, rc.stats.iterations + 2) << "h-dependence, dim " << dim;
   }
 }
 
@@ -138,7 +141,7 @@ TEST(Multigrid, MaskedDomainConverges) {
     const SolveRun rp = solve_random(g, beta, bc, pcg, &x);
     report("masked MG-PCG red-black", g, rp);
     EXPECT_TRUE(rp.stats.converged);
-    EXPECT_LT(rp.stats.iterations, 45);
+    EXPECT_LT(rp.stats.iterations, 15);  // measured 9 (2-D circle) and 9 (3-D sphere)
     if (dim == 2) {
       PoissonSolverOptions o = cycles();
       o.multigrid.smoother = SmootherKind::ZebraLines;
@@ -226,16 +229,92 @@ TEST(Multigrid, WCycleAndFCycleConverge) {
   EXPECT_LE(f.stats.convergence_factor, v.stats.convergence_factor + 1e-3);
 }
 
-// Semi-coarsening: 96 = 3 * 32 cells in x stops halving at 3 while y goes on.
+// Semi-coarsening: 96 = 3 * 32 cells in x stops halving at 3 while y goes on; an odd count (5)
+// merges the pairs it has and keeps one cell.
 TEST(Multigrid, SemiCoarseningWhereAnAxisCannotBeHalved) {
   const StretchedGrid g(Axis::uniform(0, 3, 96), Axis::uniform(0, 1, 32), Axis::uniform(0, 1, 20));
   PoissonSolverOptions o = cycles();
   o.multigrid.coarsest_max_cells = 8;
   const SolveRun r = solve_random(g, FaceCoefficients(g, 1.0), BoundaryConditions::all(BcType::Dirichlet), o);
   report("semi-coarsening V(2,2)", g, r);
-  EXPECT_EQ(r.levels, "96x32x20 -> 48x16x10 -> 24x8x5 -> 12x4x5 -> 6x2x5 -> 3x2x5 (direct)");
+  EXPECT_EQ(r.levels, "96x32x20 -> 48x16x10 -> 24x8x5 -> 12x4x3 -> 6x2x2 -> 3x2x2 -> 2x2x2 (direct)");
   EXPECT_TRUE(r.stats.converged);
   EXPECT_LT(r.stats.convergence_factor, 0.35);  // measured 0.29: coarse levels reach aspect 2.5
+}
+
+// Coarsening towards isotropy on the benchmark-type stretched grid: a uniform grid is halved on
+// every axis; on a stretched axis the narrow core cells are merged and the far-field cells wider
+// than twice the narrowest are kept, so the coarse grid's widest-to-narrowest ratio per axis does
+// not grow and the next level's narrowest width doubles.
+TEST(Multigrid, CoarseningMergesOnlyNarrowCells) {
+  const StretchedGrid gu = uniform(3, 16);
+  PoissonOperator ou;
+  ou.setup(gu, FaceCoefficients(gu, 1.0), BoundaryConditions::all(BcType::Neumann));
+  const Coarsening cu = choose_coarsening(ou, 2.0);
+  for (int d = 0; d < 3; ++d) EXPECT_EQ(cu[static_cast<std::size_t>(d)].coarse_cells(), 8);
+
+  const StretchedGrid g = stretched(3, 32);
+  PoissonOperator op;
+  op.setup(g, FaceCoefficients(g, 1.0), BoundaryConditions::all(BcType::Neumann));
+  const Coarsening c = choose_coarsening(op, 2.0);
+  double hmin = 1e300;
+  for (int d = 0; d < 3; ++d) hmin = std::min(hmin, g.axis(d).min_width());
+  for (int d = 0; d < 3; ++d) {
+    const auto& m = c[static_cast<std::size_t>(d)];
+    const Axis& a = g.axis(d);
+    EXPECT_LT(m.coarse_cells(), a.size());
+    EXPECT_GT(m.coarse_cells(), a.size() / 2);  // the far field is kept
+    for (int C = 0; C < m.coarse_cells(); ++C) {
+      const int i = m.first[static_cast<std::size_t>(C)];
+      if (m.children(C) == 2) {
+        EXPECT_LE(std::max(a.width(i), a.width(i + 1)), 2 * hmin * (1 + 1e-9));
+      } else if (i + 1 < a.size() && m.children(C + 1) == 1) {
+        EXPECT_GT(std::max(a.width(i), a.width(i + 1)), 2 * hmin);  // two unmerged neighbours: too wide
+      }
+    }
+  }
+  // The coarse operator keeps the fine operator's row sums (zero for all-Neumann) and the total
+  // face area-weighted coefficient on every coarse face.
+  const PoissonOperator co = coarsen_operator(op, c);
+  Field one = co.make_field(), out = co.make_field();
+  one.fill(1.0);
+  co.apply(one, out);
+  EXPECT_LT(max_abs(out), 1e-12);
+}
+
+// 3-D stretched benchmark-type grid (aspect ratio up to ~9), the pressure problem of a solid sphere
+// in a closed box: stand-alone V(2,2) cycles and MG-PCG both converge with factors independent of
+// the grid size. Measured: V(2,2) 16^3 / 32^3 factor 0.171 / 0.171; MG-PCG 0.061 / 0.063; with the sphere
+// masked out the same within 0.01.
+TEST(Multigrid, StretchedThreeDimensionalFactorBound) {
+  const auto bc = BoundaryConditions::all(BcType::Neumann);
+  for (bool sphere : {false, true}) {
+    double previous = 0;
+    for (int n : {16, 32}) {
+      const StretchedGrid g = stretched(3, n);
+      FaceCoefficients beta(g, 1.0);
+      if (sphere) {
+        const std::size_t solid = beta.mask_cells([&](int i, int j, int k) {
+          const double x = g.xc(i) - 0.5, y = g.yc(j), z = g.zc(k) - 0.5;
+          return x * x + y * y + z * z < 0.5 * 0.5;
+        });
+        ASSERT_GT(solid, 20u);
+      }
+      const SolveRun rv = solve_random(g, beta, bc, cycles(1e-8));
+      PoissonSolverOptions pcg;
+      pcg.rtol = 1e-8;
+      const SolveRun rp = solve_random(g, beta, bc, pcg);
+      report(sphere ? "3-D stretched sphere V(2,2)" : "3-D stretched V(2,2)", g, rv);
+      report(sphere ? "3-D stretched sphere MG-PCG" : "3-D stretched MG-PCG", g, rp);
+      EXPECT_TRUE(rv.stats.converged && rp.stats.converged);
+      EXPECT_LT(rv.stats.convergence_factor, 0.2);
+      EXPECT_LT(rp.stats.convergence_factor, 0.15);
+      if (previous > 0) {
+        EXPECT_LT(rp.stats.convergence_factor, previous + 0.04) << "h-dependence";
+      }
+      previous = rp.stats.convergence_factor;
+    }
+  }
 }
 
 // The same problem with 1, 2 and 3 threads gives bitwise the same pressure and iteration count:

@@ -1,0 +1,49 @@
+// The DFG flow-around-a-cylinder benchmarks 2D-1 (Re = 20, steady) and 2D-2 (Re = 100, periodic)
+// of Schaefer & Turek (1996), run with the fractional-step solver and the ghost-cell immersed
+// cylinder: channel [0, 2.2] x [0, 0.41], cylinder D = 0.1 centred at (0.2, 0.2), nu = 1e-3,
+// parabolic inflow with centreline speed Um (0.3 or 1.5), convective outflow, no-slip walls.
+// Grid: a uniform box of h = D / N over [0.1, 0.6] x [0.1, 0.3] (symmetric about the cylinder in
+// y) and geometric stretching (ratio <= 1.05) outside it, to the inlet, outlet and walls.
+//
+// Coefficients (rho = 1, Ubar = 2 Um / 3): CD = 2 Fx / (Ubar^2 D), CL = 2 Fy / (Ubar^2 D), from the
+// surface traction (surface_traction.hpp); dp = p(0.15, 0.2) - p(0.25, 0.2), the wall pressures at
+// the front and back of the cylinder; St = f D / Ubar from the mean period of the lift.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "cfd/flow_solver.hpp"
+
+namespace finverse::cfd {
+
+struct DfgSetup {
+  int variant = 1;            // 1: 2D-1, 2: 2D-2
+  int cells_per_diameter = 32;
+  int polygon_vertices = 512;
+  double t_end = 10;          // simulated time [s]
+  double window = 3;          // 2D-2: the analysis window at the end [s]
+  double cfl = 0.5;
+  double ramp_time = 1.0;     // inflow ramp (1 - cos) / 2 [s]
+  std::function<void(const StepStats&)> progress;  // called after every step
+};
+
+struct DfgSample {
+  double t = 0, cd = 0, cl = 0, dp = 0;
+};
+
+struct DfgResult {
+  std::vector<DfgSample> history;
+  // 2D-1: the final values; 2D-2: maxima over the window, Strouhal number, lift periods counted.
+  double cd = 0, cl = 0, dp = 0;
+  double cd_max = 0, cl_max = 0, st = 0;
+  int periods = 0;
+  double cd_drift = 0;  // 2D-1: |CD(t_end) - CD(t_end - 1 s)|, the distance from steady state
+  long steps = 0, cells = 0, ghost_cells = 0;
+  double mean_poisson_iterations = 0, max_poisson_iterations = 0, mean_momentum_iterations = 0;
+  double cpu_seconds = 0;
+};
+
+DfgResult run_dfg(const DfgSetup& setup);
+
+}  // namespace finverse::cfd

@@ -1,0 +1,107 @@
+// Jacobi-preconditioned BiCGSTAB for the momentum system with ghost-cell rows; see
+// immersed_momentum_solver.hpp.
+#include "cfd/immersed_momentum_solver.hpp"
+
+#include <cmath>
+
+#include "cfd/loops.hpp"
+
+namespace finverse::cfd {
+
+namespace {
+// Helmholtz diagonal of a row: the scale of the ghost and solid rows and the Jacobi preconditioner.
+double row_scale(const PoissonOperator& op, double mass, double stiffness, int i, int j, int k) {
+  return mass * op.grid().volume(i, j, k) + stiffness * op.diagonal()[op.cell_index(i, j, k)];
+}
+}  // namespace
+
+void ImmersedMomentumSolver::setup(const StretchedGrid& grid) {
+  for (Field* f : {&r_, &r0_, &p_, &v_, &s_, &t_, &ph_, &sh_}) *f = Field(grid);
+}
+
+void ImmersedMomentumSolver::apply(const HelmholtzSolver& hs, const GhostCellSet& ib, double mass, double stiffness,
+                                   Field& x, Field& out) {
+  hs.apply(mass, stiffness, x, out);
+  const PoissonOperator& op = hs.op();
+  const StretchedGrid& g = op.grid();
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i)
+      if (ib.kind(i, j) == CellKind::Solid) out(i, j, 0) = row_scale(op, mass, stiffness, i, j, 0) * x(i, j, 0);
+  for (const GhostCell& gc : ib.ghosts())
+    out(gc.i, gc.j, 0) = row_scale(op, mass, stiffness, gc.i, gc.j, 0) * (x(gc.i, gc.j, 0) + gc.dirichlet.apply(x, 0.0));
+}
+
+HelmholtzStats ImmersedMomentumSolver::solve(const HelmholtzSolver& hs, const GhostCellSet& ib, double mass, double stiffness, Field& b,
+                                             const std::vector<double>& boundary_value, double solid_value, Field& x,
+                                             double rtol, int max_iterations) {
+  const PoissonOperator& op = hs.op();
+  const StretchedGrid& g = op.grid();
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i)
+      if (ib.kind(i, j) == CellKind::Solid) b(i, j, 0) = row_scale(op, mass, stiffness, i, j, 0) * solid_value;
+  const auto& ghosts = ib.ghosts();
+  for (std::size_t n = 0; n < ghosts.size(); ++n) {
+    const GhostCell& gc = ghosts[n];
+    const double ub = boundary_value.empty() ? 0.0 : boundary_value[n];
+    b(gc.i, gc.j, 0) = row_scale(op, mass, stiffness, gc.i, gc.j, 0) * (2.0 - gc.dirichlet.boundary_weight) * ub;
+  }
+  const auto precondition = [&](const Field& in, Field& out) {
+    for_each_cell(g, [&](int i, int j, int k) { out(i, j, k) = in(i, j, k) / row_scale(op, mass, stiffness, i, j, k); });
+  };
+  HelmholtzStats st;
+  const double bnorm = norm2(b);
+  if (!std::isfinite(bnorm)) {
+    st.relative_residual = bnorm;
+    return st;
+  }
+  apply(hs, ib, mass, stiffness, x, t_);
+  for_each_cell(g, [&](int i, int j, int k) { r_(i, j, k) = b(i, j, k) - t_(i, j, k); });
+  double rn = norm2(r_);
+  if (bnorm == 0 || rn <= rtol * bnorm) {
+    st.converged = true;
+    st.relative_residual = bnorm > 0 ? rn / bnorm : 0;
+    return st;
+  }
+  copy_interior(r_, r0_);
+  p_.fill(0.0);
+  v_.fill(0.0);
+  double rho = 1, alpha = 1, omega = 1;
+  while (st.iterations < max_iterations) {
+    const double rho_new = dot(r0_, r_);
+    if (rho_new == 0 || omega == 0) break;  // breakdown
+    const double beta = (rho_new / rho) * (alpha / omega);
+    rho = rho_new;
+    for_each_cell(g, [&](int i, int j, int k) { p_(i, j, k) = r_(i, j, k) + beta * (p_(i, j, k) - omega * v_(i, j, k)); });
+    precondition(p_, ph_);
+    apply(hs, ib, mass, stiffness, ph_, v_);
+    const double r0v = dot(r0_, v_);
+    if (r0v == 0) break;
+    alpha = rho / r0v;
+    for_each_cell(g, [&](int i, int j, int k) { s_(i, j, k) = r_(i, j, k) - alpha * v_(i, j, k); });
+    ++st.iterations;
+    const double sn = norm2(s_);
+    if (sn <= rtol * bnorm) {
+      axpy(alpha, ph_, x);
+      rn = sn;
+      break;
+    }
+    precondition(s_, sh_);
+    apply(hs, ib, mass, stiffness, sh_, t_);
+    const double tt = dot(t_, t_);
+    omega = tt > 0 ? dot(t_, s_) / tt : 0.0;
+    for_each_cell(g, [&](int i, int j, int k) {
+      x(i, j, k) += alpha * ph_(i, j, k) + omega * sh_(i, j, k);
+      r_(i, j, k) = s_(i, j, k) - omega * t_(i, j, k);
+    });
+    rn = norm2(r_);
+    if (rn <= rtol * bnorm) break;
+  }
+  // The true residual, not the recursively updated one.
+  apply(hs, ib, mass, stiffness, x, t_);
+  for_each_cell(g, [&](int i, int j, int k) { r_(i, j, k) = b(i, j, k) - t_(i, j, k); });
+  st.relative_residual = norm2(r_) / bnorm;
+  st.converged = st.relative_residual <= rtol;
+  return st;
+}
+
+}  // namespace finverse::cfd

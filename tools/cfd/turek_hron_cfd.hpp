@@ -1,0 +1,66 @@
+// The Turek & Hron (2006) CFD2 (Re 100, steady) and CFD3 (Re 200, periodic) benchmarks: the FSI
+// geometry with the flag held rigid, run with the fractional-step solver and the ghost-cell
+// immersed boundary. Channel [0, 2.5] x [0, 0.41]; cylinder of radius 0.05 centred at (0.2, 0.2)
+// with a flag of length 0.35 and thickness 0.02 behind it (lower edge y = 0.19, tip at x = 0.6);
+// the body is the union cylinder + flag as one closed polygon. rho = 1000, nu = 1e-3; parabolic
+// inflow of mean speed Ubar (1 or 2), ramped by (1 - cos(pi t / 2)) / 2 for t < 2 s; convective
+// outflow; no-slip walls. Drag and lift [N/m] on the whole body from the surface traction
+// (surface_traction.hpp). Grid as for DFG (dfg_benchmark.hpp): a uniform box of h = D / N around
+// cylinder, flag and near wake, symmetric about y = 0.2, geometric stretching outside it.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "cfd/flow_solver.hpp"
+#include "cfd/immersed_polygon.hpp"
+
+namespace finverse::cfd {
+
+// Geometry of the benchmark.
+struct TurekHronGeometry {
+  double length = 2.5, height = 0.41;
+  double xc = 0.2, yc = 0.2, radius = 0.05;
+  double flag_length = 0.35, flag_thickness = 0.02;  // flag: x in [xc, xc + r + L], |y - 0.2| <= t/2
+  double tip_x() const { return xc + radius + flag_length; }
+};
+
+// Cylinder union flag as one counter-clockwise polygon: the arc of the circle outside the flag,
+// sampled so that a full circle would have circle_vertices vertices, from the flag's upper edge's
+// intersection with the circle round to the lower edge's, then the flag's four edges' corners.
+Polygon turek_hron_body(const TurekHronGeometry& g, int circle_vertices);
+// Its exact area (circle + flag - their overlap), for checks.
+double turek_hron_body_area(const TurekHronGeometry& g);
+
+struct TurekHronSetup {
+  int variant = 2;  // 2: CFD2 (Ubar = 1), 3: CFD3 (Ubar = 2)
+  int cells_per_diameter = 32;
+  int circle_vertices = 512;
+  double t_end = 10;   // simulated time [s]
+  double window = 1;   // CFD3: the analysis window at the end [s]
+  double cfl = 0.5;
+  double ramp_time = 2.0;
+  std::function<void(const StepStats&)> progress;  // called after every step
+};
+
+struct TurekHronSample {
+  double t = 0, drag = 0, lift = 0;
+};
+
+struct TurekHronResult {
+  std::vector<TurekHronSample> history;
+  // CFD2: the final values and the change over the last second. CFD3: over the window,
+  // mean = (max + min) / 2 and amplitude = (max - min) / 2 (the paper's notation), frequency of
+  // the lift from its upward crossings of the window mean.
+  double drag = 0, lift = 0, drag_drift = 0;
+  double drag_mean = 0, drag_amplitude = 0, lift_mean = 0, lift_amplitude = 0, frequency = 0;
+  int periods = 0;
+  long steps = 0, cells = 0, ghost_cells = 0;
+  double h = 0;
+  double mean_poisson_iterations = 0, max_poisson_iterations = 0;
+  double cpu_seconds = 0;
+};
+
+TurekHronResult run_turek_hron(const TurekHronSetup& setup);
+
+}  // namespace finverse::cfd
