@@ -8,6 +8,8 @@
 //   fin-fem turek_hron_csm3 --reference data/reference/turek_hron.json --coarse
 //   fin-fem hybrid_plate_static --case data/cases/hybrid_plate.json
 //       --reference data/reference/hybrid_plate_calculix.json
+//   fin-fem hybrid_plate_dynamic --case data/cases/hybrid_plate_small_heave.json
+//       --reference data/reference/hybrid_plate_calculix.json --nx 32 --nz 32 [--history w.csv]
 //
 // File-driven mode (tools/fem/io/file_run.hpp): a structural run from stage files, writing the
 // node positions over time in the finverse/motion schema plus a ParaView series; exit 0 or 2.
@@ -153,6 +155,9 @@ int main(int argc, char** argv) {
     sc->add_option("--nz", hybrid.nz, "cells along the span")->capture_default_str();
   }
   hd->add_option("--periods", hybrid.periods, "heave periods simulated (0: the case's)")->capture_default_str();
+  hd->add_option("--time-step", hybrid.time_step, "time step (0: the case's)")->capture_default_str();
+  std::string hybrid_history;
+  hd->add_option("--history", hybrid_history, "also write the tip histories (ours and CalculiX's) to this CSV");
 
   namespace fio = finverse::fem::io;
   fio::FileRunOptions file_run;
@@ -223,6 +228,7 @@ int main(int argc, char** argv) {
       }
       if (*hs || *hd) {
         hybrid.case_file = hybrid_case;
+        hybrid.history = hybrid_history;
         configure(hybrid);
         return *hs ? fv::run_hybrid_plate_static(hybrid) : fv::run_hybrid_plate_dynamic(hybrid);
       }

@@ -17,7 +17,7 @@ struct Material {
 };
 
 // Throws InvalidInput naming the material and the offending value unless E > 0 (finite),
-// -1 < nu < 0.5 and density >= 0 (finite). nu = 0.5 is excluded: the 2-D solid would lock and
+// -1 < nu < 0.5 and density > 0 (finite). nu = 0.5 is excluded: the 2-D solid would lock and
 // the shell's plane-stress law is still fine, but a bulk modulus of infinity is not a material.
 void validate(const Material& material);
 

@@ -3,7 +3,7 @@
 
 Builds the plate with quadratic shells (S8R) and the three rays with quadratic beams (B32R)
 sharing the plate's nodes on a structured mesh, runs the geometrically nonlinear static
-(pressure) and dynamic (leading-edge heave) cases with NLGEOM, and writes the beam-tip
+(pressure, NLGEOM) case and the dynamic (leading-edge heave) case, and writes the beam-tip
 displacements and CalculiX's wall time as JSON:
 
     calculix_hybrid_plate.py --case data/cases/hybrid_plate.json --nx 16 --nz 16 --out ccx.json
@@ -16,9 +16,26 @@ date) is written with --reference-out, from fresh runs or, with --merge, from ea
     calculix_hybrid_plate.py --case data/cases/hybrid_plate.json --nx 8 --nx 16 --nx 32 \
         --analysis static --out runs.json --reference-out data/reference/hybrid_plate_calculix.json
 
-Known limitation: the dynamic run (leading-edge heave) does not converge in ccx 2.20 for this
-model (Newton diverges after ~0.1-0.2 s on every mesh tried, NLGEOM or not, ALPHA 0 or -0.1),
-so the reference holds the static case only.
+Dynamic reference (--analysis dynamic, default --dynamic-method modal): ccx's eigenmodes of the
+plate clamped at the leading edge (*FREQUENCY, --modes of them), superposed analytically for the
+heave y_LE = A (1 - cos 2 pi f t) (modal_history: exact in time, undamped). It is linear, so the
+dynamic case is data/cases/hybrid_plate_small_heave.json (A = 0.001, a tenth of the plate
+thickness), where fin-fem's NLGEOM answer is linear to 1e-4 of the deflection range. Checked
+against a direct NLGEOM run of the plate alone (4x4, no beams, where ccx converges): deflection
+range within 0.07 %, largest history difference 3 % of the range (the direct run's time step).
+
+Why not ccx's *DYNAMIC (NLGEOM, --dynamic-method direct): with the B32R beams on the S8R nodes it
+diverges between 0.003 and 0.29 s on every variant tried (4x4 mesh, 800 increments of 0.005 s): NLGEOM or
+linear, ALPHA 0 or -0.3, automatic or fixed (DIRECT, 0.001) increments, beam moduli / 100,
+isotropic or nu = 0 beams, leading-edge rotations free. The plate alone and the beams alone both
+run to 4 s, so the cause is ccx's nonlinear beam/shell "knots" in direct integration. Modelling
+the rays as orthotropic shell strips (--beam-model strip: no knots) runs, but ccx 2.20 is wrong
+for strips narrower than about 0.1 here: a one-element-wide S8R strip gives "opposite normals"
+and nonpositive Jacobians below 8 plate thicknesses, and S8 strips of width 0.02-0.06 clamped at
+one end are 4-31 times too stiff against beam theory (0.1 wide: within 0.3 %), so that option is
+kept only for the record. At A = 0.1 (data/cases/hybrid_plate.json) the plate's membrane
+stiffening changes fin-fem's deflection range by 40 % against the linear answer, so no NLGEOM
+dynamic reference exists for that amplitude.
 """
 import argparse
 import json
@@ -36,42 +53,125 @@ def node_id(i, k, nz2):
     return 1 + i * (nz2 + 1) + k
 
 
-def build_mesh(case, nx, nz):
-    """Nodes and S8R/B32R connectivity on a (2nx+1) x (2nz+1) node grid (quad centres unused)."""
-    chord, span = case["plate"]["chord"], case["plate"]["span"]
-    nx2, nz2 = 2 * nx, 2 * nz
+def strip_bounds(case, width):
+    """Spanwise interval of each beam's shell strip: centred on the beam axis, so that the
+    strips of the edge beams reach half their width beyond the plate edge."""
+    return [(b["z"] - 0.5 * width, b["z"] + 0.5 * width) for b in case["beams"]]
+
+
+def span_grid(case, nz, strip_width):
+    """Element edges along the span. beams: nz equal cells (beams on element edges). strips:
+    each beam becomes one element of width strip_width centred on its axis, and the plate
+    between strips gets about nz cells over the whole span, split in proportion to length."""
+    span = case["plate"]["span"]
     z0 = -0.5 * span
+    if not strip_width:
+        return [z0 + span * k / nz for k in range(nz + 1)]
+    strips = sorted(strip_bounds(case, strip_width))
+    edges = [strips[0][0]]
+    for (a0, a1), (b0, _) in zip(strips, strips[1:]):
+        if b0 <= a1:
+            raise SystemExit("calculix_hybrid_plate: beam strips overlap; use a smaller --strip-width")
+        edges.append(a1)
+        n = max(1, round(nz * (b0 - a1) / span))
+        edges += [a1 + (b0 - a1) * j / n for j in range(1, n + 1)]
+    edges.append(strips[-1][1])
+    if strips[0][0] > z0 or strips[-1][1] < z0 + span:
+        raise SystemExit("calculix_hybrid_plate: --beam-model strip needs beams at both plate edges")
+    return edges
+
+
+def build_mesh(case, nx, nz, strip_width=0.0):
+    """Nodes and S8R/B32R connectivity on a (2nx+1) x (2nz'+1) node grid (quad centres unused).
+    With strip_width > 0 the beams are shell strips (elements listed per beam in `strips`) and
+    no B32R is generated; the tip is the mid-side node of the strip's trailing edge, on the
+    beam axis."""
+    chord = case["plate"]["chord"]
+    zc = span_grid(case, nz, strip_width)
+    nze = len(zc) - 1
+    nx2, nz2 = 2 * nx, 2 * nze
+    zq = []
+    for k in range(nze):
+        zq += [zc[k], 0.5 * (zc[k] + zc[k + 1])]
+    zq.append(zc[-1])
     nodes = {}
     for i in range(nx2 + 1):
         for k in range(nz2 + 1):
             if i % 2 and k % 2:
                 continue
-            nodes[node_id(i, k, nz2)] = (chord * i / nx2, 0.0, z0 + span * k / nz2)
+            nodes[node_id(i, k, nz2)] = (chord * i / nx2, 0.0, zq[k])
     shells = []
+    owner = []  # None: plate; else the beam whose strip holds the element
+    strips = strip_bounds(case, strip_width) if strip_width else []
     for ex in range(nx):
-        for ez in range(nz):
+        for ez in range(nze):
             i, k = 2 * ex, 2 * ez
             c = [(i, k), (i + 2, k), (i + 2, k + 2), (i, k + 2), (i + 1, k), (i + 2, k + 1), (i + 1, k + 2), (i, k + 1)]
             shells.append([node_id(a, b, nz2) for a, b in c])
+            zm = 0.5 * (zc[ez] + zc[ez + 1])
+            owner.append(next((b["name"] for b, (a0, a1) in zip(case["beams"], strips) if a0 < zm < a1), None))
     beams = {}
+    tips = {}
     for b in case["beams"]:
-        kb = round((b["z"] - z0) / span * nz2)
-        if kb % 2 or abs(z0 + span * kb / nz2 - b["z"]) > 1e-12:
+        kb = min(range(nz2 + 1), key=lambda k: abs(zq[k] - b["z"]))
+        if abs(zq[kb] - b["z"]) > 1e-12 or (not strip_width and kb % 2):
             raise SystemExit(f"calculix_hybrid_plate: beam {b['name']} at z={b['z']} is not on an element edge of nz={nz}")
-        beams[b["name"]] = [[node_id(i, kb, nz2), node_id(i + 1, kb, nz2), node_id(i + 2, kb, nz2)] for i in range(0, nx2, 2)]
+        if not strip_width:
+            beams[b["name"]] = [[node_id(i, kb, nz2), node_id(i + 1, kb, nz2), node_id(i + 2, kb, nz2)]
+                                for i in range(0, nx2, 2)]
+        tips[b["name"]] = node_id(nx2, kb, nz2)
     leading = [node_id(0, k, nz2) for k in range(nz2 + 1)]
-    tips = {name: conn[-1][-1] for name, conn in beams.items()}
-    return nodes, shells, beams, leading, tips
+    return nodes, shells, owner, beams, leading, tips, zc
 
 
-def write_input(path, case, nx, nz, analysis):
-    nodes, shells, beams, leading, tips = build_mesh(case, nx, nz)
+def torsion_constant(a, c):
+    """Saint-Venant torsion constant of an a x c rectangle (the approximation finverse's
+    tools/fem/beam_section.cpp uses)."""
+    a, c = max(a, c), min(a, c)
+    r = c / a
+    return a * c ** 3 * (1.0 / 3.0 - 0.21 * r * (1.0 - r ** 4 / 12.0))
+
+
+def strip_material(case, b, strip_width):
+    """Orthotropic shell strip of the plate's thickness standing for beam b (global axes: 1 = x
+    along the beam, 2 = y the plate normal, 3 = z along the span). Same thickness as the plate,
+    so ccx expands strip and plate alike and generates no knot where they meet (beam/shell knots
+    make ccx's *DYNAMIC diverge, see the module comment). E1 gives the strip the beam's bending
+    stiffness E I about z, the shear moduli its torsional stiffness G J; E2 = E3 = E_plate keeps
+    the plate's spanwise bending across the strip; the density holds the beam's mass plus the
+    plate's mass that the strip replaces, so that mass per length is that of plate + beam."""
     p = case["plate"]
-    out = ["** finverse hybrid plate, CalculiX reference, " + analysis, "*NODE, NSET=NALL"]
+    t = p["thickness"]
+    w = strip_width
+    i_b = b["width"] * b["thickness"] ** 3 / 12.0
+    i_s = w * t ** 3 / 12.0
+    e1 = b["E"] * i_b / i_s
+    g_b = b["E"] / (2 * (1 + b["nu"]))
+    g = g_b * torsion_constant(b["width"], b["thickness"]) / torsion_constant(w, t)
+    a0, a1 = b["z"] - 0.5 * w, b["z"] + 0.5 * w
+    overlap = max(0.0, min(a1, 0.5 * p["span"]) - max(a0, -0.5 * p["span"]))
+    rho = (b["density"] * b["width"] * b["thickness"] + p["density"] * t * overlap) / (w * t)
+    return e1, p["E"], g, rho
+
+
+def write_input(path, case, nx, nz, analysis, beam_model="beam", strip_width=0.0):
+    sw = strip_width if beam_model == "strip" else 0.0
+    nodes, shells, owner, beams, leading, tips, _ = build_mesh(case, nx, nz, sw)
+    p = case["plate"]
+    out = ["** finverse hybrid plate, CalculiX reference, " + analysis + ", beams as " + beam_model,
+           "*NODE, NSET=NALL"]
     out += [f"{n},{x:.15g},{y:.15g},{z:.15g}" for n, (x, y, z) in sorted(nodes.items())]
-    out.append("*ELEMENT, TYPE=S8R, ELSET=PLATE")
-    out += [f"{e + 1}," + ",".join(map(str, c)) for e, c in enumerate(shells)]
-    eid = len(shells)
+    eid = 0
+    for name in [None] + [b["name"] for b in case["beams"]]:
+        ids = [e for e, o in enumerate(owner) if o == name]
+        if not ids:
+            continue
+        # Strips as S8 (full integration): ccx 2.20 rejects S8R strips narrower than about 8 shell
+        # thicknesses ("opposite normals are defined" in gen3dnor, then nonpositive Jacobians).
+        out.append(f"*ELEMENT, TYPE=S8R, ELSET=PLATE" if name is None else f"*ELEMENT, TYPE=S8, ELSET=STRIP_{name.upper()}")
+        for e in ids:
+            eid += 1
+            out.append(f"{eid}," + ",".join(map(str, shells[e])))
     for name, conn in beams.items():
         out.append(f"*ELEMENT, TYPE=B32R, ELSET=BEAM_{name.upper()}")
         for c in conn:
@@ -85,6 +185,13 @@ def write_input(path, case, nx, nz, analysis):
             "*SHELL SECTION, ELSET=PLATE, MATERIAL=PLATE", f"{p['thickness']:.10g}"]
     for b in case["beams"]:
         n = b["name"].upper()
+        if sw:
+            e1, e23, g, rho = strip_material(case, b, sw)
+            out += [f"*MATERIAL, NAME=M_{n}", "*ELASTIC, TYPE=ENGINEERING CONSTANTS",
+                    f"{e1:.10g},{e23:.10g},{e23:.10g},0,0,0,{g:.10g},{g:.10g}", f"{g:.10g}",
+                    "*DENSITY", f"{rho:.10g}",
+                    f"*SHELL SECTION, ELSET=STRIP_{n}, MATERIAL=M_{n}", f"{p['thickness']:.10g}"]
+            continue
         # RECT a,b: a along the first section direction (given: z, in the plate plane), b along
         # tangent x first direction (here -y, the plate normal).
         # Engineering constants E, nu = 0, G = E / (2 (1 + nu)): ccx expands a B32R into C3D20R
@@ -100,7 +207,11 @@ def write_input(path, case, nx, nz, analysis):
                 "*DENSITY", f"{b['density']:.10g}",
                 f"*BEAM SECTION, ELSET=BEAM_{n}, MATERIAL=M_{n}, SECTION=RECT", f"{b['width']:.10g},{b['thickness']:.10g}",
                 "0.,0.,1."]
-    if analysis == "static":
+    if analysis == "modal":
+        # Eigenmodes of the plate clamped at the leading edge (linear: ccx's *FREQUENCY has no
+        # NLGEOM); the heave response is superposed from them in modal_history().
+        out += ["*BOUNDARY", "LE,1,6", "*STEP", "*FREQUENCY", str(case.get("_ccx_modes", 60))]
+    elif analysis == "static":
         s = case["static"]
         # Dead load, as in finverse (nodal loads keep their direction): ccx's *DLOAD P is a
         # follower pressure under NLGEOM, so the pressure enters as the consistent nodal forces
@@ -109,8 +220,13 @@ def write_input(path, case, nx, nz, analysis):
         out += ["*BOUNDARY", "LE,1,6", f"*STEP, NLGEOM, INC=1000", "*STATIC", f"{1.0 / s['load_steps']:.10g},1.0",
                 "*CLOAD"]
         force = {}
-        area = (p["chord"] / nx) * (p["span"] / nz)
+        # A strip reaching beyond the plate edge carries the pressure on its part inside the
+        # plate only (spread as if uniform over the element).
+        half = 0.5 * p["span"]
         for c in shells:
+            xs = [nodes[n][0] for n in c[:4]]
+            zs = [nodes[n][2] for n in c[:4]]
+            area = (max(xs) - min(xs)) * max(0.0, min(max(zs), half) - max(min(zs), -half))
             for j, n in enumerate(c):
                 force[n] = force.get(n, 0.0) + (-1.0 / 12.0 if j < 4 else 1.0 / 3.0) * s["pressure"] * area
         out += [f"{n},2,{-f:.15g}" for n, f in sorted(force.items()) if f != 0.0]
@@ -138,6 +254,7 @@ def write_input(path, case, nx, nz, analysis):
     return tips, len(shells), eid - len(shells), len(nodes)
 
 
+
 def parse_dat(path, tips):
     """Time series of the tip displacements from the .dat file."""
     by_node = {v: k for k, v in tips.items()}
@@ -157,14 +274,88 @@ def parse_dat(path, tips):
     return [s for s in series if len(s["u"]) == len(tips)]
 
 
-def run(case, nx, nz, analysis, keep_dir=None):
+def parse_modes(path, tips):
+    """Eigenvalues, participation factors along y and effective modal masses along y of a
+    *FREQUENCY step, and the tip y displacements of each mode (ccx normalises the modes to unit
+    modal mass)."""
+    omega2, gamma_y, mass_y = [], [], []
+    table = None
+    with open(path) as fh:
+        for line in fh:
+            if "E I G E N V A L U E   O U T P U T" in line:
+                table = "eig"
+            elif "P A R T I C I P A T I O N   F A C T O R S" in line:
+                table = "part"
+            elif "E F F E C T I V E   M O D A L   M A S S" in line:
+                table = "mass"
+            elif "T O T A L   E F F E C T I V E   M A S S" in line or "displacements" in line:
+                table = None
+            parts = line.split()
+            if table and len(parts) >= 5 and parts[0].isdigit():
+                if table == "eig":
+                    omega2.append(float(parts[1]))
+                elif table == "part":
+                    gamma_y.append(float(parts[2]))
+                elif table == "mass":
+                    mass_y.append(float(parts[2]))
+    shapes = parse_dat(path, tips)
+    if not omega2 or len(gamma_y) != len(omega2) or len(shapes) != len(omega2) or len(mass_y) != len(omega2):
+        raise SystemExit(f"calculix_hybrid_plate: cannot read the modes in {path}")
+    # ccx's knots (rotations fixed on expanded shell nodes) can give a few spurious negative
+    # eigenvalues; they are dropped when they carry no mass in y (the heave cannot excite them).
+    # Likewise a few modes print tip displacements of 1e8 and more although normalised to unit
+    # modal mass (a node carrying mass moves by at most about 1/sqrt(its mass), here ~ 30): they
+    # are spurious too and dropped under the same condition.
+    keep = []
+    total = sum(mass_y)
+    for i, w2 in enumerate(omega2):
+        spurious = w2 <= 0 or max(abs(v[1]) for v in shapes[i]["u"].values()) > 1e3
+        if not spurious:
+            keep.append(i)
+        elif abs(mass_y[i]) > 1e-6 * total:
+            raise SystemExit(f"calculix_hybrid_plate: spurious mode {i + 1} in {path} (eigenvalue {w2}) "
+                             f"has effective mass {mass_y[i]} in y")
+    pick = lambda v: [v[i] for i in keep]
+    return (pick(omega2), pick(gamma_y), pick(mass_y),
+            pick([{k: u[1] for k, u in m["u"].items()} for m in shapes]))
+
+
+def modal_history(case, omega2, gamma_y, shapes):
+    """Tip histories of the leading-edge heave by exact modal superposition. With the leading
+    edge clamped, the deflection relative to the heaved base, w = u - r y_LE (r: unit y
+    translation), obeys M w'' + K w = -M r y_LE''; per mass-normalised mode i
+    q_i'' + w_i^2 q_i = -Gamma_i y_LE'' with Gamma_i = phi_i^T M r (ccx's participation factor).
+    For y_LE = A (1 - cos W t), y_LE'' = A W^2 cos W t, and from rest
+    q_i = -Gamma_i A W^2 / (w_i^2 - W^2) (cos W t - cos w_i t): exact in time, undamped.
+    The tips' absolute y displacements u = w + y_LE are returned on the case's time grid."""
+    d = case["dynamic"]
+    a, big_w = d["heave_amplitude"], 2 * math.pi * d["frequency"]
+    dt, t_end = d["time_step"], d["periods"] / d["frequency"]
+    steps = int(round(t_end / dt))
+    series = []
+    for k in range(1, steps + 1):
+        t = k * dt
+        heave = a * (1 - math.cos(big_w * t))
+        u = {name: [0.0, heave, 0.0] for name in shapes[0]}
+        for w2, g, phi in zip(omega2, gamma_y, shapes):
+            wi = math.sqrt(w2)
+            q = -g * a * big_w ** 2 / (w2 - big_w ** 2) * (math.cos(big_w * t) - math.cos(wi * t))
+            for name in u:
+                u[name][1] += phi[name] * q
+        series.append({"time": t, "u": u})
+    return series
+
+
+def run(case, nx, nz, analysis, keep_dir=None, beam_model="beam", strip_width=0.0):
     ccx = shutil.which("ccx")
     if not ccx:
         raise SystemExit("calculix_hybrid_plate: ccx not found (install with tools/scripts/install-deps.sh --peers)")
     work = keep_dir or tempfile.mkdtemp(prefix="finverse_ccx_")
     os.makedirs(work, exist_ok=True)
-    job = os.path.join(work, f"hybrid_{analysis}_{nx}x{nz}")
-    tips, nshell, nbeam, nnode = write_input(job + ".inp", case, nx, nz, analysis)
+    modal = analysis == "dynamic" and case.get("_ccx_method", "modal") == "modal"
+    step = "modal" if modal else analysis
+    job = os.path.join(work, f"hybrid_{step}_{beam_model}_{nx}x{nz}")
+    tips, nshell, nbeam, nnode = write_input(job + ".inp", case, nx, nz, step, beam_model, strip_width)
     env = dict(os.environ, OMP_NUM_THREADS=os.environ.get("OMP_NUM_THREADS", "2"),
                CCX_NPROC_EQUATION_SOLVER=os.environ.get("OMP_NUM_THREADS", "2"))
     t0 = time.perf_counter()
@@ -173,13 +364,30 @@ def run(case, nx, nz, analysis, keep_dir=None):
     if proc.returncode != 0 or "*ERROR" in proc.stdout:
         tail = "\n".join(proc.stdout.splitlines()[-15:])
         raise SystemExit(f"calculix_hybrid_plate: ccx failed on {job}.inp:\n{tail}")
-    series = parse_dat(job + ".dat", tips)
+    if modal:
+        omega2, gamma_y, mass_y, shapes = parse_modes(job + ".dat", tips)
+        series = modal_history(case, omega2, gamma_y, shapes)
+    else:
+        series = parse_dat(job + ".dat", tips)
     if not series:
         raise SystemExit(f"calculix_hybrid_plate: no tip displacements in {job}.dat")
     if keep_dir is None:
         shutil.rmtree(work, ignore_errors=True)
-    return {"nx": nx, "nz": nz, "shell_elements": nshell, "beam_elements": nbeam, "nodes": nnode,
-            "wall_s": wall, "series": series}
+    out = {"case": case.get("_path"), "nx": nx, "nz": nz, "shell_elements": nshell, "beam_elements": nbeam,
+           "nodes": nnode, "wall_s": wall, "beam_model": beam_model, "series": series}
+    if beam_model == "strip":
+        out["strip_width"] = strip_width
+    if analysis == "dynamic":
+        out["_dynamic"] = {k: case["dynamic"][k] for k in ("heave_amplitude", "frequency")}
+        out["time_step"] = case["dynamic"]["time_step"]
+        out["method"] = "modal" if modal else "direct"
+        if modal:
+            out["modes"] = len(omega2)
+            out["frequencies"] = [math.sqrt(max(w2, 0.0)) / (2 * math.pi) for w2 in omega2[:10]]
+            out["effective_mass_y"] = sum(mass_y)
+        else:
+            out["alpha"] = case.get("_ccx_alpha", 0.0)
+    return out
 
 
 def tips_y(series_entry):
@@ -187,9 +395,29 @@ def tips_y(series_entry):
 
 
 def relative_change(a, b):
-    """Largest relative change of the final tip y displacements between two runs."""
-    ya, yb = tips_y(a["series"][-1]), tips_y(b["series"][-1])
-    return max(abs(yb[k] - ya[k]) / abs(yb[k]) for k in yb)
+    """Static: largest relative change of the tip y displacements between two runs. Dynamic:
+    largest change over the history of a tip's y displacement relative to the range (max - min)
+    of its deflection w = u_y - y_LE in the finer run (both runs on the case's time grid)."""
+    if a.get("time_step") is None:
+        ya, yb = tips_y(a["series"][-1]), tips_y(b["series"][-1])
+        return max(abs(yb[k] - ya[k]) / abs(yb[k]) for k in yb)
+    if [s["time"] for s in a["series"]] != [s["time"] for s in b["series"]]:
+        raise SystemExit("calculix_hybrid_plate: dynamic runs of a mesh study need the same output times")
+    change = 0.0
+    for k in b["series"][0]["u"]:
+        ua = [s["u"][k][1] for s in a["series"]]
+        ub = [s["u"][k][1] for s in b["series"]]
+        heave = [s["u"][k][1] - w for s, w in zip(b["series"], deflection(b, k))]
+        wb = [u - h for u, h in zip(ub, heave)]
+        change = max(change, max(abs(x - y) for x, y in zip(ua, ub)) / (max(wb) - min(wb)))
+    return change
+
+
+def deflection(run_result, tip):
+    """w = u_y - y_LE of one tip over a dynamic run."""
+    d = run_result["_dynamic"]
+    big_w = 2 * math.pi * d["frequency"]
+    return [s["u"][tip][1] - d["heave_amplitude"] * (1 - math.cos(big_w * s["time"])) for s in run_result["series"]]
 
 
 def build_reference(result, tolerance):
@@ -210,11 +438,15 @@ def build_reference(result, tolerance):
                 row["relative_change"] = relative_change(prev, r)
             ref["mesh_study"].append(row)
         fine = runs[-1]
-        entry = {"nx": fine["nx"], "nz": fine["nz"], "wall_s": fine["wall_s"],
-                 "converged": len(runs) > 1 and relative_change(runs[-2], fine) < tolerance}
+        entry = {"case": fine.get("case", result.get("case")), "nx": fine["nx"], "nz": fine["nz"],
+                 "wall_s": fine["wall_s"], "converged": len(runs) > 1 and relative_change(runs[-2], fine) < tolerance}
         if analysis == "static":
             entry["tips_y"] = tips_y(fine["series"][-1])
         else:
+            for key in ("method", "modes", "frequencies", "effective_mass_y", "time_step", "alpha"):
+                if key in fine:
+                    entry[key] = fine[key]
+            entry.update(fine["_dynamic"])
             entry["time"] = [s["time"] for s in fine["series"]]
             entry["tips_y"] = {k: [s["u"][k][1] for s in fine["series"]] for k in fine["series"][0]["u"]}
         ref[analysis] = entry
@@ -234,12 +466,26 @@ def main():
     ap.add_argument("--merge", nargs="+", metavar="RUNS_JSON",
                     help="run nothing: merge the runs of earlier outputs of this script (each keeps its command and date)")
     ap.add_argument("--keep", help="keep CalculiX's files in this directory")
+    ap.add_argument("--beam-model", choices=["beam", "strip"], default="beam",
+                    help="rays as B32R beams on the shell's nodes, or as orthotropic S8R strips of the plate's "
+                         "thickness (no beam/shell knots: the only model whose *DYNAMIC converges in ccx 2.20)")
+    ap.add_argument("--strip-width", type=float, default=0.02, help="width of a ray's strip (--beam-model strip)")
+    ap.add_argument("--time-step", type=float, help="dynamic: ccx increment instead of the case's time step")
+    ap.add_argument("--dynamic-method", choices=["modal", "direct"], default="modal",
+                    help="modal: ccx *FREQUENCY + exact modal superposition of the heave (linear); "
+                         "direct: ccx *DYNAMIC NLGEOM (diverges with beams on shell nodes in ccx 2.20)")
+    ap.add_argument("--modes", type=int, default=60, help="eigenmodes kept (--dynamic-method modal)")
     ap.add_argument("--alpha", type=float, default=0.0,
                     help="ccx *DYNAMIC ALPHA in [-1/3, 0] (0: trapezoidal rule, as finverse's rho_inf = 1)")
     args = ap.parse_args()
     with open(args.case) as fh:
         case = json.load(fh)
+    case["_path"] = args.case
     case["_ccx_alpha"] = args.alpha
+    case["_ccx_method"] = args.dynamic_method
+    case["_ccx_modes"] = args.modes
+    if args.time_step:
+        case["dynamic"]["time_step"] = args.time_step
     nxs = args.nx or [8, 16]
     nzs = args.nz or nxs
     if len(nxs) != len(nzs):
@@ -258,10 +504,15 @@ def main():
                 earlier = json.load(fh)
             result["peer"] = earlier["peer"]
             result["sources"].append({k: earlier.get(k) for k in ("command", "date", "omp_threads")})
+            for r in earlier["runs"]:
+                r.setdefault("case", earlier.get("case"))
             result["runs"] += earlier["runs"]
+        for r in result["runs"]:
+            if r.get("analysis") == "dynamic" and "_dynamic" not in r:
+                r["_dynamic"] = {k: case["dynamic"][k] for k in ("heave_amplitude", "frequency")}
     for analysis in analyses:
         for nx, nz in zip(nxs, nzs):
-            r = run(case, nx, nz, analysis, args.keep)
+            r = run(case, nx, nz, analysis, args.keep, args.beam_model, args.strip_width)
             r["analysis"] = analysis
             final = r["series"][-1]["u"]
             print(f"{analysis:7s} {nx:3d}x{nz:<3d} {r['wall_s']:7.2f} s  tips " +

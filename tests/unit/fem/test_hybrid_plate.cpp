@@ -3,13 +3,17 @@
 // proportion to the chordwise bending stiffness every chordwise line bends alike, so the plate
 // and its three beams act as one cantilever of the summed stiffness: w = P L^3 / (3 sum EI).
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <set>
+#include <string>
 
 #include <gtest/gtest.h>
 
 #include "fem/corotational_beam.hpp"
 #include "fem/errors.hpp"
 #include "fem/static_newton.hpp"
+#include "fem/validation/hybrid_plate.hpp"
 #include "fem/validation/hybrid_plate_model.hpp"
 
 using namespace finverse::fem;
@@ -107,4 +111,34 @@ TEST(HybridPlate, StiffnessProportionalEndLoadBendsLikeOneCantilever) {
     const double w = s.position[hp.tips[b]].y();
     EXPECT_NEAR(w / w_expected, 1.0, 0.01) << c.beams[b].name;
   }
+}
+
+// The dynamic comparison reads a stored CalculiX history computed for one heave; a case with
+// another amplitude must be refused before anything is compared.
+TEST(HybridPlate, DynamicReferenceOfAnotherHeaveIsRejected) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "finverse_test_hybrid_plate_reference";
+  fs::create_directories(dir);
+  {
+    std::ofstream c(dir / "case.json");
+    c << R"({"plate": {"chord": 1, "span": 1, "thickness": 0.01, "E": 1e5, "nu": 0.3, "density": 10},
+             "beams": [{"name": "b1", "z": 0.0, "E": 1e7, "nu": 0.3, "density": 10,
+                        "width": 0.04, "thickness": 0.02}],
+             "static": {"pressure": 1.5, "load_steps": 10},
+             "dynamic": {"heave_amplitude": 0.001, "frequency": 0.5, "periods": 2, "time_step": 0.005}})";
+    std::ofstream r(dir / "reference.json");
+    r << R"({"dynamic": {"heave_amplitude": 0.1, "frequency": 0.5, "time": [0.005, 0.01],
+                         "tips_y": {"b1": [0.0, 0.0]}}})";
+  }
+  HybridPlateOptions o;
+  o.case_file = dir / "case.json";
+  o.reference = dir / "reference.json";
+  o.nx = 2, o.nz = 2;
+  try {
+    run_hybrid_plate_dynamic(o);
+    ADD_FAILURE() << "no error for a reference of another heave amplitude";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("heave_amplitude"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
 }

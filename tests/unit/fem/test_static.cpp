@@ -132,7 +132,9 @@ TEST(StaticNewton, NonPhysicalMaterialsAreRejected) {
   EXPECT_NE(msg({"ray", 1e9, -1.0, 1000}).find("Poisson ratio"), std::string::npos);
   EXPECT_NE(msg({"ray", 1e9, 0.3, -1}).find("density"), std::string::npos);
   EXPECT_NE(msg({"ray", 1e9, 0.3, -1}).find("'ray'"), std::string::npos);
-  EXPECT_NO_THROW(m.add_material({"ray", 1e9, -0.99, 0}));
+  EXPECT_NE(msg({"ray", 1e9, 0.3, 0}).find("density"), std::string::npos);
+  EXPECT_NE(msg({"ray", 1e9, 0.3, std::nan("")}).find("density"), std::string::npos);
+  EXPECT_NO_THROW(m.add_material({"ray", 1e9, -0.99, 1e-3}));
 }
 
 TEST(StaticNewton, NonConvergenceIsReportedAfterStepCutting) {
