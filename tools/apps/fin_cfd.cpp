@@ -13,6 +13,11 @@
 //   fin-cfd ib_couette                  Couette flow between two immersed circles: observed order
 //   fin-cfd cylinder_towed              towed cylinder vs fixed cylinder in a stream (moving body)
 //   fin-cfd cylinder_oscillating        in-line oscillating cylinder: force spikes from cleared cells
+//   fin-cfd sphere_re100 [--cells-per-diameter N] [--t-end T]
+//                                       sphere at Re 100 with the 3-D triangulated ghost-cell
+//                                       boundary: drag vs Johnson & Patel 1999; forces.csv history
+//   fin-cfd fin --mesh mesh.h5 --motion motion.h5 --out loads.h5 ...   and   fin-cfd thin_plate ...
+//                                       the fin's prescribed-motion loads (fin_cfd_fin.hpp)
 //
 // Each writes <out-dir>/<case>/summary.json; exit 1 when a graded metric misses its tolerance.
 #include <chrono>
@@ -29,6 +34,7 @@
 #include "cfd/flow_solver.hpp"
 #include "cfd/ib_couette.hpp"
 #include "cfd/moving_cylinder.hpp"
+#include "cfd/sphere_flow.hpp"
 #include "cfd/taylor_green.hpp"
 #include "cfd/turek_hron_cfd.hpp"
 #include "core/cli.hpp"
@@ -37,6 +43,7 @@
 #include "core/log.hpp"
 #include "core/summary.hpp"
 #include "core/vtk_output.hpp"
+#include "fin_cfd_fin.hpp"
 
 namespace {
 
@@ -552,6 +559,89 @@ int cylinder_oscillating(bool coarse, const std::filesystem::path& out, double& 
   return finish(s, dir, wall_out);
 }
 
+// ---- Sphere at Re 100 (3-D triangulated immersed boundary) ----------------------------------------
+
+struct SphereArgs {
+  int cells_per_diameter = 0;  // 0: the case's default
+  double t_end = 0;            // 0: the case's default
+  std::string reference = "data/reference/sphere.json";
+};
+
+int sphere_re100(bool coarse, const SphereArgs& a, const std::filesystem::path& out, double& wall_out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  nlohmann::json ref;
+  {
+    std::ifstream in(a.reference);
+    if (!in) throw Error("--reference: cannot read " + a.reference);
+    try {
+      in >> ref;
+    } catch (const std::exception&) {
+      throw Error("--reference: " + a.reference + " is not valid JSON");
+    }
+  }
+  if (!ref.contains("Re100") || !ref["Re100"].contains("CD") || !ref["Re100"]["CD"].is_number())
+    throw Error("--reference: " + a.reference + " has no numeric 'Re100.CD' entry");
+  const double cd_ref = ref["Re100"]["CD"].get<double>();
+  SphereFlowSetup ss;
+  if (coarse) {
+    ss.cells_per_diameter = 6;
+    ss.t_end = 8;
+    ss.box_x = {-4, 8};
+    ss.box_half_width = 4;
+    ss.subdivisions = 3;
+  }
+  if (a.cells_per_diameter > 0) ss.cells_per_diameter = a.cells_per_diameter;
+  if (a.t_end > 0) ss.t_end = a.t_end;
+  log::Progress progress("sphere_re100 step",
+                         // dt ~ cfl h / (|u| + |v| + |w|), about cfl h / 1.6 near the sphere
+                         static_cast<std::size_t>(std::ceil(1.6 * ss.t_end / (ss.cfl / ss.cells_per_diameter))));
+  ss.progress = [&](const StepStats& st, double cd) {
+    progress.update(static_cast<std::size_t>(st.step), "t " + fmt("%.3f", st.time) + "  CD " + fmt("%.4f", cd) +
+                                                          "  Poisson " + std::to_string(st.poisson_iterations) + " it");
+  };
+  const SphereFlowResult r = run_sphere_flow(ss);
+  progress.finish("CD " + fmt("%.4f", r.cd));
+  const std::filesystem::path dir = out / "sphere_re100";
+  std::filesystem::create_directories(dir);
+  std::ostringstream csv;
+  csv << "t,cd\n";
+  char line[64];
+  for (std::size_t n = 0; n < r.time.size(); ++n) {
+    std::snprintf(line, sizeof line, "%.9g,%.9g\n", r.time[n], r.cd_history[n]);
+    csv << line;
+  }
+  write_text_atomic(dir / "forces.csv", csv.str());
+  log::info("sphere_re100 D/h=" + std::to_string(ss.cells_per_diameter) + " (" + std::to_string(r.cells[0]) + "x" +
+            std::to_string(r.cells[1]) + "x" + std::to_string(r.cells[2]) + " cells): CD " + fmt("%.5f", r.cd) +
+            " (pressure " + fmt("%.5f", r.cd_pressure) + ", viscous " + fmt("%.5f", r.cd_viscous) + "), drift over 5 D/U " +
+            fmt("%.2e", r.cd_drift) + ", " + std::to_string(r.steps) + " steps, " + fmt("%.1f s", r.cpu_seconds));
+  Summary s("validation", "sphere_re100",
+            "steady flow past a sphere at Re 100 (3-D ghost-cell immersed boundary on a closed triangulated surface): "
+            "drag coefficient against Johnson & Patel (1999)");
+  const std::string src = a.reference + " (Johnson & Patel 1999); issue 4 goal: within 2%";
+  if (coarse) s.info("CD", r.cd);
+  else s.relative("CD", r.cd, cd_ref, 0.02, src);
+  s.info("CD_pressure", r.cd_pressure);
+  s.info("CD_viscous", r.cd_viscous);
+  s.info("CL_lateral", r.cl);
+  s.info("CD_drift_last_5", r.cd_drift);
+  s.info("steps", static_cast<double>(r.steps));
+  s.info("cells", static_cast<double>(r.cells[0]) * r.cells[1] * r.cells[2]);
+  s.info("ghost_cells", static_cast<double>(r.ghost_cells));
+  s.info("surface_samples", static_cast<double>(r.surface_samples));
+  s.info("mean_poisson_iterations", r.mean_poisson_iterations);
+  s.info("mean_momentum_iterations", r.mean_momentum_iterations);
+  s.info("max_divergence_end", r.max_divergence, "1/s");
+  s.info("solver_seconds", r.cpu_seconds, "s");
+  s.parameters() = {{"coarse", coarse}, {"re", ss.re}, {"cells_per_diameter", ss.cells_per_diameter},
+                    {"t_end", ss.t_end}, {"cfl", ss.cfl}, {"box_x", ss.box_x}, {"box_half_width", ss.box_half_width},
+                    {"core_x", ss.core_x}, {"core_half_width", ss.core_half_width},
+                    {"stretch_ratio", ss.stretch_ratio}, {"icosphere_subdivisions", ss.subdivisions},
+                    {"triangles", r.triangles}, {"grid", r.cells}, {"reference", a.reference}};
+  wall_out = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return finish(s, dir, wall_out);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -590,12 +680,21 @@ int main(int argc, char** argv) {
     sc->add_option("--t-end", th_args.t_end, "simulated time [s]")->check(CLI::PositiveNumber);
     sc->add_option("--reference", th_args.reference, "reference values (JSON)")->capture_default_str();
   }
+  SphereArgs sphere_args;
+  auto* sphere = app.add_subcommand("sphere_re100", "sphere at Re 100 (3-D triangulated immersed boundary): drag");
+  sphere->add_option("--cells-per-diameter", sphere_args.cells_per_diameter, "grid: h = D / N in the core around the sphere")
+      ->check(CLI::Range(4, 1000));
+  sphere->add_option("--t-end", sphere_args.t_end, "simulated time [D/U]")->check(CLI::PositiveNumber);
+  sphere->add_option("--reference", sphere_args.reference, "reference drag coefficient (JSON)")->capture_default_str();
+  auto* fin_commands = fin_cfd::add_fin_commands(app);
   return cli::run(app, standard, argc, argv, [&]() -> int {
+    if (int rc = 0; fin_cfd::run_fin_commands(*fin_commands, app, coarse, rc)) return rc;
     double wall = 0;
     if (*tg) return taylor_green(coarse, out_dir, wall);
     if (*couette) return ib_couette(coarse, out_dir, wall);
     if (*towed) return cylinder_towed(coarse, out_dir, wall);
     if (*oscillating) return cylinder_oscillating(coarse, out_dir, wall);
+    if (*sphere) return sphere_re100(coarse, sphere_args, out_dir, wall);
     if (*d1) return dfg(1, coarse, dfg_args, out_dir, wall);
     if (*d2) return dfg(2, coarse, dfg_args, out_dir, wall);
     if (*th2) return turek_hron(2, coarse, th_args, out_dir, wall);

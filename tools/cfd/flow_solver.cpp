@@ -52,6 +52,10 @@ void FlowSolver::setup(const StretchedGrid& grid, const FlowBoundary& boundary, 
   dt_old_ = 0;
   step_ = 0;
   ib_.reset();
+  moving_.reset();
+  surface_.reset();
+  surface_motion_ = nullptr;
+  fresh_.clear();
 }
 
 void FlowSolver::immerse(const Polygon& body) { immerse(std::vector<SolidRegion>{SolidRegion{body, false}}); }
@@ -60,6 +64,8 @@ void FlowSolver::immerse(const std::vector<SolidRegion>& regions, const Velocity
   if (dim() != 2) throw Error("flow solver: an immersed polygon needs a 2-D grid");
   ib_.emplace(grid_, regions);
   moving_.reset();
+  surface_.reset();
+  surface_motion_ = nullptr;
   fresh_.clear();
   ib_dpdn_.clear();
   for (auto& w : ib_wall_) w.clear();
@@ -69,7 +75,7 @@ void FlowSolver::immerse(const std::vector<SolidRegion>& regions, const Velocity
       for (int c = 0; c < dim(); ++c) ib_wall_[static_cast<std::size_t>(c)].push_back(v[static_cast<std::size_t>(c)]);
     }
   FaceCoefficients masked(grid_, 1.0);
-  masked.mask_cells([&](int i, int j, int) { return ib_->solid(i, j); });
+  masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
   poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
   ib_momentum_.setup(grid_);
 }
@@ -92,6 +98,12 @@ void FlowSolver::impose_body_velocity() {
         for (int i = 0; i < grid_.nx(); ++i)
           if (ib_->kind(i, j) == CellKind::Solid)
             u(i, j, 0) = moving_->velocity(body_state_, grid_.xc(i), grid_.yc(j))[static_cast<std::size_t>(c)];
+    } else if (surface_motion_) {  // solid cells: the velocity of their closest surface point
+      const Field& b = body_velocity_[static_cast<std::size_t>(c)];
+      for (int k = 0; k < grid_.nz(); ++k)
+        for (int j = 0; j < grid_.ny(); ++j)
+          for (int i = 0; i < grid_.nx(); ++i)
+            if (ib_->kind(i, j, k) == CellKind::Solid) u(i, j, k) = b(i, j, k);
     } else {
       ib_->fill_solid(u, 0.0);
     }
@@ -110,12 +122,17 @@ void FlowSolver::body_face_velocities(FaceField& U, const std::array<Field, 3>& 
     for (int k = 0; k < grid_.nz(); ++k)
       for (int j = 0; j < grid_.ny() + (d == 1); ++j)
         for (int i = 0; i < grid_.nx() + (d == 0); ++i) {
-          const int f = d == 0 ? i : j;
+          const int f = d == 0 ? i : d == 1 ? j : k;
           if (f == 0 || f == n || !masked_face(d, i, j, k)) continue;
           int lo[3] = {i, j, k};
           --lo[d];
           const bool fl = fluid(lo[0], lo[1], lo[2]), fh = fluid(i, j, k);
           if (!fl && !fh) {  // inside the body: its own velocity (a cleared cell's first fluxes)
+            if (surface_motion_) {
+              const Field& b = body_velocity_[static_cast<std::size_t>(d)];
+              U(d, i, j, k) = 0.5 * (b(lo[0], lo[1], lo[2]) + b(i, j, k));
+              continue;
+            }
             U(d, i, j, k) = moving_ ? moving_->velocity(body_state_, d == 0 ? grid_.axis(0).face(i) : grid_.xc(i),
                                                         d == 1 ? grid_.axis(1).face(j) : grid_.yc(j))[static_cast<std::size_t>(d)]
                                     : 0.0;
@@ -134,7 +151,7 @@ void FlowSolver::body_face_velocities(FaceField& U, const std::array<Field, 3>& 
     for (int k = 0; k < grid_.nz(); ++k)
       for (int j = 0; j < grid_.ny() + (d == 1); ++j)
         for (int i = 0; i < grid_.nx() + (d == 0); ++i) {
-          const int f = d == 0 ? i : j;
+          const int f = d == 0 ? i : d == 1 ? j : k;
           if (f == 0 || f == n || !masked_face(d, i, j, k)) continue;
           int lo[3] = {i, j, k};
           --lo[d];
@@ -151,6 +168,9 @@ void FlowSolver::initialise(const VelocityFunction& velocity, const std::functio
   step_ = 0;
   if (moving_) {
     place_body(t0);
+    fresh_.clear();
+  } else if (surface_motion_) {
+    place_surface(t0);
     fresh_.clear();
   }
   for_each_cell(grid_, [&](int i, int j, int k) {
@@ -191,6 +211,7 @@ StepStats FlowSolver::step() {
   const double t_new = time_ + dt;
   set_boundary_values(t_new, dt, false);
   if (moving_) move_body(t_new);
+  else if (surface_motion_) move_surface(t_new);
   predict_momentum(dt);
   face_predictor(dt, coupling_time(dt));
   const PoissonSolveStats ps = solve_pressure_correction(dt);
@@ -412,6 +433,9 @@ void FlowSolver::restore(const std::vector<StateArray>& s) {
   }
   if (moving_) {  // the geometry is a function of time
     place_body(time_);
+    fresh_.clear();
+  } else if (surface_motion_) {
+    place_surface(time_);
     fresh_.clear();
   }
 }

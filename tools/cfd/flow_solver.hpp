@@ -40,6 +40,15 @@
 // its old convective term N^{n-1}, which it never had, is replaced by N^n (Adams-Bashforth falls
 // back to explicit Euler in that cell for one step). Without this (fresh_cell_treatment = false)
 // the cell starts from its stale ghost value, a jump that shows as spikes in the force history.
+// Triangulated body (3-D, issue 4; immerse(TriangulatedSurface) fixed, immerse(SurfaceMotion)
+// moving or deforming; surface_geometry.hpp, ghost_cells.hpp): the same method with trilinear
+// image-point stencils. A moving surface is re-placed at t^{n+1} at the start of every step (its
+// hierarchy rebuilt, the cells re-classified); the ghost cells impose the vertex velocity
+// interpolated linearly over the intercept's triangle, the pressure ghosts dp/dn = -a . n with the
+// interpolated vertex acceleration, solid cells carry the velocity of their closest surface point,
+// and freshly cleared cells get the same treatment as in 2-D (moving_surface.cpp).
+// surface_forces() integrates the traction on the true surface per triangle
+// (surface_traction_3d.hpp).
 // Boundary values for the new time level (inlet ramps, convective outlet, mass balance) are set in
 // boundary_values.cpp; diagnostics (divergence, energy, momentum, CFL) in flow_diagnostics.cpp.
 //
@@ -65,6 +74,8 @@
 #include "cfd/helmholtz_solver.hpp"
 #include "cfd/poisson_solver.hpp"
 #include "cfd/rigid_motion.hpp"
+#include "cfd/surface_geometry.hpp"
+#include "cfd/triangulated_surface.hpp"
 
 namespace finverse::cfd {
 
@@ -125,10 +136,29 @@ class FlowSolver {
   const MovingBody* moving_body() const { return moving_ ? &*moving_ : nullptr; }
   const RigidState& body_state() const { return body_state_; }  // at time()
   const Polygon& body_polygon() const { return body_now_; }     // moving body at time()
-  // Cells that were cleared at the start of the last step.
-  const std::vector<std::array<int, 2>>& freshly_cleared() const { return fresh_; }
+  // A fixed closed triangulated body (3-D); after setup, before initialise. Throws finverse::Error
+  // when the surface is not watertight or consistently oriented, or too close to the domain
+  // boundary.
+  void immerse(const TriangulatedSurface& body);
+  // A moving or deforming closed triangulated body (3-D): motion(t) gives the vertex positions,
+  // velocities and accelerations at t (fixed connectivity); after setup, before initialise. It is
+  // evaluated at once at time() (0 after setup), again at t0 by initialise and at every new time
+  // level. The body must stay at least about three cells thick (ghost_cells.hpp) and keep its
+  // volume: the net flux through the body's faces is removed (body_face_velocities), which is
+  // exact only for a volume-preserving motion (rigid motion, bending of a closed thin body).
+  void immerse(const SurfaceMotion& motion);
+  // The triangulated body at time() (null without one) and its state (motion(time()); for a fixed
+  // body the surface with no velocity).
+  const SurfaceGeometry* body_surface() const { return surface_ ? &*surface_ : nullptr; }
+  const SurfaceState& surface_state() const { return surface_state_; }
+  // Hydrodynamic force per triangle of the triangulated body at time() from the traction on the
+  // true surface (surface_traction_3d.hpp), with the density rho [kg/m^3] (the solver's pressure is
+  // kinematic). Builds the sampling stencils on every call (O(samples)); throws without a body.
+  SurfaceForces surface_forces(double rho = 1.0) const;
+  // Cells that were cleared at the start of the last step (i, j, k; k = 0 in 2-D).
+  const std::vector<std::array<int, 3>>& freshly_cleared() const { return fresh_; }
   const GhostCellSet* immersed() const { return ib_ ? &*ib_ : nullptr; }
-  bool fluid(int i, int j, int k) const { return !ib_ || k != 0 || ib_->kind(i, j) == CellKind::Fluid; }
+  bool fluid(int i, int j, int k) const { return !ib_ || ib_->kind(i, j, k) == CellKind::Fluid; }
 
   // Initial velocity (made discretely divergence-free by a projection) and pressure at time t0.
   void initialise(const VelocityFunction& velocity,
@@ -197,6 +227,9 @@ class FlowSolver {
   void place_body(double t);
   void move_body(double t);
   void body_face_velocities(FaceField& U, const std::array<Field, 3>& u) const;
+  // Moving triangulated body (moving_surface.cpp).
+  void place_surface(double t);
+  void move_surface(double t);
 
   StretchedGrid grid_;
   FlowBoundary bnd_;
@@ -211,7 +244,11 @@ class FlowSolver {
   std::optional<MovingBody> moving_;
   RigidState body_state_;
   Polygon body_now_ = Polygon::circle(0, 0, 1, 3);
-  std::vector<std::array<int, 2>> fresh_;
+  std::vector<std::array<int, 3>> fresh_;
+  std::optional<SurfaceGeometry> surface_;
+  SurfaceMotion surface_motion_;
+  SurfaceState surface_state_;
+  std::array<Field, 3> body_velocity_;  // moving triangulated body: the velocity of solid cells
 
   std::array<Field, 3> u_, ustar_, conv_, conv_old_, work_;
   Field p_, phi_, rhs_, zero_, grad_, bterm_;

@@ -66,6 +66,9 @@ GhostCellSet::GhostCellSet(const StretchedGrid& grid, const std::vector<SolidReg
       const double tx = (g.image[0] - grid.xc(i0)) / (grid.xc(i0 + 1) - grid.xc(i0));
       const double ty = (g.image[1] - grid.yc(j0)) / (grid.yc(j0 + 1) - grid.yc(j0));
       g.weights = {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty};
+      g.intercept = {g.boundary.point[0], g.boundary.point[1], 0.0};
+      g.normal = {g.boundary.normal[0], g.boundary.normal[1], 0.0};
+      g.image_point = {g.image[0], g.image[1], 0.0};
       ghosts_.push_back(g);
     }
   // Stencil fluidity is known only after every cell is classified.
@@ -169,9 +172,9 @@ void sweep(const std::vector<GhostCell>& ghosts, Field& q, Rule rule) {
     for (std::size_t n = 0; n < ghosts.size(); ++n) {
       const GhostCell& g = ghosts[n];
       const double v = rule(n, g);
-      change = std::max(change, std::abs(v - q(g.i, g.j, 0)));
+      change = std::max(change, std::abs(v - q(g.i, g.j, g.k)));
       scale = std::max(scale, std::abs(v));
-      q(g.i, g.j, 0) = v;
+      q(g.i, g.j, g.k) = v;
     }
     if (change <= 1e-14 * std::max(scale, 1e-300)) return;
   }
@@ -198,12 +201,28 @@ void GhostCellSet::impose_neumann(Field& q, const std::vector<double>& normal_de
 }
 
 void GhostCellSet::fill_solid(Field& q, double value) const {
-  for (int j = 0; j < grid_.ny(); ++j)
-    for (int i = 0; i < grid_.nx(); ++i)
-      if (kind(i, j) == CellKind::Solid) q(i, j, 0) = value;
+  for (int k = 0; k < grid_.nz(); ++k)
+    for (int j = 0; j < grid_.ny(); ++j)
+      for (int i = 0; i < grid_.nx(); ++i)
+        if (kind(i, j, k) == CellKind::Solid) q(i, j, k) = value;
 }
 
 double GhostCellSet::image_value(const Field& q, const GhostCell& g) const {
+  if (grid_.dim() == 3) {
+    int c0[3];
+    double t[3];
+    for (int d = 0; d < 3; ++d) {
+      const Axis& a = grid_.axis(d);
+      c0[d] = lower_centre(a, g.image_point[static_cast<std::size_t>(d)]);
+      t[d] = (g.image_point[static_cast<std::size_t>(d)] - a.centre(c0[d])) / (a.centre(c0[d] + 1) - a.centre(c0[d]));
+    }
+    double s = 0;
+    for (int n = 0; n < 8; ++n) {
+      const int a = n & 1, b = (n >> 1) & 1, c = (n >> 2) & 1;
+      s += (a ? t[0] : 1 - t[0]) * (b ? t[1] : 1 - t[1]) * (c ? t[2] : 1 - t[2]) * q(c0[0] + a, c0[1] + b, c0[2] + c);
+    }
+    return s;
+  }
   const int i0 = g.stencil[0], j0 = g.stencil[1];
   return g.weights[0] * q(i0, j0, 0) + g.weights[1] * q(i0 + 1, j0, 0) + g.weights[2] * q(i0, j0 + 1, 0) +
          g.weights[3] * q(i0 + 1, j0 + 1, 0);

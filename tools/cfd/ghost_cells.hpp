@@ -16,8 +16,14 @@
 // sweeps in impose_*). Where the substitution leaves fewer than four usable points, or the
 // bilinear fit is singular (two nodes replaced by one intercept), the fit falls back to the linear
 // interpolant by least squares, still exact for linear fields. The stencil structures carry 3-D
-// indices and up to 8 nodes, so the trilinear 3-D version (triangulated bodies) fills the same
-// types; the classification and geometry here are 2-D (Polygon).
+// indices and up to 8 nodes, so the trilinear 3-D version fills the same types.
+// 3-D (closed triangulated surface, surface_geometry.hpp): the same method with the cell centre
+// classified by the signed distance to the surface, the intercept the closest surface point, the
+// image point's value interpolated trilinearly from the eight surrounding centres, and the
+// substitution fit phi = c1 + c2 x + c3 y + c4 z + c5 xy + c6 yz + c7 xz + c8 xyz (least-squares
+// linear fallback: at least four usable points). A body must be at least about three cells thick
+// everywhere, so that cell centres lie inside it and every ghost cell's image point lies in the
+// fluid on its own side; thinner parts are not seen by the grid.
 #pragma once
 
 #include <array>
@@ -27,6 +33,7 @@
 #include "cfd/field.hpp"
 #include "cfd/grid.hpp"
 #include "cfd/immersed_polygon.hpp"
+#include "cfd/surface_geometry.hpp"
 
 namespace finverse::cfd {
 
@@ -51,13 +58,18 @@ struct PointStencil {
 };
 
 struct GhostCell {
-  int i = 0, j = 0;
-  SurfacePoint boundary;               // intercept B, outward normal, signed distance of G (<= 0)
+  int i = 0, j = 0, k = 0;
+  SurfacePoint boundary;               // intercept B, outward normal, signed distance of G (<= 0) (3-D: x, y of them)
   std::array<double, 2> image{};       // I = 2B - G
   std::array<int, 2> stencil{};        // lower-left cell (i0, j0) of the bilinear stencil of I
   std::array<double, 4> weights{};     // for (i0,j0), (i0+1,j0), (i0,j0+1), (i0+1,j0+1)
   bool stencil_all_fluid = true;       // false: needs the boundary-intercept substitution
   PointStencil dirichlet, neumann;     // image value with the boundary-intercept substitution
+  // B, its outward normal and I in 3-D (2-D: z = 0); a triangulated body's intercept also carries
+  // its triangle and barycentric coordinates (for interpolating vertex data; 2-D: -1).
+  std::array<double, 3> intercept{}, normal{}, image_point{};
+  int triangle = -1;
+  std::array<double, 3> barycentric{};
   double probe_length() const { return 2 * std::abs(boundary.distance); }  // |I - G|
 };
 
@@ -68,12 +80,20 @@ class GhostCellSet {
   GhostCellSet(const StretchedGrid& grid, const Polygon& body);
   // Several solid regions (disjoint; each ghost cell takes the surface closest to it).
   GhostCellSet(const StretchedGrid& grid, const std::vector<SolidRegion>& regions);
+  // Classifies the cells of a 3-D grid against a closed triangulated surface.
+  GhostCellSet(const StretchedGrid& grid, const SurfaceGeometry& body);
 
+  int dim() const { return grid_.dim(); }
   CellKind kind(int i, int j) const { return kind_[static_cast<std::size_t>(i + grid_.nx() * j)]; }
+  CellKind kind(int i, int j, int k) const {
+    return kind_[static_cast<std::size_t>(i) +
+                 static_cast<std::size_t>(grid_.nx()) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(grid_.ny()) * static_cast<std::size_t>(k))];
+  }
   bool solid(int i, int j) const { return kind(i, j) != CellKind::Fluid; }
+  bool solid(int i, int j, int k) const { return kind(i, j, k) != CellKind::Fluid; }
   const std::vector<GhostCell>& ghosts() const { return ghosts_; }
 
-  // Bilinear interpolation of a cell-centred field at the ghost cell's image point.
+  // Bilinear (3-D: trilinear) interpolation of a cell-centred field at the ghost cell's image point.
   double image_value(const Field& q, const GhostCell& g) const;
   // Ghost values imposing phi_B at the boundary intercept, or dphi/dn there.
   double dirichlet_ghost(const Field& q, const GhostCell& g, double boundary_value) const {
@@ -88,6 +108,10 @@ class GhostCellSet {
   // condition bc (None: dropped). Throws finverse::Error when x is outside the centres' range.
   PointStencil stencil(const std::array<double, 2>& x, const SurfacePoint& b, BoundaryCondition bc,
                        std::array<int, 2> self = {-1, -1}) const;
+  // 3-D: from the eight surrounding centres, trilinear, with the boundary point b (outward normal
+  // n) substituted for solid nodes and `self`.
+  PointStencil stencil(const std::array<double, 3>& x, const std::array<double, 3>& b, const std::array<double, 3>& n,
+                       BoundaryCondition bc, std::array<int, 3> self = {-1, -1, -1}) const;
 
   // Ghost values that impose the conditions with the substituted stencils, by Gauss-Seidel sweeps
   // over the ghost cells (they couple where one ghost cell's image stencil holds another):

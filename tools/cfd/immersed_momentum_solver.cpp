@@ -24,11 +24,12 @@ void ImmersedMomentumSolver::apply(const HelmholtzSolver& hs, const GhostCellSet
   hs.apply(mass, stiffness, x, out);
   const PoissonOperator& op = hs.op();
   const StretchedGrid& g = op.grid();
-  for (int j = 0; j < g.ny(); ++j)
-    for (int i = 0; i < g.nx(); ++i)
-      if (ib.kind(i, j) == CellKind::Solid) out(i, j, 0) = row_scale(op, mass, stiffness, i, j, 0) * x(i, j, 0);
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i)
+        if (ib.kind(i, j, k) == CellKind::Solid) out(i, j, k) = row_scale(op, mass, stiffness, i, j, k) * x(i, j, k);
   for (const GhostCell& gc : ib.ghosts())
-    out(gc.i, gc.j, 0) = row_scale(op, mass, stiffness, gc.i, gc.j, 0) * (x(gc.i, gc.j, 0) + gc.dirichlet.apply(x, 0.0));
+    out(gc.i, gc.j, gc.k) = row_scale(op, mass, stiffness, gc.i, gc.j, gc.k) * (x(gc.i, gc.j, gc.k) + gc.dirichlet.apply(x, 0.0));
 }
 
 HelmholtzStats ImmersedMomentumSolver::solve(const HelmholtzSolver& hs, const GhostCellSet& ib, double mass, double stiffness, Field& b,
@@ -36,14 +37,15 @@ HelmholtzStats ImmersedMomentumSolver::solve(const HelmholtzSolver& hs, const Gh
                                              double rtol, int max_iterations) {
   const PoissonOperator& op = hs.op();
   const StretchedGrid& g = op.grid();
-  for (int j = 0; j < g.ny(); ++j)
-    for (int i = 0; i < g.nx(); ++i)
-      if (ib.kind(i, j) == CellKind::Solid) b(i, j, 0) = row_scale(op, mass, stiffness, i, j, 0) * solid_value;
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i)
+        if (ib.kind(i, j, k) == CellKind::Solid) b(i, j, k) = row_scale(op, mass, stiffness, i, j, k) * solid_value;
   const auto& ghosts = ib.ghosts();
   for (std::size_t n = 0; n < ghosts.size(); ++n) {
     const GhostCell& gc = ghosts[n];
     const double ub = boundary_value.empty() ? 0.0 : boundary_value[n];
-    b(gc.i, gc.j, 0) = row_scale(op, mass, stiffness, gc.i, gc.j, 0) * (2.0 - gc.dirichlet.boundary_weight) * ub;
+    b(gc.i, gc.j, gc.k) = row_scale(op, mass, stiffness, gc.i, gc.j, gc.k) * (2.0 - gc.dirichlet.boundary_weight) * ub;
   }
   const auto precondition = [&](const Field& in, Field& out) {
     for_each_cell(g, [&](int i, int j, int k) { out(i, j, k) = in(i, j, k) / row_scale(op, mass, stiffness, i, j, k); });

@@ -48,7 +48,7 @@ void FlowSolver::predict_momentum(double dt) {
   if (opt_.fresh_cell_treatment)
     for (const auto& f : fresh_)
       for (int c = 0; c < dim(); ++c)
-        conv_old_[static_cast<std::size_t>(c)](f[0], f[1], 0) = conv_[static_cast<std::size_t>(c)](f[0], f[1], 0);
+        conv_old_[static_cast<std::size_t>(c)](f[0], f[1], f[2]) = conv_[static_cast<std::size_t>(c)](f[0], f[1], f[2]);
   const double r = dt_old_ > 0 ? dt / dt_old_ : 0.0;
   const double ab_new = 1 + 0.5 * r, ab_old = -0.5 * r;
   const double half_nu = 0.5 * opt_.nu;

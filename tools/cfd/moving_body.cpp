@@ -14,6 +14,8 @@ void FlowSolver::immerse(const MovingBody& body) {
   if (dim() != 2) throw Error("flow solver: an immersed polygon needs a 2-D grid");
   if (!body.motion) throw Error("flow solver: the moving body has no motion");
   moving_ = body;
+  surface_.reset();
+  surface_motion_ = nullptr;
   fresh_.clear();
   ib_momentum_.setup(grid_);
   place_body(time_);
@@ -39,7 +41,7 @@ void FlowSolver::place_body(double t) {
   }
   // The pressure operator's face mask follows the body (the multigrid hierarchy is rebuilt).
   FaceCoefficients masked(grid_, 1.0);
-  masked.mask_cells([&](int i, int j, int) { return ib_->solid(i, j); });
+  masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
   poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
 }
 
@@ -49,7 +51,7 @@ void FlowSolver::move_body(double t) {
   fresh_.clear();
   for (int j = 0; j < grid_.ny(); ++j)
     for (int i = 0; i < grid_.nx(); ++i)
-      if (old.solid(i, j) && ib_->kind(i, j) == CellKind::Fluid) fresh_.push_back({i, j});
+      if (old.solid(i, j) && ib_->kind(i, j) == CellKind::Fluid) fresh_.push_back({i, j, 0});
   if (opt_.fresh_cell_treatment && !fresh_.empty()) {
     // A cleared cell's centre x lies on the normal through its boundary intercept B at distance
     // d. Its value comes from the line B -> P, P = x + 1.5 h n (beyond the cell, so P's bilinear
@@ -75,8 +77,8 @@ void FlowSolver::move_body(double t) {
       e.offset = 1.5 * std::max(grid_.dx(f[0]), grid_.dy(f[1]));
       e.fraction = e.b.distance / (e.b.distance + e.offset);
       const std::array<double, 2> P{x[0] + e.offset * e.b.normal[0], x[1] + e.offset * e.b.normal[1]};
-      e.vel = ib_->stencil(P, e.b, BoundaryCondition::Dirichlet, f);
-      e.pres = ib_->stencil(P, e.b, BoundaryCondition::Neumann, f);
+      e.vel = ib_->stencil(P, e.b, BoundaryCondition::Dirichlet, {f[0], f[1]});
+      e.pres = ib_->stencil(P, e.b, BoundaryCondition::Neumann, {f[0], f[1]});
       e.ub = moving_->velocity(body_state_, e.b.point[0], e.b.point[1]);
       const auto a = moving_->acceleration(body_state_, e.b.point[0], e.b.point[1]);
       e.dpdn = -(a[0] * e.b.normal[0] + a[1] * e.b.normal[1]);

@@ -116,7 +116,9 @@ std::vector<FileSpec> build() {
                {{"time", f64, {"nt"}, "s", "output times"}},
                flow_attrs()};
     for (auto& d : force_datasets("nt")) s.datasets.push_back(d);
-    s.datasets.push_back({"pressure_jump", f64, {"nt", "ntri"}, "Pa", "pressure difference across each shell element"});
+    s.datasets.push_back({"pressure_jump", f64, {"nt", "ntri"}, "Pa",
+                          "p(back) - p(front) of each shell element (front: where its right-hand normal n points); "
+                          "its net pressure force is pressure_jump * area * n"});
     specs.push_back(s);
   }
 

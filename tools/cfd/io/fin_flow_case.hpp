@@ -1,0 +1,70 @@
+// The fin's prescribed-motion flow (DESIGN.md sections 1 and 5.1, seed paper section 2.3): the
+// moving closed thin body of mesh.h5 + motion.h5 (fin_input.hpp) immersed in a uniform stream on a
+// stretched Cartesian grid, stepped with the fractional-step solver, and its loads recorded as
+// loads.h5 (loads_record.hpp) from the per-triangle surface forces (nodal_loads.hpp).
+//
+// Grid: a uniform core of cell width h around the body's swept bounding box (sampled over the run;
+// core_margin chords on every side and `wake` chords more downstream), geometric stretching
+// (ratio <= stretch_ratio) out to the domain boundaries `upstream`, `downstream`, `lateral`,
+// `spanwise` chords beyond the swept box; cell counts multiples of 8 (three multigrid halvings).
+// Boundaries: uniform inlet U at x-, convective outlet at x+, free-slip sides.
+// Flow: U and nu from the chord Reynolds number Re = U c / nu (U given, or U = Re nu / c for the
+// given nu); the stream starts impulsively (the uniform stream projected around the body at t_0).
+// Time step: fixed, dt = output_interval / m with the smallest m for which the estimated
+// convective CFL number (U + 2 x the body's fastest vertex speed) dt / h stays below `cfl`, so
+// every output time is a step; the solver's blow-up guard (cfl_limit, non-finite velocity) ends
+// the run with a one-line error naming the step.
+// Duration: periodic motion runs `periods` periods T from t_0 and writes the last
+// `output_periods` of them (0: everything); non-periodic motion runs over the sampled span.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "cfd/grid.hpp"
+#include "cfd/io/fin_input.hpp"
+#include "cfd/flow_solver.hpp"
+#include "core/stage_files.hpp"
+
+namespace finverse::cfd::io {
+
+struct FinFlowOptions {
+  double reynolds = 1000;        // U c / nu (the seed paper's trout caudal fin)
+  double speed = 0;              // U [m/s]; 0: U = reynolds * viscosity / chord
+  double viscosity = 1.0e-6;     // nu [m^2/s] (water) when speed = 0
+  double rho = 1000;             // [kg/m^3]
+  double cells_per_chord = 0;    // h = c / this; 0: h = min(c / 16, ibm_thickness / 2)
+  double core_margin = 0.25;     // [c]
+  double wake = 1.0;             // [c]
+  double upstream = 3, downstream = 6, lateral = 3, spanwise = 3;  // [c]
+  double stretch_ratio = 1.12;
+  double cfl = 0.5;
+  double cfl_limit = 2.0;
+  double periods = 2;            // periodic motion
+  double output_periods = 1;     // periodic motion: last periods written; 0: all
+  double output_interval = 0;    // [s]; 0: the motion's smallest frame spacing
+  double poisson_rtol = 1e-7;
+  double chord = 0;              // [m]; 0: mesh.h5 attribute chord, else the rest mesh's x extent
+};
+
+struct FinFlowStats {
+  StretchedGrid grid;
+  Vec3 swept_lo{}, swept_hi{};
+  double h = 0, dt = 0, U = 0, nu = 0, chord = 0, t_begin = 0, t_end = 0, max_body_speed = 0;
+  long steps = 0, poisson_iterations = 0;
+  double max_cfl = 0, wall_seconds = 0;
+  std::size_t triangles = 0;
+};
+
+// The swept bounding box of the body over [t0, t1] (sampled at `samples` times) and the fastest
+// vertex speed.
+void swept_box(const FinSurfaceMotion& m, double t0, double t1, int samples, Vec3& lo, Vec3& hi, double& max_speed);
+
+// The grid of the header comment around the swept box [lo, hi].
+StretchedGrid fin_flow_grid(const Vec3& lo, const Vec3& hi, double chord, double h, const FinFlowOptions& o);
+
+// Runs the flow; `progress(step, steps_total, stats line)` is called after every step.
+stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowStats& stats,
+                          const std::function<void(long, long, const StepStats&)>& progress = {});
+
+}  // namespace finverse::cfd::io

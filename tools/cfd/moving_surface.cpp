@@ -1,0 +1,159 @@
+// The flow solver's triangulated immersed body in 3-D, fixed or moving/deforming (issue 4;
+// Mittal et al. 2008, J. Comput. Phys. 227:4825, sections 2.2-2.4): immersing it, placing it at a
+// time level (hierarchy, classification, ghost data, the masked pressure operator), the step
+// from one placement to the next with the freshly-cleared-cell treatment of moving_body.cpp, and
+// the per-triangle surface forces; see flow_solver.hpp.
+#include <algorithm>
+#include <string>
+
+#include "cfd/flow_solver.hpp"
+#include "cfd/surface_traction_3d.hpp"
+#include "core/error.hpp"
+
+namespace finverse::cfd {
+
+namespace {
+double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+}  // namespace
+
+void FlowSolver::immerse(const TriangulatedSurface& body) {
+  if (dim() != 3) throw Error("flow solver: an immersed triangulated body needs a 3-D grid");
+  moving_.reset();
+  surface_motion_ = nullptr;
+  fresh_.clear();
+  surface_.emplace(body, "immersed triangulated body");
+  surface_state_ = SurfaceState{body, {}, {}};
+  ib_.emplace(grid_, *surface_);
+  ib_dpdn_.clear();
+  for (auto& w : ib_wall_) w.clear();
+  FaceCoefficients masked(grid_, 1.0);
+  masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
+  poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
+  ib_momentum_.setup(grid_);
+}
+
+void FlowSolver::immerse(const SurfaceMotion& motion) {
+  if (dim() != 3) throw Error("flow solver: an immersed triangulated body needs a 3-D grid");
+  if (!motion) throw Error("flow solver: the moving triangulated body has no motion");
+  moving_.reset();
+  surface_.reset();
+  surface_motion_ = motion;
+  fresh_.clear();
+  for (auto& b : body_velocity_) b = Field(grid_);
+  ib_momentum_.setup(grid_);
+  place_surface(time_);
+}
+
+void FlowSolver::place_surface(double t) {
+  SurfaceState st = surface_motion_(t);
+  const std::string at = "flow solver: moving triangulated body at t = " + std::to_string(t) + ": ";
+  const std::size_t nv = st.surface.points.size();
+  if ((!st.velocity.empty() && st.velocity.size() != nv) || (!st.acceleration.empty() && st.acceleration.size() != nv))
+    throw Error(at + "velocity/acceleration need one entry per vertex");
+  try {
+    if (!surface_) {
+      surface_.emplace(st.surface, "moving triangulated body");
+    } else {
+      if (st.surface.triangles != surface_->surface().triangles) throw Error("the connectivity changed");
+      surface_->move_to(st.surface.points);
+    }
+    ib_.emplace(grid_, *surface_);
+  } catch (const Error& e) {
+    throw Error(at + e.what());
+  }
+  surface_state_ = std::move(st);
+  for (auto& w : ib_wall_) w.clear();
+  ib_dpdn_.clear();
+  for (const GhostCell& g : ib_->ghosts()) {
+    SurfaceHit h;
+    h.triangle = g.triangle;
+    h.barycentric = g.barycentric;
+    const Vec3 v = surface_->interpolate(surface_state_.velocity, h);
+    const Vec3 a = surface_->interpolate(surface_state_.acceleration, h);
+    for (int c = 0; c < 3; ++c) ib_wall_[static_cast<std::size_t>(c)].push_back(v[static_cast<std::size_t>(c)]);
+    // Normal momentum balance at the no-slip wall (kinematic pressure): dp/dn = -a_B . n.
+    ib_dpdn_.push_back(-dot3(a, g.normal));
+  }
+  // Solid cells: the velocity of their closest surface point (the last resort of a cleared cell
+  // and the flux of faces inside the body).
+  for (int k = 0; k < grid_.nz(); ++k)
+    for (int j = 0; j < grid_.ny(); ++j)
+      for (int i = 0; i < grid_.nx(); ++i) {
+        if (ib_->kind(i, j, k) != CellKind::Solid) continue;
+        const Vec3 v = surface_->interpolate(surface_state_.velocity, surface_->closest({grid_.xc(i), grid_.yc(j), grid_.zc(k)}));
+        for (int c = 0; c < 3; ++c) body_velocity_[static_cast<std::size_t>(c)](i, j, k) = v[static_cast<std::size_t>(c)];
+      }
+  FaceCoefficients masked(grid_, 1.0);
+  masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
+  poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
+}
+
+void FlowSolver::move_surface(double t) {
+  const GhostCellSet old = *ib_;
+  place_surface(t);
+  fresh_.clear();
+  for (int k = 0; k < grid_.nz(); ++k)
+    for (int j = 0; j < grid_.ny(); ++j)
+      for (int i = 0; i < grid_.nx(); ++i)
+        if (old.solid(i, j, k) && ib_->kind(i, j, k) == CellKind::Fluid) fresh_.push_back({i, j, k});
+  if (opt_.fresh_cell_treatment && !fresh_.empty()) {
+    // As in 2-D (moving_body.cpp): a cleared cell's value from the line from its boundary
+    // intercept B along the normal to P = x + 1.5 h n, with P's trilinear stencil substituted.
+    struct Fresh {
+      PointStencil vel, pres;
+      Vec3 ub{};
+      double dpdn = 0, fraction = 0, offset = 0;
+    };
+    std::vector<Fresh> fs;
+    fs.reserve(fresh_.size());
+    for (const auto& f : fresh_) {
+      const Vec3 x{grid_.xc(f[0]), grid_.yc(f[1]), grid_.zc(f[2])};
+      const SurfaceHit b = surface_->closest(x);
+      Fresh e;
+      e.offset = 1.5 * std::max({grid_.dx(f[0]), grid_.dy(f[1]), grid_.dz(f[2])});
+      e.fraction = b.distance / (b.distance + e.offset);
+      const Vec3 P{x[0] + e.offset * b.normal[0], x[1] + e.offset * b.normal[1], x[2] + e.offset * b.normal[2]};
+      e.vel = ib_->stencil(P, b.point, b.normal, BoundaryCondition::Dirichlet, f);
+      e.pres = ib_->stencil(P, b.point, b.normal, BoundaryCondition::Neumann, f);
+      e.ub = surface_->interpolate(surface_state_.velocity, b);
+      e.dpdn = -dot3(surface_->interpolate(surface_state_.acceleration, b), b.normal);
+      fs.push_back(e);
+    }
+    for (int round = 0; round < 4; ++round) {
+      for (std::size_t n = 0; n < fs.size(); ++n) {
+        const auto& f = fresh_[n];
+        for (int c = 0; c < 3; ++c) {
+          Field& u = u_[static_cast<std::size_t>(c)];
+          const double ub = fs[n].ub[static_cast<std::size_t>(c)];
+          u(f[0], f[1], f[2]) = ub + (fs[n].vel.apply(u, ub) - ub) * fs[n].fraction;
+        }
+        p_(f[0], f[1], f[2]) = fs[n].pres.apply(p_, fs[n].dpdn) - fs[n].offset * fs[n].dpdn;
+      }
+      impose_body_velocity();
+      ib_->impose_neumann(p_, ib_dpdn_);
+    }
+  } else {
+    impose_body_velocity();
+    ib_->impose_neumann(p_, ib_dpdn_);
+  }
+  ib_->impose_neumann(phi_);
+  if (!opt_.fresh_cell_treatment) return;
+  // The faces of a cleared cell were body faces at t^n; its convective flux N^n needs fluid ones.
+  for (const auto& f : fresh_)
+    for (int d = 0; d < 3; ++d)
+      for (int side = 0; side < 2; ++side) {
+        int idx[3] = {f[0], f[1], f[2]};
+        idx[d] += side;
+        const int m = idx[d];
+        if ((m == 0 || m == grid_.n(d)) && !bnd_.periodic(d)) continue;
+        U_(d, idx[0], idx[1], idx[2]) = face_value(u_[static_cast<std::size_t>(d)], d, d, idx[0], idx[1], idx[2], bv_);
+      }
+}
+
+SurfaceForces FlowSolver::surface_forces(double rho) const {
+  if (!surface_ || !ib_) throw Error("flow solver: surface_forces needs an immersed triangulated body");
+  const SurfaceTraction3D traction(grid_, *ib_, *surface_);
+  return traction.evaluate(u_[0], u_[1], u_[2], p_, opt_.nu, rho, surface_state_.velocity);
+}
+
+}  // namespace finverse::cfd
