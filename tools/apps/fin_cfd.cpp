@@ -220,6 +220,19 @@ int channel(const ChannelArgs& a, const std::filesystem::path& out, double& wall
   return finish(s, dir, wall_out);
 }
 
+// The --reference file of a validation case (literature numbers, data/reference/*.json).
+nlohmann::json read_reference(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error("--reference: cannot read " + path);
+  try {
+    nlohmann::json ref;
+    in >> ref;
+    return ref;
+  } catch (const std::exception&) {
+    throw Error("--reference: " + path + " is not valid JSON");
+  }
+}
+
 // ---- DFG cylinder benchmarks ---------------------------------------------------------------------
 
 struct DfgArgs {
@@ -230,16 +243,7 @@ struct DfgArgs {
 
 int dfg(int variant, bool coarse, const DfgArgs& a, const std::filesystem::path& out, double& wall_out) {
   const auto t0 = std::chrono::steady_clock::now();
-  nlohmann::json ref;
-  {
-    std::ifstream in(a.reference);
-    if (!in) throw Error("--reference: cannot read " + a.reference);
-    try {
-      in >> ref;
-    } catch (const std::exception&) {
-      throw Error("--reference: " + a.reference + " is not valid JSON");
-    }
-  }
+  const nlohmann::json ref = read_reference(a.reference);
   const std::string key = variant == 1 ? "2D-1" : "2D-2";
   if (!ref.contains(key)) throw Error("--reference: " + a.reference + " has no '" + key + "' entry");
   const nlohmann::json& R = ref[key];
@@ -327,16 +331,7 @@ struct TurekHronArgs {
 
 int turek_hron(int variant, bool coarse, const TurekHronArgs& a, const std::filesystem::path& out, double& wall_out) {
   const auto t0 = std::chrono::steady_clock::now();
-  nlohmann::json ref;
-  {
-    std::ifstream in(a.reference);
-    if (!in) throw Error("--reference: cannot read " + a.reference);
-    try {
-      in >> ref;
-    } catch (const std::exception&) {
-      throw Error("--reference: " + a.reference + " is not valid JSON");
-    }
-  }
+  const nlohmann::json ref = read_reference(a.reference);
   const std::string key = variant == 2 ? "CFD2" : "CFD3";
   if (!ref.contains("cases") || !ref["cases"].contains(key))
     throw Error("--reference: " + a.reference + " has no 'cases." + key + "' entry");
@@ -569,16 +564,7 @@ struct SphereArgs {
 
 int sphere_re100(bool coarse, const SphereArgs& a, const std::filesystem::path& out, double& wall_out) {
   const auto t0 = std::chrono::steady_clock::now();
-  nlohmann::json ref;
-  {
-    std::ifstream in(a.reference);
-    if (!in) throw Error("--reference: cannot read " + a.reference);
-    try {
-      in >> ref;
-    } catch (const std::exception&) {
-      throw Error("--reference: " + a.reference + " is not valid JSON");
-    }
-  }
+  const nlohmann::json ref = read_reference(a.reference);
   if (!ref.contains("Re100") || !ref["Re100"].contains("CD") || !ref["Re100"]["CD"].is_number())
     throw Error("--reference: " + a.reference + " has no numeric 'Re100.CD' entry");
   const double cd_ref = ref["Re100"]["CD"].get<double>();
