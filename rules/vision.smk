@@ -8,7 +8,10 @@
 # The validation renders its own frames with the issue's sensor model (noise sigma = 2 grey
 # levels, about 1 px of motion blur: 3 sub-frames over 15 % of the frame interval), tracks them
 # with all views, with one view removed and with every principal point moved by 0.5 px, and
-# scores all three against truth.h5 (the last two reported only). COARSE: 3 frames.
+# scores all three against truth.h5 (the last two reported only). The silhouette IoU that is graded
+# is the fitted surface's against the true surface's, both as area-coverage silhouettes at the
+# image resolution (tools/vision/silhouette_coverage.hpp); fit and truth against the segmentation
+# are reported beside it. COARSE: 3 frames.
 
 _VFIN = config["fin"]
 _VCASE = config["case"]

@@ -9,6 +9,12 @@
 //     (edge rays pitch most) and phase W-shaped across the rays (Fig. 12(c)),
 //   - a chordwise bending wave travelling root to tip and a spanwise (cupping) bending mode,
 // at St = f (2A) / U = 0.44, Re = U c / nu = 1000 (section 4.2), so f = St U / (2 A).
+// Fin rays are nearly inextensible (section 4.1: bony segmented rays), so the bending is not a
+// lateral offset added to the rest shape, which would stretch every bent ray: the two bending
+// modes define a lateral deflection w(s) whose slope sets the local bending angle
+// alpha = atan(dw/dl), and every line of vertices (each ray, and the membrane lines between them)
+// is rebuilt by rotating each rest segment out of the fin plane by alpha. Arc length along every
+// line is then kept to round-off, and the tip deflection stays close to w (to O(slope^2)).
 #pragma once
 
 #include <memory>
@@ -64,6 +70,10 @@ class PrescribedKinematics final : public MotionSource {
   // Root pitch amplitude (rad) and phase (rad) of the ray line at eta (+1 dorsal, -1 ventral).
   double pitch_amplitude(double eta) const;
   double pitch_phase(double eta) const;
+  // Prescribed lateral deflection w (m) of the bending modes at arc-length fraction s on the line
+  // eta, in the ray's pitched frame, and its derivative dw/ds; wt = 2 pi f t.
+  double bending_deflection(double eta, double s, double wt) const;
+  double bending_slope(double eta, double s, double wt) const;
 
  private:
   KinematicParams p_;

