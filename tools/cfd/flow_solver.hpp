@@ -230,6 +230,16 @@ class FlowSolver {
   // Moving triangulated body (moving_surface.cpp).
   void place_surface(double t);
   void move_surface(double t);
+  // A freshly cleared cell's data (cleared_cells.cpp): stencils at P = x + offset n, the wall
+  // velocity and dp/dn at its boundary intercept, d / (d + offset), offset.
+  struct ClearedCell {
+    PointStencil vel, pres;
+    std::array<double, 3> ub{};
+    double dpdn = 0, fraction = 0, offset = 0;
+  };
+  // Values of the cleared cells (fresh_, with their data cells[n]) iterated together with the
+  // ghost values, then the pressure-like ghosts and the cleared cells' face fluxes.
+  void settle_cleared_cells(const std::vector<ClearedCell>& cells);
 
   StretchedGrid grid_;
   FlowBoundary bnd_;

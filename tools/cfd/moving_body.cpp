@@ -62,58 +62,27 @@ void FlowSolver::move_body(double t) {
     // nears one of them.) The stencils may hold ghost cells and other cleared cells, so the
     // cleared values and the ghost values (new geometry) are iterated together in a fixed order; a
     // few rounds suffice as the weights are those of an interpolation.
-    struct Fresh {
-      SurfacePoint b;
-      PointStencil vel, pres;
-      std::array<double, 2> ub{};
-      double dpdn = 0, fraction = 0, offset = 0;  // d / (d + 1.5 h), 1.5 h
-    };
-    std::vector<Fresh> fs;
+    std::vector<ClearedCell> fs;
     fs.reserve(fresh_.size());
     for (const auto& f : fresh_) {
       const std::array<double, 2> x{grid_.xc(f[0]), grid_.yc(f[1])};
-      Fresh e;
-      e.b = body_now_.closest(x[0], x[1]);
+      const SurfacePoint b = body_now_.closest(x[0], x[1]);
+      ClearedCell e;
       e.offset = 1.5 * std::max(grid_.dx(f[0]), grid_.dy(f[1]));
-      e.fraction = e.b.distance / (e.b.distance + e.offset);
-      const std::array<double, 2> P{x[0] + e.offset * e.b.normal[0], x[1] + e.offset * e.b.normal[1]};
-      e.vel = ib_->stencil(P, e.b, BoundaryCondition::Dirichlet, {f[0], f[1]});
-      e.pres = ib_->stencil(P, e.b, BoundaryCondition::Neumann, {f[0], f[1]});
-      e.ub = moving_->velocity(body_state_, e.b.point[0], e.b.point[1]);
-      const auto a = moving_->acceleration(body_state_, e.b.point[0], e.b.point[1]);
-      e.dpdn = -(a[0] * e.b.normal[0] + a[1] * e.b.normal[1]);
+      e.fraction = b.distance / (b.distance + e.offset);
+      const std::array<double, 2> P{x[0] + e.offset * b.normal[0], x[1] + e.offset * b.normal[1]};
+      e.vel = ib_->stencil(P, b, BoundaryCondition::Dirichlet, {f[0], f[1]});
+      e.pres = ib_->stencil(P, b, BoundaryCondition::Neumann, {f[0], f[1]});
+      const auto v = moving_->velocity(body_state_, b.point[0], b.point[1]);
+      e.ub = {v[0], v[1], 0.0};
+      const auto a = moving_->acceleration(body_state_, b.point[0], b.point[1]);
+      e.dpdn = -(a[0] * b.normal[0] + a[1] * b.normal[1]);
       fs.push_back(e);
     }
-    for (int round = 0; round < 4; ++round) {
-      for (std::size_t n = 0; n < fs.size(); ++n) {
-        const auto& f = fresh_[n];
-        for (int c = 0; c < 2; ++c) {
-          Field& u = u_[static_cast<std::size_t>(c)];
-          const double ub = fs[n].ub[static_cast<std::size_t>(c)];
-          u(f[0], f[1], 0) = ub + (fs[n].vel.apply(u, ub) - ub) * fs[n].fraction;
-        }
-        p_(f[0], f[1], 0) = fs[n].pres.apply(p_, fs[n].dpdn) - fs[n].offset * fs[n].dpdn;
-      }
-      impose_body_velocity();
-      ib_->impose_neumann(p_, ib_dpdn_);
-    }
+    settle_cleared_cells(fs);
   } else {
-    impose_body_velocity();
-    ib_->impose_neumann(p_, ib_dpdn_);
+    settle_cleared_cells({});
   }
-  ib_->impose_neumann(phi_);
-  if (!opt_.fresh_cell_treatment) return;
-  // The faces of a cleared cell were body faces at t^n; its convective flux N^n needs fluid ones:
-  // the interpolation of the (cleared and ghost) cell values, as for the fluid faces of U*.
-  for (const auto& f : fresh_)
-    for (int d = 0; d < 2; ++d)
-      for (int side = 0; side < 2; ++side) {
-        int idx[3] = {f[0], f[1], 0};
-        idx[d] += side;
-        const int m = idx[d];
-        if ((m == 0 || m == grid_.n(d)) && !bnd_.periodic(d)) continue;
-        U_(d, idx[0], idx[1], 0) = face_value(u_[static_cast<std::size_t>(d)], d, d, idx[0], idx[1], 0, bv_);
-      }
 }
 
 }  // namespace finverse::cfd

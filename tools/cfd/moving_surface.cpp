@@ -99,17 +99,12 @@ void FlowSolver::move_surface(double t) {
   if (opt_.fresh_cell_treatment && !fresh_.empty()) {
     // As in 2-D (moving_body.cpp): a cleared cell's value from the line from its boundary
     // intercept B along the normal to P = x + 1.5 h n, with P's trilinear stencil substituted.
-    struct Fresh {
-      PointStencil vel, pres;
-      Vec3 ub{};
-      double dpdn = 0, fraction = 0, offset = 0;
-    };
-    std::vector<Fresh> fs;
+    std::vector<ClearedCell> fs;
     fs.reserve(fresh_.size());
     for (const auto& f : fresh_) {
       const Vec3 x{grid_.xc(f[0]), grid_.yc(f[1]), grid_.zc(f[2])};
       const SurfaceHit b = surface_->closest(x);
-      Fresh e;
+      ClearedCell e;
       e.offset = 1.5 * std::max({grid_.dx(f[0]), grid_.dy(f[1]), grid_.dz(f[2])});
       e.fraction = b.distance / (b.distance + e.offset);
       const Vec3 P{x[0] + e.offset * b.normal[0], x[1] + e.offset * b.normal[1], x[2] + e.offset * b.normal[2]};
@@ -119,35 +114,10 @@ void FlowSolver::move_surface(double t) {
       e.dpdn = -dot3(surface_->interpolate(surface_state_.acceleration, b), b.normal);
       fs.push_back(e);
     }
-    for (int round = 0; round < 4; ++round) {
-      for (std::size_t n = 0; n < fs.size(); ++n) {
-        const auto& f = fresh_[n];
-        for (int c = 0; c < 3; ++c) {
-          Field& u = u_[static_cast<std::size_t>(c)];
-          const double ub = fs[n].ub[static_cast<std::size_t>(c)];
-          u(f[0], f[1], f[2]) = ub + (fs[n].vel.apply(u, ub) - ub) * fs[n].fraction;
-        }
-        p_(f[0], f[1], f[2]) = fs[n].pres.apply(p_, fs[n].dpdn) - fs[n].offset * fs[n].dpdn;
-      }
-      impose_body_velocity();
-      ib_->impose_neumann(p_, ib_dpdn_);
-    }
+    settle_cleared_cells(fs);
   } else {
-    impose_body_velocity();
-    ib_->impose_neumann(p_, ib_dpdn_);
+    settle_cleared_cells({});
   }
-  ib_->impose_neumann(phi_);
-  if (!opt_.fresh_cell_treatment) return;
-  // The faces of a cleared cell were body faces at t^n; its convective flux N^n needs fluid ones.
-  for (const auto& f : fresh_)
-    for (int d = 0; d < 3; ++d)
-      for (int side = 0; side < 2; ++side) {
-        int idx[3] = {f[0], f[1], f[2]};
-        idx[d] += side;
-        const int m = idx[d];
-        if ((m == 0 || m == grid_.n(d)) && !bnd_.periodic(d)) continue;
-        U_(d, idx[0], idx[1], idx[2]) = face_value(u_[static_cast<std::size_t>(d)], d, d, idx[0], idx[1], idx[2], bv_);
-      }
 }
 
 SurfaceForces FlowSolver::surface_forces(double rho) const {

@@ -1,0 +1,47 @@
+// Freshly cleared cells of a moving immersed body (Mittal et al. 2008, J. Comput. Phys. 227:4825,
+// section 2.4), the part shared by the 2-D polygon (moving_body.cpp) and the 3-D triangulated
+// surface (moving_surface.cpp): once each cleared cell has its line from the boundary intercept B
+// to P = x + 1.5 h n (ClearedCell, built by the caller from its own geometry), the cleared values
+//     u(x) = u_B + (u(P) - u_B) d / (d + 1.5 h),     p(x) = p(P) - 1.5 h dp/dn(B)
+// and the ghost values of the new geometry are iterated together (P's stencil may hold ghost cells
+// and other cleared cells; the weights are those of an interpolation, so a few rounds suffice),
+// and the cleared cells' faces, body faces at t^n, get fluid fluxes for their first N^n.
+#include "cfd/flow_solver.hpp"
+
+namespace finverse::cfd {
+
+void FlowSolver::settle_cleared_cells(const std::vector<ClearedCell>& cells) {
+  if (!cells.empty()) {
+    for (int round = 0; round < 4; ++round) {
+      for (std::size_t n = 0; n < cells.size(); ++n) {
+        const auto& f = fresh_[n];
+        const ClearedCell& e = cells[n];
+        for (int c = 0; c < dim(); ++c) {
+          Field& u = u_[static_cast<std::size_t>(c)];
+          const double ub = e.ub[static_cast<std::size_t>(c)];
+          u(f[0], f[1], f[2]) = ub + (e.vel.apply(u, ub) - ub) * e.fraction;
+        }
+        p_(f[0], f[1], f[2]) = e.pres.apply(p_, e.dpdn) - e.offset * e.dpdn;
+      }
+      impose_body_velocity();
+      ib_->impose_neumann(p_, ib_dpdn_);
+    }
+  } else {
+    impose_body_velocity();
+    ib_->impose_neumann(p_, ib_dpdn_);
+  }
+  ib_->impose_neumann(phi_);
+  if (!opt_.fresh_cell_treatment) return;
+  // The interpolation of the (cleared and ghost) cell values, as for the fluid faces of U*.
+  for (const auto& f : fresh_)
+    for (int d = 0; d < dim(); ++d)
+      for (int side = 0; side < 2; ++side) {
+        int idx[3] = {f[0], f[1], f[2]};
+        idx[d] += side;
+        const int m = idx[d];
+        if ((m == 0 || m == grid_.n(d)) && !bnd_.periodic(d)) continue;
+        U_(d, idx[0], idx[1], idx[2]) = face_value(u_[static_cast<std::size_t>(d)], d, d, idx[0], idx[1], idx[2], bv_);
+      }
+}
+
+}  // namespace finverse::cfd
