@@ -235,13 +235,22 @@ nlohmann::json read_reference(const std::string& path) {
 
 // ---- DFG cylinder benchmarks ---------------------------------------------------------------------
 
-struct DfgArgs {
+// Options of the immersed-body benchmarks (DFG, Turek-Hron, sphere): grid, duration, reference.
+struct BodyCaseArgs {
   int cells_per_diameter = 0;  // 0: the case's default
   double t_end = 0;            // 0: the case's default
-  std::string reference = "data/reference/schaefer_turek.json";
+  std::string reference;       // the case's data/reference/*.json
 };
 
-int dfg(int variant, bool coarse, const DfgArgs& a, const std::filesystem::path& out, double& wall_out) {
+// The options of BodyCaseArgs on subcommand sc; `t_unit` names the unit of --t-end.
+void add_body_case_options(CLI::App* sc, BodyCaseArgs& a, const std::string& t_unit) {
+  sc->add_option("--cells-per-diameter", a.cells_per_diameter, "grid: h = D / N in the box around the body")
+      ->check(CLI::Range(4, 1000));
+  sc->add_option("--t-end", a.t_end, "simulated time [" + t_unit + "]")->check(CLI::PositiveNumber);
+  sc->add_option("--reference", a.reference, "reference values (JSON)")->capture_default_str();
+}
+
+int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::path& out, double& wall_out) {
   const auto t0 = std::chrono::steady_clock::now();
   const nlohmann::json ref = read_reference(a.reference);
   const std::string key = variant == 1 ? "2D-1" : "2D-2";
@@ -323,13 +332,7 @@ int dfg(int variant, bool coarse, const DfgArgs& a, const std::filesystem::path&
 
 // ---- Turek-Hron CFD2 / CFD3 (rigid flag) ----------------------------------------------------------
 
-struct TurekHronArgs {
-  int cells_per_diameter = 0;  // 0: the case's default
-  double t_end = 0;            // 0: the case's default
-  std::string reference = "data/reference/turek_hron.json";
-};
-
-int turek_hron(int variant, bool coarse, const TurekHronArgs& a, const std::filesystem::path& out, double& wall_out) {
+int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::path& out, double& wall_out) {
   const auto t0 = std::chrono::steady_clock::now();
   const nlohmann::json ref = read_reference(a.reference);
   const std::string key = variant == 2 ? "CFD2" : "CFD3";
@@ -556,13 +559,7 @@ int cylinder_oscillating(bool coarse, const std::filesystem::path& out, double& 
 
 // ---- Sphere at Re 100 (3-D triangulated immersed boundary) ----------------------------------------
 
-struct SphereArgs {
-  int cells_per_diameter = 0;  // 0: the case's default
-  double t_end = 0;            // 0: the case's default
-  std::string reference = "data/reference/sphere.json";
-};
-
-int sphere_re100(bool coarse, const SphereArgs& a, const std::filesystem::path& out, double& wall_out) {
+int sphere_re100(bool coarse, const BodyCaseArgs& a, const std::filesystem::path& out, double& wall_out) {
   const auto t0 = std::chrono::steady_clock::now();
   const nlohmann::json ref = read_reference(a.reference);
   if (!ref.contains("Re100") || !ref["Re100"].contains("CD") || !ref["Re100"]["CD"].is_number())
@@ -648,30 +645,17 @@ int main(int argc, char** argv) {
   auto* couette = app.add_subcommand("ib_couette", "Couette flow between two immersed circles: observed order");
   auto* towed = app.add_subcommand("cylinder_towed", "towed cylinder against the fixed cylinder in a stream (Re 20)");
   auto* oscillating = app.add_subcommand("cylinder_oscillating", "in-line oscillating cylinder (KC 5, Re 100): force spikes");
-  DfgArgs dfg_args;
+  BodyCaseArgs dfg_args{0, 0, "data/reference/schaefer_turek.json"};
   auto* d1 = app.add_subcommand("dfg_2d1", "DFG 2D-1 cylinder benchmark (Re 20, steady), immersed boundary");
   auto* d2 = app.add_subcommand("dfg_2d2", "DFG 2D-2 cylinder benchmark (Re 100, periodic), immersed boundary");
-  for (auto* sc : {d1, d2}) {
-    sc->add_option("--cells-per-diameter", dfg_args.cells_per_diameter, "grid: h = D / N in the box around the cylinder")
-        ->check(CLI::Range(4, 1000));
-    sc->add_option("--t-end", dfg_args.t_end, "simulated time [s]")->check(CLI::PositiveNumber);
-    sc->add_option("--reference", dfg_args.reference, "reference bounds (JSON)")->capture_default_str();
-  }
-  TurekHronArgs th_args;
+  for (auto* sc : {d1, d2}) add_body_case_options(sc, dfg_args, "s");
+  BodyCaseArgs th_args{0, 0, "data/reference/turek_hron.json"};
   auto* th2 = app.add_subcommand("turek_hron_cfd2", "Turek-Hron CFD2 (Re 100, steady, rigid flag), immersed boundary");
   auto* th3 = app.add_subcommand("turek_hron_cfd3", "Turek-Hron CFD3 (Re 200, periodic, rigid flag), immersed boundary");
-  for (auto* sc : {th2, th3}) {
-    sc->add_option("--cells-per-diameter", th_args.cells_per_diameter, "grid: h = D / N in the box around the body")
-        ->check(CLI::Range(4, 1000));
-    sc->add_option("--t-end", th_args.t_end, "simulated time [s]")->check(CLI::PositiveNumber);
-    sc->add_option("--reference", th_args.reference, "reference values (JSON)")->capture_default_str();
-  }
-  SphereArgs sphere_args;
+  for (auto* sc : {th2, th3}) add_body_case_options(sc, th_args, "s");
+  BodyCaseArgs sphere_args{0, 0, "data/reference/sphere.json"};
   auto* sphere = app.add_subcommand("sphere_re100", "sphere at Re 100 (3-D triangulated immersed boundary): drag");
-  sphere->add_option("--cells-per-diameter", sphere_args.cells_per_diameter, "grid: h = D / N in the core around the sphere")
-      ->check(CLI::Range(4, 1000));
-  sphere->add_option("--t-end", sphere_args.t_end, "simulated time [D/U]")->check(CLI::PositiveNumber);
-  sphere->add_option("--reference", sphere_args.reference, "reference drag coefficient (JSON)")->capture_default_str();
+  add_body_case_options(sphere, sphere_args, "D/U");
   auto* fin_commands = fin_cfd::add_fin_commands(app);
   return cli::run(app, standard, argc, argv, [&]() -> int {
     if (int rc = 0; fin_cfd::run_fin_commands(*fin_commands, app, coarse, rc)) return rc;

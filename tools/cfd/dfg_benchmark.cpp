@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "cfd/channel_benchmark.hpp"
 #include "cfd/surface_traction.hpp"
 #include "core/error.hpp"
 
@@ -34,20 +35,8 @@ DfgResult run_dfg(const DfgSetup& ds) {
   const StretchedGrid grid(Axis::stretched_count(0, kLength, 0.1, 0.6, nx, ratio),
                            Axis::stretched_count(0, kHeight, kYc - kD, kYc + kD, ny, ratio));
 
-  FlowBoundary b;
-  b[Side::XLo].type = FlowBcType::Inlet;
-  b[Side::XLo].profile = InletProfile::Parabolic;
-  b[Side::XLo].speed = Um;
-  b[Side::XLo].ramp_time = ds.ramp_time;
-  b[Side::XHi].type = FlowBcType::ConvectiveOutlet;
-  FlowOptions opt;
-  opt.nu = kNu;
-  opt.cfl = ds.cfl;
-  opt.dt_max = ds.cfl * h / Um;
-  opt.helmholtz_rtol = 1e-10;
-  opt.poisson.rtol = 1e-9;
   FlowSolver solver;
-  solver.setup(grid, b, opt);
+  solver.setup(grid, channel_benchmark_boundary(Um, ds.ramp_time), channel_benchmark_options(kNu, ds.cfl, h, Um));
   const Polygon body = Polygon::circle(kXc, kYc, 0.5 * kD, ds.polygon_vertices);
   solver.immerse(body);
   solver.initialise({});

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "cfd/channel_benchmark.hpp"
 #include "cfd/surface_traction.hpp"
 #include "core/error.hpp"
 
@@ -67,20 +68,8 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
   const StretchedGrid grid(Axis::stretched_count(0, g.length, bx0, bx1, nx, ratio),
                            Axis::stretched_count(0, g.height, by0, by1, ny, ratio));
 
-  FlowBoundary b;
-  b[Side::XLo].type = FlowBcType::Inlet;
-  b[Side::XLo].profile = InletProfile::Parabolic;
-  b[Side::XLo].speed = Um;
-  b[Side::XLo].ramp_time = ts.ramp_time;
-  b[Side::XHi].type = FlowBcType::ConvectiveOutlet;
-  FlowOptions opt;
-  opt.nu = kNu;
-  opt.cfl = ts.cfl;
-  opt.dt_max = ts.cfl * h / Um;
-  opt.helmholtz_rtol = 1e-10;
-  opt.poisson.rtol = 1e-9;
   FlowSolver solver;
-  solver.setup(grid, b, opt);
+  solver.setup(grid, channel_benchmark_boundary(Um, ts.ramp_time), channel_benchmark_options(kNu, ts.cfl, h, Um));
   const Polygon body = turek_hron_body(g, ts.circle_vertices);
   solver.immerse(body);
   solver.initialise({});
