@@ -49,6 +49,20 @@ import tempfile
 import time
 
 
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def portable(arg):
+    """A path as the stored reference should show it: relative to the repository when inside it,
+    else only its file name (scratch outputs), so no machine's directories end up in data/."""
+    if not arg.startswith("/"):
+        return arg
+    full = os.path.abspath(arg)
+    if full.startswith(REPO + os.sep):
+        return os.path.relpath(full, REPO)
+    return os.path.basename(full)
+
 def node_id(i, k, nz2):
     return 1 + i * (nz2 + 1) + k
 
@@ -480,7 +494,7 @@ def main():
     args = ap.parse_args()
     with open(args.case) as fh:
         case = json.load(fh)
-    case["_path"] = args.case
+    case["_path"] = portable(args.case)
     case["_ccx_alpha"] = args.alpha
     case["_ccx_method"] = args.dynamic_method
     case["_ccx_modes"] = args.modes
@@ -491,8 +505,8 @@ def main():
     if len(nxs) != len(nzs):
         raise SystemExit("calculix_hybrid_plate: give as many --nz as --nx")
     version = subprocess.run(["ccx", "-v"], capture_output=True, text=True).stdout.strip().splitlines()
-    result = {"peer": "CalculiX " + (version[-1].split()[-1] if version else "?"), "case": args.case,
-              "command": " ".join([os.path.basename(sys.argv[0])] + sys.argv[1:]),
+    result = {"peer": "CalculiX " + (version[-1].split()[-1] if version else "?"), "case": portable(args.case),
+              "command": " ".join([os.path.basename(sys.argv[0])] + [portable(a) for a in sys.argv[1:]]),
               "date": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
               "omp_threads": int(os.environ.get("OMP_NUM_THREADS", "2")), "runs": []}
     analyses = ["static", "dynamic"] if args.analysis == "both" else [args.analysis]
