@@ -30,6 +30,19 @@ class CholmodLLT : public Eigen::CholmodBase<SparseSolver::SparseMatrix, Eigen::
   double rcond() const { return cholmod_rcond(m_cholmodFactor, &m_cholmod); }
 };
 constexpr double kSingularPivotRatio = 1e-13;
+
+// Numeric factorisation of A with the symbolic analysis done once per pattern (the reuse across
+// Newton iterations and runs); true when the factorisation succeeded.
+template <class Solver>
+bool factor(Solver& solver, bool& analysed, int& symbolic_count, const SparseSolver::SparseMatrix& A) {
+  if (!analysed) {
+    solver.analyzePattern(A);
+    analysed = true;
+    ++symbolic_count;
+  }
+  solver.factorize(A);
+  return solver.info() == Eigen::Success;
+}
 }  // namespace
 
 struct SparseSolver::Impl {
@@ -90,36 +103,16 @@ void SparseSolver::factorize(const SparseMatrix& A, const std::string& what) {
       throw NotConverged(what + " contains NaN/Inf entries (the solution diverged)");
   ++numeric_count_;
   if (backend_ == SolverBackend::sparse_lu) {
-    auto& lu = impl_->lu;
-    if (!impl_->lu_analysed) {
-      lu.analyzePattern(A);
-      impl_->lu_analysed = true;
-      ++symbolic_count_;
-    }
-    lu.factorize(A);
-    if (lu.info() != Eigen::Success) singular(what, -1, 0.0);
+    if (!factor(impl_->lu, impl_->lu_analysed, symbolic_count_, A)) singular(what, -1, 0.0);
     return;
   }
   if (backend_ == SolverBackend::umfpack) {
-    auto& lu = impl_->umfpack;
-    if (!impl_->lu_analysed) {
-      lu.analyzePattern(A);
-      impl_->lu_analysed = true;
-      ++symbolic_count_;
-    }
-    lu.factorize(A);
-    if (lu.info() != Eigen::Success) singular(what, -1, 0.0);
+    if (!factor(impl_->umfpack, impl_->lu_analysed, symbolic_count_, A)) singular(what, -1, 0.0);
     return;
   }
   use_ldlt_now_ = backend_ == SolverBackend::simplicial_ldlt;
   if (!use_ldlt_now_) {
-    if (!impl_->cholmod_analysed) {
-      impl_->cholmod.analyzePattern(A);
-      impl_->cholmod_analysed = true;
-      ++symbolic_count_;
-    }
-    impl_->cholmod.factorize(A);
-    if (impl_->cholmod.info() == Eigen::Success) {
+    if (factor(impl_->cholmod, impl_->cholmod_analysed, symbolic_count_, A)) {
       const double rc = impl_->cholmod.rcond();
       if (!(rc > kSingularPivotRatio)) singular(what, -1, rc);
       return;
@@ -127,12 +120,7 @@ void SparseSolver::factorize(const SparseMatrix& A, const std::string& what) {
     use_ldlt_now_ = true;  // not positive definite: indefinite tangent or singular
   }
   auto& ldlt = impl_->ldlt;
-  if (!impl_->ldlt_analysed) {
-    ldlt.analyzePattern(A);
-    impl_->ldlt_analysed = true;
-    ++symbolic_count_;
-  }
-  ldlt.factorize(A);
+  factor(ldlt, impl_->ldlt_analysed, symbolic_count_, A);
   const Eigen::VectorXd D = ldlt.vectorD();
   const double dmax = D.cwiseAbs().maxCoeff();
   Eigen::Index worst = 0;
