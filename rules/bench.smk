@@ -26,9 +26,51 @@ if have("fin-poisson-hypre"):
             " OMP_WAIT_POLICY=PASSIVE {input.ours} {params.sizes} --threads {threads} --peer {output.peer} --json {output.json}"
             " || [ $? -eq 1 ]) > {log} 2>&1"
 
+# DFG 2D-2 (Re 100) wall time against OpenFOAM (Debian openfoam, pimpleFoam, second order in space
+# and time, on a structured O-grid) on the same cores: each code on a sequence of meshes, and
+# fin-cfd-bench compares the cheapest run of each that is within 1% of the bound midpoints. The
+# jobs take all THREADS cores, so with -c THREADS they run one at a time (nothing else timed
+# beside them). Full variant only: the coarse grids grade nothing.
+DFG_BENCH_FINVERSE = [32, 48]
+DFG_BENCH_OPENFOAM = [16, 24, 32]
+
+if have("fin-cfd"):
+    rule bench_dfg2d2_finverse:
+        input:
+            exe=EXE("fin-cfd"),
+            reference=os.path.join(REPO, "data", "reference", "schaefer_turek.json"),
+        output:
+            "results/bench/dfg2d2/finverse_N{n}/dfg_2d2/summary.json",
+        log:
+            "results/logs/bench/dfg2d2_finverse_N{n}.log",
+        threads: THREADS
+        resources:
+            mem_mb=500,
+        shell:
+            "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} --out-dir results/bench/dfg2d2/finverse_N{wildcards.n}"
+            " dfg_2d2 --cells-per-diameter {wildcards.n} --reference {input.reference} > {log} 2>&1 || [ $? -eq 1 ]"
+
+rule bench_dfg2d2_openfoam:
+    input:
+        script=os.path.join(SCRIPTS, "openfoam_dfg.py"),
+    output:
+        "results/bench/dfg2d2/openfoam.json",
+    log:
+        "results/logs/bench/dfg2d2_openfoam.log",
+    threads: THREADS
+    resources:
+        mem_mb=2000,
+    params:
+        cells=" ".join(f"--cells {n}" for n in DFG_BENCH_OPENFOAM),
+    shell:
+        "if ! command -v pimpleFoam > /dev/null; then"
+        "   echo 'bench_dfg2d2_openfoam: OpenFOAM (pimpleFoam) not found; install the Debian package openfoam"
+        " (tools/scripts/install-deps.sh --peers)' >&2; exit 2; fi;"
+        " python3 {input.script} {params.cells} --ranks {threads} --t-end 10 --window 3 --out {output} > {log} 2>&1"
+
 # The flow solver's benchmark file (issue 4): the Poisson comparison above (when hypre is built),
 # the cost per cell per time step of the fractional step on the 3-D Taylor-Green vortex at three
-# grid sizes (graded for flatness), and a "not measured" place for DFG 2D-2 against OpenFOAM.
+# grid sizes (graded for flatness), and DFG 2D-2 against OpenFOAM (full variant).
 if have("fin-cfd-bench"):
     register_bench("cfd", "flow solver: Poisson vs hypre, cost per cell per time step, DFG 2D-2 vs OpenFOAM")
 
@@ -36,19 +78,24 @@ if have("fin-cfd-bench"):
         input:
             exe=EXE("fin-cfd-bench"),
             poisson=["results/bench/poisson.json"] if have("fin-poisson-hypre") else [],
+            dfg=[] if COARSE or not have("fin-cfd") else
+                [f"results/bench/dfg2d2/finverse_N{n}/dfg_2d2/summary.json" for n in DFG_BENCH_FINVERSE],
+            openfoam=[] if COARSE or not have("fin-cfd") else ["results/bench/dfg2d2/openfoam.json"],
         output:
             json="results/bench/cfd.json",
         params:
             sizes=" ".join(f"-n {n}" for n in ([16, 24, 32] if COARSE else [64, 96, 128])),
             steps="--warmup 1 --steps 2" if COARSE else "--warmup 2 --steps 5",
             poisson=lambda wildcards, input: f"--poisson {input.poisson}" if input.poisson else "",
+            dfg=lambda wildcards, input: " ".join(f"--dfg {p}" for p in input.dfg)
+                + (f" --openfoam {input.openfoam}" if input.openfoam else ""),
         log:
             "results/logs/bench/cfd.log",
         threads: THREADS
         resources:
             mem_mb=3000,
         shell:
-            "(OMP_WAIT_POLICY=PASSIVE {input.exe} {params.sizes} {params.steps} {params.poisson} --threads {threads}"
+            "(OMP_WAIT_POLICY=PASSIVE {input.exe} {params.sizes} {params.steps} {params.poisson} {params.dfg} --threads {threads}"
             " --json {output.json} || [ $? -eq 1 ]) > {log} 2>&1"
 
 # Structural FEM against CalculiX (issue 3): the Sze end-shear strip and the hybrid plate, each
