@@ -3,6 +3,7 @@
 // The sub-steps themselves live one per file (momentum_predictor.cpp, pressure_correction.cpp,
 // velocity_update.cpp, time_step_control.cpp, boundary_values.cpp).
 #include "cfd/flow_solver.hpp"
+#include "cfd/vortex_identification.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -377,7 +378,11 @@ std::vector<StateArray> FlowSolver::cell_output() const {
     pres.values[m] = ph(i, j, k);
     div.values[m] = divergence(U_, i, j, k);
   });
-  return {vel, pres, div};
+  // Vorticity and lambda_2 from fluid cells only: inside an immersed body the velocity is the
+  // ghost-cell extrapolation, not flow.
+  VortexFields vf = vortex_fields(grid_, {&u_[0], &u_[1], dim() == 3 ? &u_[2] : nullptr},
+                                  [this](int i, int j, int k) { return fluid(i, j, k); });
+  return {vel, pres, div, {"vorticity", std::move(vf.vorticity)}, {"lambda2", std::move(vf.lambda2)}};
 }
 
 namespace {

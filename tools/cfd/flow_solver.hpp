@@ -183,7 +183,8 @@ class FlowSolver {
   double last_dt() const { return dt_old_; }
 
   // Cell-centred output arrays (interior cells, x fastest): "velocity" [n, 3], "pressure" [n]
-  // (kinematic), "divergence" [n] (of the face velocities).
+  // (kinematic), "divergence" [n] (of the face velocities), "vorticity" [n, 3] and "lambda2" [n]
+  // (Jeong & Hussain's vortex criterion, vortex_identification.hpp; zero in solid cells).
   std::vector<StateArray> cell_output() const;
 
   // Diagnostics (flow_diagnostics.cpp), all deterministic.

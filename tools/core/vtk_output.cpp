@@ -18,6 +18,7 @@
 #include <vtkZLibDataCompressor.h>
 
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include "core/atomic_file.hpp"
@@ -151,39 +152,65 @@ void write_unstructured(const std::filesystem::path& vtu, const NdArray<double>&
   write_xml<vtkXMLUnstructuredGridWriter>(grid.Get(), vtu);
 }
 
-void write_grid_series(const std::filesystem::path& pvd, const std::vector<double>& times,
-                       const std::vector<double>& x_faces, const std::vector<double>& y_faces,
-                       const std::vector<double>& z_faces, const std::vector<GridFrame>& frames) {
-  const std::string where = pvd.string();
-  if (times.size() != frames.size())
-    throw Error(where + ": " + std::to_string(times.size()) + " times for " + std::to_string(frames.size()) + " frames");
-  auto coords = [&](const std::vector<double>& f, const char* axis) {
-    for (std::size_t i = 1; i < f.size(); ++i)
-      if (!(f[i] > f[i - 1])) throw Error(where + ": " + axis + " face coordinates must increase strictly");
+GridSeries::GridSeries(std::filesystem::path pvd, std::vector<double> x_faces, std::vector<double> y_faces,
+                       std::vector<double> z_faces)
+    : pvd_(std::move(pvd)), x_(std::move(x_faces)), y_(std::move(y_faces)), z_(std::move(z_faces)) {
+  const std::string where = pvd_.string();
+  if (x_.size() < 2 || y_.size() < 2 || z_.empty())
+    throw Error(where + ": a grid needs at least 2 x and y faces and 1 z face");
+  for (const auto* f : {&x_, &y_, &z_})
+    for (std::size_t i = 1; i < f->size(); ++i)
+      if (!((*f)[i] > (*f)[i - 1]))
+        throw Error(where + ": " + (f == &x_ ? "x" : f == &y_ ? "y" : "z") + " face coordinates must increase strictly");
+}
+
+void GridSeries::resume(double t_max) {
+  std::ifstream in(pvd_);
+  if (!in) return;  // nothing written before: start a new series
+  std::string line;
+  entries_.clear();
+  // The collections this class writes: one <DataSet timestep="t" part="0" file="..."/> per line.
+  while (std::getline(in, line)) {
+    const auto ts = line.find("timestep=\""), fs = line.find("file=\"");
+    if (ts == std::string::npos || fs == std::string::npos) continue;
+    const double t = std::stod(line.substr(ts + 10));
+    const auto fe = line.find('"', fs + 6);
+    if (t <= t_max) entries_.emplace_back(t, line.substr(fs + 6, fe - fs - 6));
+  }
+}
+
+void GridSeries::add(double t, const GridFrame& frame) {
+  const std::string where = pvd_.string();
+  const std::size_t ncells = (x_.size() - 1) * (y_.size() - 1) * std::max<std::size_t>(z_.size() - 1, 1);
+  auto coords = [](const std::vector<double>& f) {
     vtkNew<vtkDoubleArray> c;
     c->SetNumberOfTuples(static_cast<vtkIdType>(f.size()));
     std::copy(f.begin(), f.end(), c->GetPointer(0));
     return c;
   };
-  if (x_faces.size() < 2 || y_faces.size() < 2 || z_faces.empty())
-    throw Error(where + ": a grid needs at least 2 x and y faces and 1 z face");
-  const std::size_t ncells = (x_faces.size() - 1) * (y_faces.size() - 1) * std::max<std::size_t>(z_faces.size() - 1, 1);
-  auto xc = coords(x_faces, "x");
-  auto yc = coords(y_faces, "y");
-  auto zc = coords(z_faces, "z");
-  std::vector<std::pair<double, std::string>> entries;
-  for (std::size_t f = 0; f < frames.size(); ++f) {
-    vtkNew<vtkRectilinearGrid> grid;
-    grid->SetDimensions(static_cast<int>(x_faces.size()), static_cast<int>(y_faces.size()), static_cast<int>(z_faces.size()));
-    grid->SetXCoordinates(xc);
-    grid->SetYCoordinates(yc);
-    grid->SetZCoordinates(zc);
-    for (const auto& a : frames[f].cell_data) grid->GetCellData()->AddArray(to_vtk(a, ncells, where));
-    const auto name = frame_name(pvd, f, ".vtr");
-    write_xml<vtkXMLRectilinearGridWriter>(grid.Get(), pvd.parent_path() / name);
-    entries.emplace_back(times[f], name);
-  }
-  write_pvd(pvd, entries);
+  auto xc = coords(x_);
+  auto yc = coords(y_);
+  auto zc = coords(z_);
+  vtkNew<vtkRectilinearGrid> grid;
+  grid->SetDimensions(static_cast<int>(x_.size()), static_cast<int>(y_.size()), static_cast<int>(z_.size()));
+  grid->SetXCoordinates(xc);
+  grid->SetYCoordinates(yc);
+  grid->SetZCoordinates(zc);
+  for (const auto& a : frame.cell_data) grid->GetCellData()->AddArray(to_vtk(a, ncells, where));
+  const auto name = frame_name(pvd_, entries_.size(), ".vtr");
+  write_xml<vtkXMLRectilinearGridWriter>(grid.Get(), pvd_.parent_path() / name);
+  entries_.emplace_back(t, name);
+  write_pvd(pvd_, entries_);  // after the frame: the collection never names an unfinished file
+}
+
+void write_grid_series(const std::filesystem::path& pvd, const std::vector<double>& times,
+                       const std::vector<double>& x_faces, const std::vector<double>& y_faces,
+                       const std::vector<double>& z_faces, const std::vector<GridFrame>& frames) {
+  if (times.size() != frames.size())
+    throw Error(pvd.string() + ": " + std::to_string(times.size()) + " times for " + std::to_string(frames.size()) +
+                " frames");
+  GridSeries series(pvd, x_faces, y_faces, z_faces);
+  for (std::size_t f = 0; f < frames.size(); ++f) series.add(times[f], frames[f]);
 }
 
 }  // namespace finverse::vtkio

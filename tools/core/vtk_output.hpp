@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/nd_array.hpp"
@@ -47,6 +48,24 @@ struct GridFrame {
 void write_grid_series(const std::filesystem::path& pvd, const std::vector<double>& times,
                        const std::vector<double>& x_faces, const std::vector<double>& y_faces,
                        const std::vector<double>& z_faces, const std::vector<GridFrame>& frames);
+
+// The same series written one frame at a time during a run (each add() writes its .vtr, then
+// rewrites the .pvd), so a long run's snapshots never have to sit in memory together.
+class GridSeries {
+ public:
+  GridSeries(std::filesystem::path pvd, std::vector<double> x_faces, std::vector<double> y_faces,
+             std::vector<double> z_faces);
+  // Continue an existing collection after a restart: keep its frames up to time t_max (later ones
+  // belong to the interrupted run and are overwritten). No file: start empty.
+  void resume(double t_max);
+  void add(double t, const GridFrame& frame);
+  std::size_t size() const { return entries_.size(); }
+
+ private:
+  std::filesystem::path pvd_;
+  std::vector<double> x_, y_, z_;
+  std::vector<std::pair<double, std::string>> entries_;
+};
 
 // The .pvd collection itself: (time, file relative to the .pvd) pairs.
 void write_pvd(const std::filesystem::path& pvd, const std::vector<std::pair<double, std::string>>& entries);

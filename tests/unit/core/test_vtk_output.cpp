@@ -2,6 +2,9 @@
 // 5.11 uses): a moving triangle surface (.pvd + .vtp), an unstructured shell+beam mesh (.vtu)
 // and cell fields on a stretched grid (.pvd + .vtr).
 #include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkNew.h>
@@ -91,6 +94,45 @@ TEST(VtkOutput, StretchedGridFieldsReadBack) {
   g->GetCell(7)->GetBounds();
   g->GetPoint(0, c);
   EXPECT_DOUBLE_EQ(c[1], -1.0);
+}
+
+TEST(VtkOutput, GridSeriesWritesFrameByFrameAndResumesAfterARestart) {
+  test::ScratchDir dir;
+  const std::vector<double> x{0, 0.5, 1}, y{0, 1}, z{0};
+  const auto frame = [](double v) {
+    vtkio::GridFrame f;
+    f.cell_data.push_back({"p", NdArray<double>({2}, {v, -v})});
+    return f;
+  };
+  const auto pvd_text = [&] {
+    std::ifstream in(dir / "flow.pvd");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  {
+    vtkio::GridSeries s(dir / "flow.pvd", x, y, z);
+    for (int f = 0; f < 3; ++f) {
+      s.add(0.1 * f, frame(f));
+      // The collection names every frame written so far, and only those.
+      EXPECT_NE(pvd_text().find("flow_00000" + std::to_string(f) + ".vtr"), std::string::npos);
+      EXPECT_EQ(pvd_text().find("flow_00000" + std::to_string(f + 1) + ".vtr"), std::string::npos);
+    }
+  }
+  // A run restarted from t = 0.1 keeps frames 0 and 1 and writes its next one as frame 2.
+  vtkio::GridSeries s(dir / "flow.pvd", x, y, z);
+  s.resume(0.1 + 1e-12);
+  EXPECT_EQ(s.size(), 2u);
+  s.add(0.15, frame(7));
+  const std::string text = pvd_text();
+  EXPECT_NE(text.find("timestep=\"0.14999999999999999\""), std::string::npos) << text;
+  EXPECT_EQ(text.find("timestep=\"0.20000000000000001\""), std::string::npos) << text;
+  vtkNew<vtkXMLRectilinearGridReader> reader;
+  reader->SetFileName((dir / "flow/flow_000002.vtr").c_str());
+  reader->Update();
+  EXPECT_DOUBLE_EQ(reader->GetOutput()->GetCellData()->GetArray("p")->GetComponent(0, 0), 7.0);
+  // No earlier file: resume starts an empty series.
+  vtkio::GridSeries fresh(dir / "other.pvd", x, y, z);
+  fresh.resume(1.0);
+  EXPECT_EQ(fresh.size(), 0u);
 }
 
 TEST(VtkOutput, BadInputNamesTheFile) {
