@@ -28,6 +28,8 @@ struct FinCommands {
   CLI::App* plate = nullptr;
   fs::path mesh, motion, out, summary;
   cfd::io::FinFlowOptions flow;
+  long checkpoint_every = 0;
+  fs::path checkpoint, restart;
   fs::path plate_mesh, plate_motion;
   double plate_thickness = 0.1;  // / chord
   int plate_frames = 40;
@@ -53,15 +55,33 @@ int run_fin(const FinCommands& c, const CLI::App& app) {
             (in.layout.wrap ? "periodic, spline period " + fmt("%.6g s", *in.layout.wrap)
                             : "not periodic" + (in.layout.note.empty() ? std::string() : " (" + in.layout.note + ")")));
   cfd::io::FinFlowStats st;
+  cfd::io::FinCheckpointing ck;
+  ck.every = c.checkpoint_every;
+  ck.file = !c.checkpoint.empty() ? c.checkpoint
+                                  : c.out.parent_path() / (c.out.stem().string() + ".checkpoint.h5");
+  ck.restart = c.restart;
+  // Progress counts the steps of this run (a restart's ETA from its own rate); the line names the
+  // run's step.
   std::unique_ptr<log::Progress> progress;
+  long first = 0;
   const auto report = [&](long n, long total, const cfd::StepStats& s) {
-    if (!progress) progress = std::make_unique<log::Progress>("fin-cfd fin step", static_cast<std::size_t>(total));
-    progress->update(static_cast<std::size_t>(n), "t " + fmt("%.5f s", s.time) + "  CFL " + fmt("%.3f", s.cfl) +
-                                                      "  Poisson " + std::to_string(s.poisson_iterations) + " it  div " +
-                                                      fmt("%.1e", s.max_divergence));
+    if (!progress) {
+      first = n - 1;
+      progress = std::make_unique<log::Progress>(
+          first ? "fin-cfd fin steps since the restart at step " + std::to_string(first) : std::string("fin-cfd fin step"),
+          static_cast<std::size_t>(total - first));
+    }
+    progress->update(static_cast<std::size_t>(n - first),
+                     (first ? "step " + std::to_string(n) + "/" + std::to_string(total) + "  " : std::string()) + "t " +
+                         fmt("%.5f s", s.time) + "  CFL " + fmt("%.3f", s.cfl) + "  Poisson " +
+                         std::to_string(s.poisson_iterations) + " it  div " + fmt("%.1e", s.max_divergence));
   };
-  stage::Loads loads = cfd::io::run_fin_flow(in, c.flow, st, report);
+  if (!ck.restart.empty()) log::info("restarting from " + ck.restart.string());
+  stage::Loads loads = cfd::io::run_fin_flow(in, c.flow, st, report, ck);
   if (progress) progress->finish("t " + fmt("%.5f s", st.t_end));
+  if (st.checkpoints > 0)
+    log::info("wrote " + std::to_string(st.checkpoints) + " checkpoints to " + ck.file.string() + " (" +
+              fmt("%.2f s", st.checkpoint_seconds) + " in all)");
   const auto& g = st.grid;
   log::info("grid " + std::to_string(g.nx()) + " x " + std::to_string(g.ny()) + " x " + std::to_string(g.nz()) + " (h = c/" +
             fmt("%.3g", st.chord / st.h) + ", body thickness " + fmt("%.2f", in.motion->body().thickness / st.h) +
@@ -178,6 +198,11 @@ FinCommands* add_fin_commands(CLI::App& app) {
   f->add_option("--output-interval", o.output_interval, "time between outputs [s]; 0: the motion's frame spacing")
       ->capture_default_str();
   f->add_option("--poisson-rtol", o.poisson_rtol, "pressure Poisson relative tolerance")->capture_default_str();
+  f->add_option("--checkpoint-every", c.checkpoint_every, "write a checkpoint every N steps (0: never)")
+      ->capture_default_str();
+  f->add_option("--checkpoint", c.checkpoint, "checkpoint file (default: <out stem>.checkpoint.h5 next to --out)");
+  f->add_option("--restart", c.restart, "continue from this checkpoint (same inputs and options)")
+      ->check(CLI::ExistingFile);
 
   c.plate = app.add_subcommand("thin_plate", "heaving and pitching rigid thin plate as mesh.h5 + motion.h5");
   c.plate->add_option("--mesh", c.plate_mesh, "output mesh.h5")->required();

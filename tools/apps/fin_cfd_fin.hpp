@@ -3,7 +3,9 @@
 //
 //   fin-cfd fin --mesh mesh.h5 --motion motion.h5 --out loads.h5 [--reynolds 1000] [--periods 2] ...
 //       prescribed-motion flow around the fin's closed thin body; loads.h5 per the contract;
-//       --summary FILE also writes a validation summary (nodal loads sum = integrated force)
+//       --summary FILE also writes a validation summary (nodal loads sum = integrated force);
+//       --checkpoint-every N [--checkpoint FILE] writes checkpoints, --restart FILE continues from
+//       one (same inputs and options) to the same loads.h5 datasets bit for bit
 //   fin-cfd thin_plate --mesh mesh.h5 --motion motion.h5 [--coarse]
 //       the heaving and pitching rigid thin plate of the thin_plate_loads validation as stage files
 #pragma once

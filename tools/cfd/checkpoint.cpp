@@ -6,7 +6,19 @@
 
 namespace finverse::cfd {
 
-void write_checkpoint(const std::filesystem::path& path, const FlowSolver& solver, const std::string& config) {
+namespace {
+
+h5::File open_checkpoint(const std::filesystem::path& path) {
+  auto file = h5::File::open_read(path);
+  if (file.attr_string(".", "schema").value_or("") != "finverse/cfd-checkpoint")
+    throw Error(path.string() + ": not a flow-solver checkpoint (root attribute schema != finverse/cfd-checkpoint)");
+  return file;
+}
+
+}  // namespace
+
+void write_checkpoint(const std::filesystem::path& path, const FlowSolver& solver, const std::string& config,
+                      const std::vector<StateArray>& run) {
   auto file = h5::File::create(path);
   file.set_attr(".", "schema", std::string("finverse/cfd-checkpoint"));
   file.set_attr(".", "schema_version", std::int64_t{1});
@@ -16,13 +28,16 @@ void write_checkpoint(const std::filesystem::path& path, const FlowSolver& solve
     if (a.values.empty()) continue;  // e.g. Neumann sides: no boundary values
     g.write(a.name, NdArray<double>({a.values.size()}, a.values), h5::WriteOptions{"", false});
   }
+  if (!run.empty()) {
+    auto r = file.create_group("run");
+    for (const StateArray& a : run)
+      if (!a.values.empty()) r.write(a.name, NdArray<double>({a.values.size()}, a.values), h5::WriteOptions{"", false});
+  }
   file.commit();
 }
 
-void read_checkpoint(const std::filesystem::path& path, FlowSolver& solver) {
-  auto file = h5::File::open_read(path);
-  if (file.attr_string(".", "schema").value_or("") != "finverse/cfd-checkpoint")
-    throw Error(path.string() + ": not a flow-solver checkpoint (root attribute schema != finverse/cfd-checkpoint)");
+void read_checkpoint(const std::filesystem::path& path, FlowSolver& solver, std::vector<StateArray>* run) {
+  auto file = open_checkpoint(path);
   auto g = file.group("state");
   std::vector<StateArray> state = solver.state();
   for (StateArray& a : state) {
@@ -32,7 +47,22 @@ void read_checkpoint(const std::filesystem::path& path, FlowSolver& solver) {
     }
     a.values = g.read_f64(a.name).data;
   }
-  solver.restore(state);
+  if (run) {
+    const bool any = file.exists("run");
+    for (StateArray& a : *run) {
+      a.values.clear();
+      if (any && file.exists("run/" + a.name)) a.values = file.group("run").read_f64(a.name).data;
+    }
+  }
+  try {
+    solver.restore(state);
+  } catch (const Error& e) {
+    throw Error(path.string() + ": " + e.what());
+  }
+}
+
+std::string checkpoint_config(const std::filesystem::path& path) {
+  return open_checkpoint(path).attr_string(".", "config").value_or("{}");
 }
 
 }  // namespace finverse::cfd

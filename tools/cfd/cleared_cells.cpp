@@ -6,11 +6,28 @@
 // and the ghost values of the new geometry are iterated together (P's stencil may hold ghost cells
 // and other cleared cells; the weights are those of an interpolation, so a few rounds suffice),
 // and the cleared cells' faces, body faces at t^n, get fluid fluxes for their first N^n.
+// The ghost values imposed here serve the cleared cells' stencils and the implicit part of the
+// step; the explicit terms act on u^n, so afterwards every ghost cell of the new geometry that was
+// a fluid or ghost cell at t^n gets its u^n back (flow_solver.hpp: re-imposed for the body's new
+// position they would move the wall by U dt within the explicit terms). Cells that were solid at
+// t^n keep the new ghost values: they had no value the fluid saw.
+#include <array>
+#include <vector>
+
 #include "cfd/flow_solver.hpp"
 
 namespace finverse::cfd {
 
-void FlowSolver::settle_cleared_cells(const std::vector<ClearedCell>& cells) {
+void FlowSolver::settle_cleared_cells(const GhostCellSet& old, const std::vector<ClearedCell>& cells) {
+  std::vector<std::array<int, 3>> kept;
+  std::vector<double> kept_u;
+  for (int k = 0; k < grid_.nz(); ++k)
+    for (int j = 0; j < grid_.ny(); ++j)
+      for (int i = 0; i < grid_.nx(); ++i)
+        if (ib_->kind(i, j, k) == CellKind::Ghost && old.kind(i, j, k) != CellKind::Solid) {
+          kept.push_back({i, j, k});
+          for (int c = 0; c < dim(); ++c) kept_u.push_back(u_[static_cast<std::size_t>(c)](i, j, k));
+        }
   if (!cells.empty()) {
     for (int round = 0; round < 4; ++round) {
       for (std::size_t n = 0; n < cells.size(); ++n) {
@@ -31,6 +48,8 @@ void FlowSolver::settle_cleared_cells(const std::vector<ClearedCell>& cells) {
     ib_->impose_neumann(p_, ib_dpdn_);
   }
   ib_->impose_neumann(phi_);
+  for (std::size_t n = 0, m = 0; n < kept.size(); ++n)
+    for (int c = 0; c < dim(); ++c) u_[static_cast<std::size_t>(c)](kept[n][0], kept[n][1], kept[n][2]) = kept_u[m++];
   if (!opt_.fresh_cell_treatment) return;
   // The interpolation of the (cleared and ghost) cell values, as for the fluid faces of U*.
   for (const auto& f : fresh_)

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "cfd/channel_benchmark.hpp"
+#include "cfd/control_volume_force.hpp"
 #include "cfd/surface_traction.hpp"
 #include "core/error.hpp"
 
@@ -24,15 +25,16 @@ DfgResult run_dfg(const DfgSetup& ds) {
   const auto t0 = std::chrono::steady_clock::now();
   const double Um = ds.variant == 1 ? 0.3 : 1.5, Ubar = 2 * Um / 3;
   const double h = kD / ds.cells_per_diameter;
-  const double ratio = 1.05;
-  const int nx = round8(Axis::stretched(0, kLength, 0.1, 0.6, h, ratio).size());
+  const double ratio = ds.stretch_ratio;
+  if (!(ds.box_x1 > kXc + kD && ds.box_x1 < kLength)) throw Error("dfg: box_x1 must lie between the cylinder and the outlet");
+  const int nx = round8(Axis::stretched(0, kLength, 0.1, ds.box_x1, h, ratio).size());
   // In y a uniform core [0.1, 0.3], symmetric about the cylinder's centre, so that the ghost-cell
   // pattern is mirror symmetric and the lift carries no alignment error (the channel's own
   // asymmetry, 0.2 vs 0.21 to the walls, is what makes CL of 2D-1 non-zero); mild stretching to the
   // walls. With a uniform y axis over the whole channel, CL changed non-monotonically with N
   // (0.0259, 0.0143, 0.0025, 0.0139 for N = 12, 24, 32, 48).
   const int ny = round8(Axis::stretched(0, kHeight, kYc - kD, kYc + kD, h, ratio).size());
-  const StretchedGrid grid(Axis::stretched_count(0, kLength, 0.1, 0.6, nx, ratio),
+  const StretchedGrid grid(Axis::stretched_count(0, kLength, 0.1, ds.box_x1, nx, ratio),
                            Axis::stretched_count(0, kHeight, kYc - kD, kYc + kD, ny, ratio));
 
   FlowSolver solver;
@@ -41,6 +43,9 @@ DfgResult run_dfg(const DfgSetup& ds) {
   solver.immerse(body);
   solver.initialise({});
   const SurfaceTraction traction(grid, *solver.immersed(), body);
+  const auto& cvb = ds.control_volume;
+  const ControlVolumeForce control_volume(grid, *solver.immersed(), cvb[0], cvb[1], cvb[2], cvb[3]);
+  std::vector<ControlVolumeSample> cv;
 
   DfgResult r;
   r.cells = static_cast<long>(grid.cells());
@@ -58,11 +63,21 @@ DfgResult run_dfg(const DfgSetup& ds) {
     s.t = st.time;
     s.cd = scale * L.force[0];
     s.cl = scale * L.force[1];
+    s.cd_pressure = scale * L.pressure_force[0];
+    s.cl_pressure = scale * L.pressure_force[1];
+    cv.push_back(control_volume.evaluate(st.time, solver.u(0), solver.u(1), solver.face_velocity(), solver.p(), kNu));
     s.dp = traction.wall_pressure(solver.p(), kXc - 0.5 * kD, kYc) - traction.wall_pressure(solver.p(), kXc + 0.5 * kD, kYc);
     r.history.push_back(s);
     if (ds.progress) ds.progress(st);
   }
   if (r.history.empty()) throw Error("dfg: t_end must be > 0");
+  if (cv.size() >= 2) {
+    const auto F = control_volume_forces(cv, 1.0);
+    for (std::size_t n = 0; n < F.size(); ++n) {
+      r.history[n].cd_cv = scale * F[n][0];
+      r.history[n].cl_cv = scale * F[n][1];
+    }
+  }
   r.mean_poisson_iterations = static_cast<double>(poisson) / static_cast<double>(r.steps);
   r.mean_momentum_iterations = static_cast<double>(momentum) / static_cast<double>(r.steps);
   const DfgSample& last = r.history.back();
@@ -77,16 +92,21 @@ DfgResult run_dfg(const DfgSetup& ds) {
     const double t_start = last.t - ds.window;
     double mean = 0;
     int count = 0;
-    r.cd_max = -1e300;
-    r.cl_max = -1e300;
+    r.cd_max = r.cl_max = r.cd_max_cv = r.cl_max_cv = -1e300;
+    r.cl_min = 1e300;
     for (const DfgSample& s : r.history)
       if (s.t >= t_start) {
         r.cd_max = std::max(r.cd_max, s.cd);
         r.cl_max = std::max(r.cl_max, s.cl);
+        r.cl_min = std::min(r.cl_min, s.cl);
+        r.cd_max_cv = std::max(r.cd_max_cv, s.cd_cv);
+        r.cl_max_cv = std::max(r.cl_max_cv, s.cl_cv);
         mean += s.cl;
+        r.cd_mean += s.cd;
         ++count;
       }
     mean /= std::max(count, 1);
+    r.cd_mean /= std::max(count, 1);
     std::vector<double> up;
     for (std::size_t n = 1; n < r.history.size(); ++n) {
       const DfgSample &a = r.history[n - 1], &c = r.history[n];

@@ -2,14 +2,17 @@
 // of Schaefer & Turek (1996), run with the fractional-step solver and the ghost-cell immersed
 // cylinder: channel [0, 2.2] x [0, 0.41], cylinder D = 0.1 centred at (0.2, 0.2), nu = 1e-3,
 // parabolic inflow with centreline speed Um (0.3 or 1.5), convective outflow, no-slip walls.
-// Grid: a uniform box of h = D / N over [0.1, 0.6] x [0.1, 0.3] (symmetric about the cylinder in
-// y) and geometric stretching (ratio <= 1.05) outside it, to the inlet, outlet and walls.
+// Grid: a uniform box of h = D / N over [0.1, box_x1] x [0.1, 0.3] (symmetric about the cylinder
+// in y) and geometric stretching (ratio <= stretch_ratio) outside it, to the inlet, outlet and walls.
 //
 // Coefficients (rho = 1, Ubar = 2 Um / 3): CD = 2 Fx / (Ubar^2 D), CL = 2 Fy / (Ubar^2 D), from the
 // surface traction (surface_traction.hpp); dp = p(0.15, 0.2) - p(0.25, 0.2), the wall pressures at
 // the front and back of the cylinder; St = f D / Ubar from the mean period of the lift.
+// The same coefficients from a control-volume momentum balance (control_volume_force.hpp) are
+// recorded alongside, as an independent check of the traction evaluation.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -25,11 +28,18 @@ struct DfgSetup {
   double window = 3;          // 2D-2: the analysis window at the end [s]
   double cfl = 0.5;
   double ramp_time = 1.0;     // inflow ramp (1 - cos) / 2 [s]
+  double box_x1 = 0.6;        // downstream end of the uniform box [m]
+  double stretch_ratio = 1.05;  // largest ratio of neighbouring cell widths outside the box
+  // Control volume [x0, x1] x [y0, y1] of the independent momentum-balance force
+  // (control_volume_force.hpp); two cells clear of the body, so the default needs N >= 8.
+  std::array<double, 4> control_volume{0.11, 0.45, 0.11, 0.29};
   std::function<void(const StepStats&)> progress;  // called after every step
 };
 
 struct DfgSample {
   double t = 0, cd = 0, cl = 0, dp = 0;
+  double cd_pressure = 0, cl_pressure = 0;  // the pressure parts of cd, cl
+  double cd_cv = 0, cl_cv = 0;              // from the control-volume momentum balance
 };
 
 struct DfgResult {
@@ -37,6 +47,8 @@ struct DfgResult {
   // 2D-1: the final values; 2D-2: maxima over the window, Strouhal number, lift periods counted.
   double cd = 0, cl = 0, dp = 0;
   double cd_max = 0, cl_max = 0, st = 0;
+  // 2D-2 window: CD mean, CL min; the same maxima from the control-volume force.
+  double cd_mean = 0, cl_min = 0, cd_max_cv = 0, cl_max_cv = 0;
   int periods = 0;
   double cd_drift = 0;  // 2D-1: |CD(t_end) - CD(t_end - 1 s)|, the distance from steady state
   long steps = 0, cells = 0, ghost_cells = 0;

@@ -53,6 +53,7 @@ void FlowSolver::setup(const StretchedGrid& grid, const FlowBoundary& boundary, 
   dt_old_ = 0;
   step_ = 0;
   ib_.reset();
+  body_faces_.clear();
   moving_.reset();
   surface_.reset();
   surface_motion_ = nullptr;
@@ -64,6 +65,7 @@ void FlowSolver::immerse(const Polygon& body) { immerse(std::vector<SolidRegion>
 void FlowSolver::immerse(const std::vector<SolidRegion>& regions, const VelocityFunction& wall_velocity) {
   if (dim() != 2) throw Error("flow solver: an immersed polygon needs a 2-D grid");
   ib_.emplace(grid_, regions);
+  index_body_faces();
   moving_.reset();
   surface_.reset();
   surface_motion_ = nullptr;
@@ -116,8 +118,9 @@ void FlowSolver::impose_body_velocity() {
 // between two non-fluid cells the body's (zero at rest). The net flux into the fixed body is then
 // O(h^2) but not zero; it is removed uniformly per unit area, so that no mass crosses the body
 // and the Neumann problem for phi on the fluid cells stays compatible.
-void FlowSolver::body_face_velocities(FaceField& U, const std::array<Field, 3>& u) const {
-  double net = 0, area = 0;
+void FlowSolver::index_body_faces() {
+  body_faces_.clear();
+  if (!ib_) return;
   for (int d = 0; d < dim(); ++d) {
     const int n = grid_.n(d);
     for (int k = 0; k < grid_.nz(); ++k)
@@ -128,38 +131,38 @@ void FlowSolver::body_face_velocities(FaceField& U, const std::array<Field, 3>& 
           int lo[3] = {i, j, k};
           --lo[d];
           const bool fl = fluid(lo[0], lo[1], lo[2]), fh = fluid(i, j, k);
-          if (!fl && !fh) {  // inside the body: its own velocity (a cleared cell's first fluxes)
-            if (surface_motion_) {
-              const Field& b = body_velocity_[static_cast<std::size_t>(d)];
-              U(d, i, j, k) = 0.5 * (b(lo[0], lo[1], lo[2]) + b(i, j, k));
-              continue;
-            }
-            U(d, i, j, k) = moving_ ? moving_->velocity(body_state_, d == 0 ? grid_.axis(0).face(i) : grid_.xc(i),
-                                                        d == 1 ? grid_.axis(1).face(j) : grid_.yc(j))[static_cast<std::size_t>(d)]
-                                    : 0.0;
-            continue;
-          }
-          U(d, i, j, k) = face_value(u[static_cast<std::size_t>(d)], d, d, i, j, k, bv_new_);
-          const double A = face_area(d, i, j, k);
-          net += (fl ? 1.0 : -1.0) * U(d, i, j, k) * A;  // out of the fluid, into the body
-          area += A;
+          body_faces_.push_back({d, i, j, k, fl ? 1 : fh ? -1 : 0});
         }
+  }
+}
+
+void FlowSolver::body_face_velocities(FaceField& U, const std::array<Field, 3>& u) const {
+  // The faces in the order of a full scan, so the ordered sums below are those of one.
+  double net = 0, area = 0;
+  for (const BodyFace& b : body_faces_) {
+    const int d = b.d, i = b.i, j = b.j, k = b.k;
+    if (b.side == 0) {  // inside the body: its own velocity (a cleared cell's first fluxes)
+      if (surface_motion_) {
+        int lo[3] = {i, j, k};
+        --lo[d];
+        const Field& v = body_velocity_[static_cast<std::size_t>(d)];
+        U(d, i, j, k) = 0.5 * (v(lo[0], lo[1], lo[2]) + v(i, j, k));
+        continue;
+      }
+      U(d, i, j, k) = moving_ ? moving_->velocity(body_state_, d == 0 ? grid_.axis(0).face(i) : grid_.xc(i),
+                                                  d == 1 ? grid_.axis(1).face(j) : grid_.yc(j))[static_cast<std::size_t>(d)]
+                              : 0.0;
+      continue;
+    }
+    U(d, i, j, k) = face_value(u[static_cast<std::size_t>(d)], d, d, i, j, k, bv_new_);
+    const double A = face_area(d, i, j, k);
+    net += b.side * U(d, i, j, k) * A;  // out of the fluid, into the body
+    area += A;
   }
   if (!(area > 0)) return;
   const double shift = net / area;
-  for (int d = 0; d < dim(); ++d) {
-    const int n = grid_.n(d);
-    for (int k = 0; k < grid_.nz(); ++k)
-      for (int j = 0; j < grid_.ny() + (d == 1); ++j)
-        for (int i = 0; i < grid_.nx() + (d == 0); ++i) {
-          const int f = d == 0 ? i : d == 1 ? j : k;
-          if (f == 0 || f == n || !masked_face(d, i, j, k)) continue;
-          int lo[3] = {i, j, k};
-          --lo[d];
-          const bool fl = fluid(lo[0], lo[1], lo[2]), fh = fluid(i, j, k);
-          if (fl != fh) U(d, i, j, k) -= (fl ? 1.0 : -1.0) * shift;
-        }
-  }
+  for (const BodyFace& b : body_faces_)
+    if (b.side != 0) U(b.d, b.i, b.j, b.k) -= b.side * shift;
 }
 
 void FlowSolver::initialise(const VelocityFunction& velocity, const std::function<double(double, double, double)>& pressure,
@@ -414,6 +417,12 @@ std::vector<StateArray> FlowSolver::state() const {
       s.push_back({std::string("boundary_") + comp_name(c) + "_" + std::to_string(side),
                    bv_[C].value[static_cast<std::size_t>(side)]});
   }
+  // A moving triangulated body: the solid-cell velocities are re-evaluated on placement, but a
+  // ghost cell keeps the value from when it was last solid, and a face between two ghost cells
+  // carries it (body_face_velocities), so the field is part of the state.
+  if (surface_motion_)
+    for (int c = 0; c < 3; ++c)
+      s.push_back(raw(std::string("body_velocity_") + comp_name(c), body_velocity_[static_cast<std::size_t>(c)]));
   return s;
 }
 
@@ -442,6 +451,7 @@ void FlowSolver::restore(const std::vector<StateArray>& s) {
   } else if (surface_motion_) {
     place_surface(time_);
     fresh_.clear();
+    for (int c = 0; c < 3; ++c) unraw(s[a++], body_velocity_[static_cast<std::size_t>(c)]);
   }
 }
 

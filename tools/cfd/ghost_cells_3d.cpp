@@ -14,10 +14,18 @@
 namespace finverse::cfd {
 
 namespace {
-// Index c with centre(c) <= x < centre(c+1), or -1 when x is outside the centres' range.
+// Index c with centre(c) <= x < centre(c+1), or -1 when x is outside the centres' range. A point
+// within rounding (1e-9 of the end cell width) of the first or last centre counts as on it: the
+// image point of a ghost cell in the first or last layer of a body that crosses that domain side
+// (intercept on a surface normal to the side, e.g. the wall-to-wall cylinder of DFG 3D-1Z) lies
+// on the ghost's own centre plane up to the rounding of the closest-point projection.
 int lower_centre3(const Axis& a, double x) {
   const int n = a.size();
-  if (n < 2 || x < a.centre(0) || x > a.centre(n - 1)) return -1;
+  if (n < 2) return -1;
+  const double first = a.centre(0), last = a.centre(n - 1);
+  if (x < first) x = x >= first - 1e-9 * a.width(0) ? first : x;
+  if (x > last) x = x <= last + 1e-9 * a.width(n - 1) ? last : x;
+  if (x < first || x > last) return -1;
   int lo = 0, hi = n - 1;
   while (hi - lo > 1) {
     const int mid = (lo + hi) / 2;

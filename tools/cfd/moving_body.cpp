@@ -29,6 +29,7 @@ void FlowSolver::place_body(double t) {
   } catch (const Error& e) {
     throw Error("flow solver: moving body at t = " + std::to_string(t) + ": " + e.what());
   }
+  index_body_faces();
   for (auto& w : ib_wall_) w.clear();
   ib_dpdn_.clear();
   for (const GhostCell& g : ib_->ghosts()) {
@@ -79,9 +80,9 @@ void FlowSolver::move_body(double t) {
       e.dpdn = -(a[0] * b.normal[0] + a[1] * b.normal[1]);
       fs.push_back(e);
     }
-    settle_cleared_cells(fs);
+    settle_cleared_cells(old, fs);
   } else {
-    settle_cleared_cells({});
+    settle_cleared_cells(old, {});
   }
 }
 

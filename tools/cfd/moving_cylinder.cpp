@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "cfd/surface_traction.hpp"
@@ -35,8 +36,8 @@ double force_x(const FlowSolver& s, const Polygon* fixed_body = nullptr) {
 }  // namespace
 
 TowedCylinderResult run_towed_cylinder(const TowedCylinderSetup& ts) {
-  if (ts.cells_per_diameter < 4 || !(ts.t_end > ts.t_compare) || !(ts.re > 0))
-    throw Error("towed cylinder: need cells_per_diameter >= 4, t_end > t_compare, re > 0");
+  if (ts.cells_per_diameter < 4 || !(ts.t_end > ts.t_compare) || !(ts.re > 0) || ts.fixed_offsets < 1)
+    throw Error("towed cylinder: need cells_per_diameter >= 4, t_end > t_compare, re > 0, fixed_offsets >= 1");
   const auto t0 = std::chrono::steady_clock::now();
   const double h = 1.0 / ts.cells_per_diameter, path = ts.t_end, H = ts.half_height;
   FlowOptions opt;
@@ -59,7 +60,9 @@ TowedCylinderResult run_towed_cylinder(const TowedCylinderSetup& ts) {
                            }});
   towed.initialise({});
 
-  // Fixed: the mirror-image grid (the wake in the uniform core), stream U = 1.
+  // Fixed: the mirror-image grid (the wake in the uniform core), stream U = 1; one cylinder per
+  // sub-cell position along the stream (its centre on a grid vertex, then shifted by k/n of the
+  // cell width there), as the towed body passes through all of them.
   const StretchedGrid gf(axis(-1 - H, path + 1 + H, -1, path + 1, h), axis(-H, H, -1, 1, h));
   FlowBoundary b;
   b[Side::XLo].type = FlowBcType::Inlet;
@@ -67,20 +70,36 @@ TowedCylinderResult run_towed_cylinder(const TowedCylinderSetup& ts) {
   b[Side::XHi].type = FlowBcType::ConvectiveOutlet;
   b[Side::YLo].wall_velocity = {1, 0, 0};
   b[Side::YHi].wall_velocity = {1, 0, 0};
-  FlowSolver fixed;
-  fixed.setup(gf, b, opt);
-  fixed.immerse(circle);
-  fixed.initialise([](double, double, double, double) { return std::array<double, 3>{1, 0, 0}; });
+  const auto& fx_faces = gf.axis(0).faces();
+  auto vertex = std::lower_bound(fx_faces.begin(), fx_faces.end(), 0.0);  // the face nearest to x = 0
+  if (vertex != fx_faces.begin() && std::abs(*(vertex - 1)) < std::abs(*vertex)) --vertex;
+  const double x0 = *vertex, dx = *(vertex + 1) - x0;
+  std::vector<Polygon> bodies;
+  std::vector<std::unique_ptr<FlowSolver>> fixed;
+  for (int k = 0; k < ts.fixed_offsets; ++k) {
+    bodies.push_back(Polygon::circle(x0 + k * dx / ts.fixed_offsets, 0, 0.5, ts.polygon_vertices));
+    fixed.push_back(std::make_unique<FlowSolver>());
+    fixed.back()->setup(gf, b, opt);
+    fixed.back()->immerse(bodies.back());
+    fixed.back()->initialise([](double, double, double, double) { return std::array<double, 3>{1, 0, 0}; });
+  }
 
   TowedCylinderResult r;
-  r.cells = static_cast<long>(gt.cells() + gf.cells());
+  r.cells = static_cast<long>(gt.cells() + gf.cells() * static_cast<std::size_t>(ts.fixed_offsets));
+  std::vector<std::vector<double>> cd_each(fixed.size());
   while (towed.time() < ts.t_end - 1e-9) {
     const StepStats st = towed.step();
-    fixed.step();
+    double mean = 0;
+    for (std::size_t k = 0; k < fixed.size(); ++k) {
+      fixed[k]->step();
+      cd_each[k].push_back(2 * force_x(*fixed[k], &bodies[k]));
+      mean += cd_each[k].back() / static_cast<double>(fixed.size());
+    }
     ++r.steps;
     r.time.push_back(st.time);
     r.cd_towed.push_back(2 * force_x(towed));
-    r.cd_fixed.push_back(2 * force_x(fixed, &circle));
+    r.cd_fixed.push_back(mean);
+    r.cd_fixed_vertex.push_back(cd_each[0].back());
     if (ts.progress) ts.progress(st);
   }
   // The body crosses filter_cells cells in filter_cells / cfl steps.
@@ -96,8 +115,20 @@ TowedCylinderResult run_towed_cylinder(const TowedCylinderSetup& ts) {
                                              std::abs(r.cd_towed[n] - r.cd_fixed[n]) / std::abs(r.cd_fixed[n]));
     r.cd_towed_end = average(r.cd_towed, n);
     r.cd_fixed_end = average(r.cd_fixed, n);
+    r.cd_fixed_vertex_end = average(r.cd_fixed_vertex, n);
     r.max_relative_difference =
         std::max(r.max_relative_difference, std::abs(r.cd_towed_end - r.cd_fixed_end) / std::abs(r.cd_fixed_end));
+    r.max_relative_difference_vertex = std::max(
+        r.max_relative_difference_vertex, std::abs(r.cd_towed_end - r.cd_fixed_vertex_end) / std::abs(r.cd_fixed_vertex_end));
+  }
+  if (r.time.size() >= w) {
+    double lo = 1e300, hi = -1e300;
+    for (const auto& c : cd_each) {
+      const double a = average(c, r.time.size() - 1);
+      lo = std::min(lo, a);
+      hi = std::max(hi, a);
+    }
+    r.fixed_position_spread = (hi - lo) / std::abs(r.cd_fixed_end);
   }
   r.cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

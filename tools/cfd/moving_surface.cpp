@@ -4,6 +4,7 @@
 // from one placement to the next with the freshly-cleared-cell treatment of moving_body.cpp, and
 // the per-triangle surface forces; see flow_solver.hpp.
 #include <algorithm>
+#include <cstdio>
 #include <string>
 
 #include "cfd/flow_solver.hpp"
@@ -24,6 +25,7 @@ void FlowSolver::immerse(const TriangulatedSurface& body) {
   surface_.emplace(body, "immersed triangulated body");
   surface_state_ = SurfaceState{body, {}, {}};
   ib_.emplace(grid_, *surface_);
+  index_body_faces();
   ib_dpdn_.clear();
   for (auto& w : ib_wall_) w.clear();
   FaceCoefficients masked(grid_, 1.0);
@@ -57,10 +59,24 @@ void FlowSolver::place_surface(double t) {
       if (st.surface.triangles != surface_->surface().triangles) throw Error("the connectivity changed");
       surface_->move_to(st.surface.points);
     }
+    // A body that leaves the domain is not always caught by the ghost cells (a ghost cell's image
+    // point can still lie inside the grid), and one entirely outside has no cells at all.
+    const Vec3 lo = surface_->lower(), hi = surface_->upper();
+    for (int d = 0; d < 3; ++d) {
+      const Axis& ax = grid_.axis(d);
+      const auto D = static_cast<std::size_t>(d);
+      if (!(lo[D] > ax.lo() && hi[D] < ax.hi())) {
+        char b[160];
+        std::snprintf(b, sizeof b, "the body (%c from %.6g to %.6g m) leaves the domain (%.6g to %.6g m)", "xyz"[d],
+                      lo[D], hi[D], ax.lo(), ax.hi());
+        throw Error(b);
+      }
+    }
     ib_.emplace(grid_, *surface_);
   } catch (const Error& e) {
     throw Error(at + e.what());
   }
+  index_body_faces();
   surface_state_ = std::move(st);
   for (auto& w : ib_wall_) w.clear();
   ib_dpdn_.clear();
@@ -114,9 +130,9 @@ void FlowSolver::move_surface(double t) {
       e.dpdn = -dot3(surface_->interpolate(surface_state_.acceleration, b), b.normal);
       fs.push_back(e);
     }
-    settle_cleared_cells(fs);
+    settle_cleared_cells(old, fs);
   } else {
-    settle_cleared_cells({});
+    settle_cleared_cells(old, {});
   }
 }
 

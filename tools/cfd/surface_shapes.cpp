@@ -72,4 +72,32 @@ TriangulatedSurface box_surface(const std::array<double, 3>& lo, const std::arra
   return s;
 }
 
+TriangulatedSurface cylinder_surface(double xc, double yc, double radius, double z0, double z1, int segments,
+                                     int layers) {
+  if (!(radius > 0) || !(z1 > z0) || segments < 3 || layers < 1)
+    throw Error("cylinder_surface: need radius > 0, z1 > z0, at least 3 segments and 1 layer");
+  TriangulatedSurface s;
+  for (int l = 0; l <= layers; ++l) {
+    const double z = l == layers ? z1 : z0 + (z1 - z0) * l / layers;
+    for (int k = 0; k < segments; ++k) {
+      const double phi = 2 * std::numbers::pi * k / segments;
+      s.points.push_back({xc + radius * std::cos(phi), yc + radius * std::sin(phi), z});
+    }
+  }
+  const int bottom = static_cast<int>(s.points.size());
+  s.points.push_back({xc, yc, z0});
+  s.points.push_back({xc, yc, z1});
+  const auto ring = [segments](int l, int k) { return l * segments + (k % segments); };
+  for (int l = 0; l < layers; ++l)
+    for (int k = 0; k < segments; ++k) {  // counter-clockwise seen from outside (increasing angle, then up)
+      s.triangles.push_back({ring(l, k), ring(l, k + 1), ring(l + 1, k + 1)});
+      s.triangles.push_back({ring(l, k), ring(l + 1, k + 1), ring(l + 1, k)});
+    }
+  for (int k = 0; k < segments; ++k) {
+    s.triangles.push_back({bottom, ring(0, k + 1), ring(0, k)});               // normal -z
+    s.triangles.push_back({bottom + 1, ring(layers, k), ring(layers, k + 1)});  // normal +z
+  }
+  return s;
+}
+
 }  // namespace finverse::cfd

@@ -1,6 +1,6 @@
 // Closed triangulated test bodies for the 3-D immersed boundary (triangulated_surface.hpp): a
-// sphere as a subdivided icosahedron and an axis-aligned box, both with counter-clockwise
-// (outward) triangles.
+// sphere as a subdivided icosahedron, an axis-aligned box and a z-aligned circular cylinder, all
+// with counter-clockwise (outward) triangles.
 #pragma once
 
 #include <array>
@@ -17,5 +17,12 @@ TriangulatedSurface icosphere(const std::array<double, 3>& centre, double radius
 
 // The box [lo, hi] as 12 triangles.
 TriangulatedSurface box_surface(const std::array<double, 3>& lo, const std::array<double, 3>& hi);
+
+// Closed circular cylinder with its axis along z through (xc, yc), from z0 to z1: `segments`
+// vertices on each of layers + 1 rings (the first vertex of a ring at angle 0, i.e. at
+// (xc + radius, yc)), the lateral surface in `layers` bands of two triangles per segment, and each
+// end cap a fan around its centre.
+TriangulatedSurface cylinder_surface(double xc, double yc, double radius, double z0, double z1, int segments,
+                                     int layers);
 
 }  // namespace finverse::cfd

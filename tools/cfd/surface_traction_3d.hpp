@@ -16,6 +16,18 @@
 // constant along the probe: then mu dw/dn differs from 2 mu S n by mu (grad u_w)^T n-type terms of
 // the wall's own velocity gradient, O(mu |grad u_w|), which are small against the pressure and the
 // boundary-layer shear at moderate and high Re (an approximation for a flapping, bending fin).
+//
+// A body that crosses the domain boundary (SurfaceClip; e.g. the cylinder of DFG 3D-1Z, which
+// spans the channel from wall to wall and is closed by end caps outside the domain): each triangle
+// is clipped exactly against the domain box (Sutherland-Hodgman against the six planes), the
+// clipped convex polygon is fanned into triangles and those are sampled as above, so only the
+// wetted, in-domain part of the surface carries traction. A probe (and its sample point, the
+// stencil's boundary point) between the outermost cell centre and the domain boundary is moved
+// onto the outermost centre plane, and the domain boundary's own condition carries the value the
+// rest of the way: the pressure has zero normal gradient on every non-periodic side (the solver's
+// pressure condition), so it is taken unchanged; the velocity on a no-slip wall at rest is zero, so
+// it is interpolated linearly between the wall and the centre plane, exactly as the solver's
+// boundary ghost values (u_ghost = -u_1) do. Only fixed bodies and walls at rest are meant.
 #pragma once
 
 #include <vector>
@@ -36,9 +48,21 @@ struct SurfaceSample3D {
   PointStencil velocity1, velocity2, pressure1, pressure2;  // at d and 2d
 };
 
+// The part of triangle (a, b, c) inside the box [lo, hi] as a convex polygon (empty when none).
+std::vector<Vec3> clip_triangle_to_box(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& lo, const Vec3& hi);
+
+// The explicit permission for a body to cross the domain boundary, and the domain's walls.
+struct SurfaceClip {
+  bool enabled = false;  // false: the whole surface is sampled (it must lie inside the domain)
+  // Per side (Side order: x-, x+, y-, y+, z-, z+): a no-slip wall at rest (velocity 0 on it);
+  // otherwise the velocity is continued with zero normal gradient.
+  std::array<bool, 6> no_slip{};
+};
+
 class SurfaceTraction3D {
  public:
-  SurfaceTraction3D(const StretchedGrid& grid, const GhostCellSet& ghosts, const SurfaceGeometry& body);
+  SurfaceTraction3D(const StretchedGrid& grid, const GhostCellSet& ghosts, const SurfaceGeometry& body,
+                    const SurfaceClip& clip = {});
 
   const std::vector<SurfaceSample3D>& samples() const { return samples_; }
 

@@ -5,10 +5,13 @@
 // the body is the union cylinder + flag as one closed polygon. rho = 1000, nu = 1e-3; parabolic
 // inflow of mean speed Ubar (1 or 2), ramped by (1 - cos(pi t / 2)) / 2 for t < 2 s; convective
 // outflow; no-slip walls. Drag and lift [N/m] on the whole body from the surface traction
-// (surface_traction.hpp). Grid as for DFG (dfg_benchmark.hpp): a uniform box of h = D / N around
-// cylinder, flag and near wake, symmetric about y = 0.2, geometric stretching outside it.
+// (surface_traction.hpp), and the same from a control-volume momentum balance as an independent
+// check (control_volume_force.hpp). Grid as for DFG (dfg_benchmark.hpp): a uniform box of h = D / N
+// around cylinder, flag and wake_box diameters of near wake, symmetric about y = 0.2, geometric
+// stretching outside it.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -40,11 +43,19 @@ struct TurekHronSetup {
   double window = 1;   // CFD3: the analysis window at the end [s]
   double cfl = 0.5;
   double ramp_time = 2.0;
+  double wake_box = 1.0;        // the uniform box ends this many diameters behind the flag's tip
+  double stretch_ratio = 1.05;  // largest ratio of neighbouring cell widths outside the box
+  // Control volume [x0, x1] x [y0, y1] of the independent momentum-balance force
+  // (control_volume_force.hpp); two cells clear of the body, so the default needs N >= 8.
+  std::array<double, 4> control_volume{0.11, 0.66, 0.11, 0.29};
   std::function<void(const StepStats&)> progress;  // called after every step
 };
 
 struct TurekHronSample {
   double t = 0, drag = 0, lift = 0;
+  double drag_viscous = 0, lift_viscous = 0;  // the viscous parts of drag, lift
+  double drag_flag = 0, lift_flag = 0;        // the parts on the flag (x beyond the arc's ends)
+  double drag_cv = 0, lift_cv = 0;            // from the control-volume momentum balance
 };
 
 struct TurekHronResult {
@@ -54,6 +65,8 @@ struct TurekHronResult {
   // the lift from its upward crossings of the window mean.
   double drag = 0, lift = 0, drag_drift = 0;
   double drag_mean = 0, drag_amplitude = 0, lift_mean = 0, lift_amplitude = 0, frequency = 0;
+  // The same from the control-volume force (CFD2: final values; CFD3: window mean/amplitude).
+  double drag_cv = 0, lift_cv = 0, drag_amplitude_cv = 0, lift_amplitude_cv = 0;
   int periods = 0;
   long steps = 0, cells = 0, ghost_cells = 0;
   double h = 0;

@@ -1,7 +1,8 @@
 // Tests of the rigidly moving ghost-cell immersed boundary (flow_solver.hpp, moving_body.cpp):
 // Galilean invariance (a body carried by a uniform stream at the stream's velocity leaves the
 // stream untouched and feels no force), the re-classification after a shift of half a cell, and
-// the values of freshly cleared cells next to a body started impulsively in still fluid.
+// the values of freshly cleared cells next to a body started impulsively in still fluid, and the
+// drag of a cylinder towed through fluid at rest against the same cylinder fixed in a stream.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -135,6 +136,68 @@ TEST(MovingBody, ClearedCellsTakeValuesBetweenTheBodyAndTheFluid) {
     }
   }
   EXPECT_GT(cleared, 5u);
+}
+
+TEST(MovingBody, TowedCylinderFeelsTheDragOfTheFixedOne) {
+  // Galilean invariance of the wall shear (flow_solver.hpp: the explicit terms act on u^n with the
+  // ghost values of the body's t^n position). Re 20, 8 cells per diameter, 0.4 cells per step,
+  // towed one diameter from an impulsive start in a closed box, against the fixed cylinder in a
+  // uniform stream on the mirror-image grid with walls sliding at the stream speed. Averaged over
+  // the last two cell crossings: re-imposing u^n's ghost values for the body's new position (the
+  // earlier scheme) left the towed viscous drag 11% and the total 4.7% low here; the fix brings
+  // them to within 2%.
+  const double h = 1.0 / 8, H = 4, path = 1;
+  const auto ax = [&](double lo, double hi, double ulo, double uhi) {  // cell counts: multiples of 8 (multigrid)
+    const int n = Axis::stretched(lo, hi, ulo, uhi, h, 1.05).size();
+    return Axis::stretched_count(lo, hi, ulo, uhi, 8 * ((n + 7) / 8), 1.05);
+  };
+  FlowOptions opt;
+  opt.nu = 1.0 / 20;
+  opt.dt = 0.4 * h;
+  opt.coupling_time = 0.5 * opt.dt;
+  opt.helmholtz_rtol = 1e-10;
+  opt.poisson.rtol = 1e-9;
+  const Polygon circle = Polygon::circle(0, 0, 0.5, 64);
+  const StretchedGrid gt(ax(-path - 1 - H, 1 + H, -path - 1, 1), ax(-H, H, -1, 1));
+  const MovingBody body{circle, {0, 0}, [](double t) {
+                          RigidState s;
+                          s.displacement = {-t, 0};
+                          s.velocity = {-1, 0};
+                          return s;
+                        }};
+  FlowSolver towed;
+  towed.setup(gt, FlowBoundary{}, opt);
+  towed.immerse(body);
+  towed.initialise({});
+  const StretchedGrid gf(ax(-1 - H, path + 1 + H, -1, path + 1), ax(-H, H, -1, 1));
+  FlowBoundary b;
+  b[Side::XLo].type = FlowBcType::Inlet;
+  b[Side::XLo].speed = 1.0;
+  b[Side::XHi].type = FlowBcType::ConvectiveOutlet;
+  b[Side::YLo].wall_velocity = {1, 0, 0};
+  b[Side::YHi].wall_velocity = {1, 0, 0};
+  FlowSolver fixed;
+  fixed.setup(gf, b, opt);
+  fixed.immerse(circle);
+  fixed.initialise([](double, double, double, double) { return std::array<double, 3>{1, 0, 0}; });
+  const int steps = static_cast<int>(std::lround(path / opt.dt)), window = 5;  // 5 steps: 2 cells
+  double towed_total = 0, towed_viscous = 0, fixed_total = 0, fixed_viscous = 0;
+  for (int n = 1; n <= steps; ++n) {
+    towed.step();
+    fixed.step();
+    if (n <= steps - window) continue;
+    const SurfaceLoads lt = SurfaceTraction(gt, *towed.immersed(), towed.body_polygon())
+                                .evaluate(towed.u(0), towed.u(1), towed.p(), opt.nu, 1.0, [&](double x, double y) {
+                                  return body.velocity(towed.body_state(), x, y);
+                                });
+    const SurfaceLoads lf = SurfaceTraction(gf, *fixed.immersed(), circle).evaluate(fixed.u(0), fixed.u(1), fixed.p(), opt.nu, 1.0);
+    towed_total += lt.force[0];
+    towed_viscous += lt.viscous_force[0];
+    fixed_total += lf.force[0];
+    fixed_viscous += lf.viscous_force[0];
+  }
+  EXPECT_NEAR(towed_viscous / fixed_viscous, 1.0, 0.04);
+  EXPECT_NEAR(towed_total / fixed_total, 1.0, 0.03);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "cfd/io/fin_flow_checkpoint.hpp"
 #include "cfd/io/loads_record.hpp"
 #include "cfd/nodal_loads.hpp"
 #include "core/error.hpp"
@@ -64,8 +65,14 @@ StretchedGrid fin_flow_grid(const Vec3& lo, const Vec3& hi, double c, double h, 
 }
 
 stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowStats& st,
-                          const std::function<void(long, long, const StepStats&)>& progress) {
+                          const std::function<void(long, long, const StepStats&)>& progress,
+                          const FinCheckpointing& ck) {
   const auto wall0 = std::chrono::steady_clock::now();
+  if (ck.every < 0) throw Error("--checkpoint-every: " + std::to_string(ck.every) + ", expected >= 0");
+  if (ck.every > 0 && ck.file.empty()) throw Error("--checkpoint-every: no checkpoint file given");
+  // A restart with other options or inputs is refused before any work.
+  const nlohmann::json config = fin_flow_config(o, in);
+  if (!ck.restart.empty()) check_fin_restart(ck.restart, config);
   const FinSurfaceMotion& motion = *in.motion;
   const ThinBody& body = motion.body();
   // Chord and flow parameters.
@@ -147,30 +154,64 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   }
 
   LoadsRecord rec(in.rest.size(), in.mid_triangles.size());
-  for (long n = 1; n <= total; ++n) {
+  long first = 1;
+  std::string last_checkpoint = "; no checkpoint written";  // appended to a failure's message
+  if (!ck.restart.empty()) {
+    const FinRunCounters c = read_fin_checkpoint(ck.restart, solver, config, rec);
+    if (c.step > total)
+      throw Error(ck.restart.string() + ": cannot restart: the checkpoint is at step " + std::to_string(c.step) +
+                  ", beyond this run's " + std::to_string(total) + " steps");
+    first = c.step + 1;
+    st.first_step = c.step;
+    st.steps = c.step;
+    st.poisson_iterations = c.poisson_iterations;
+    st.max_cfl = c.max_cfl;
+    last_checkpoint = "; last checkpoint: " + ck.restart.string() + " (step " + std::to_string(c.step) + ")";
+  }
+  const auto failure = [&](long n, const std::string& what) {
+    // The solver's own messages name the step (or the time level) already.
+    const std::string at = what.find("step") != std::string::npos ? ""
+                           : what.find("t = ") != std::string::npos
+                               ? "step " + std::to_string(n) + ": "
+                               : "step " + std::to_string(n) + " (t = " + num(solver.time()) + " s): ";
+    return Error("fin flow: " + at + what + last_checkpoint);
+  };
+  for (long n = first; n <= total; ++n) {
     StepStats s;
     try {
       s = solver.step();
     } catch (const Error& e) {
-      // The solver's own messages name the step already.
-      const std::string what = e.what();
-      throw Error("fin flow: " + (what.find("step") != std::string::npos
-                                      ? what
-                                      : "step " + std::to_string(n) + " (t = " + num(solver.time()) + " s): " + what));
+      throw failure(n, e.what());
     }
     st.max_cfl = std::max(st.max_cfl, s.cfl);
     st.poisson_iterations += s.poisson_iterations;
     st.steps = n;
     if (progress) progress(n, total, s);
-    if (n % m != 0) continue;
-    const double t = t0 + static_cast<double>(n / m) * interval;  // exact output time
-    if (!(t > out_from + 1e-9 * interval)) continue;
-    const SurfaceForces F = solver.surface_forces(o.rho);
-    const Vec3 total_force = F.total;
-    if (!(std::isfinite(total_force[0]) && std::isfinite(total_force[1]) && std::isfinite(total_force[2])))
-      throw Error("fin flow: step " + std::to_string(n) + " (t = " + num(t) + " s): the surface force is not finite");
-    const SurfaceState now = motion.state(solver.time());
-    rec.add(t, nodal_forces(body, F), total_force, pressure_jump(body, in.mid_triangles, now.surface, F));
+    if (n % m == 0) {
+      const double t = t0 + static_cast<double>(n / m) * interval;  // exact output time
+      if (t > out_from + 1e-9 * interval) {
+        const SurfaceForces F = solver.surface_forces(o.rho);
+        const Vec3 total_force = F.total;
+        if (!(std::isfinite(total_force[0]) && std::isfinite(total_force[1]) && std::isfinite(total_force[2])))
+          throw failure(n, "step " + std::to_string(n) + " (t = " + num(t) + " s): the surface force is not finite");
+        const SurfaceState now = motion.state(solver.time());
+        rec.add(t, nodal_forces(body, F), total_force, pressure_jump(body, in.mid_triangles, now.surface, F));
+      }
+    }
+    if (ck.every > 0 && n % ck.every == 0 && n < total) {
+      const auto c0 = std::chrono::steady_clock::now();
+      write_fin_checkpoint(ck.file, solver, config, {n, st.poisson_iterations, st.max_cfl}, rec);
+      st.checkpoint_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+      ++st.checkpoints;
+      last_checkpoint = "; last checkpoint: " + ck.file.string() + " (step " + std::to_string(n) + ")";
+    }
+    if (ck.after_step) {
+      try {
+        ck.after_step(n, solver);
+      } catch (const Error& e) {
+        throw failure(n, e.what());
+      }
+    }
   }
   st.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return rec.to_stage(o.rho, U, in.reference_area, periodic ? in.period : std::nullopt);

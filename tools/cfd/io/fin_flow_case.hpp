@@ -16,8 +16,13 @@
 // the run with a one-line error naming the step.
 // Duration: periodic motion runs `periods` periods T from t_0 and writes the last
 // `output_periods` of them (0: everything); non-periodic motion runs over the sampled span.
+// Checkpoints (fin_flow_checkpoint.hpp): every N steps the solver state, counters and the loads
+// record so far, written atomically; a restart continues bitwise as the uninterrupted run. A
+// failure during the steps (blow-up, non-finite force, the body leaving the grid) is a one-line
+// error naming the step and the last checkpoint written.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <string>
 
@@ -54,6 +59,18 @@ struct FinFlowStats {
   long steps = 0, poisson_iterations = 0;
   double max_cfl = 0, wall_seconds = 0;
   std::size_t triangles = 0;
+  long first_step = 0;  // steps already done when this run began (a restart's checkpoint)
+  long checkpoints = 0;  // written by this run
+  double checkpoint_seconds = 0;
+};
+
+struct FinCheckpointing {
+  long every = 0;                 // write `file` after every this many steps (0: never)
+  std::filesystem::path file;     // the checkpoint (replaced atomically each time)
+  std::filesystem::path restart;  // continue from this checkpoint (empty: start at t_0)
+  // Called at the end of every step, after its outputs and checkpoint (observers; fault-injection
+  // tests); a finverse::Error it throws ends the run as a failure of that step.
+  std::function<void(long step, FlowSolver& solver)> after_step;
 };
 
 // The swept bounding box of the body over [t0, t1] (sampled at `samples` times) and the fastest
@@ -65,6 +82,7 @@ StretchedGrid fin_flow_grid(const Vec3& lo, const Vec3& hi, double chord, double
 
 // Runs the flow; `progress(step, steps_total, stats line)` is called after every step.
 stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowStats& stats,
-                          const std::function<void(long, long, const StepStats&)>& progress = {});
+                          const std::function<void(long, long, const StepStats&)>& progress = {},
+                          const FinCheckpointing& checkpointing = {});
 
 }  // namespace finverse::cfd::io

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "core/error.hpp"
 
@@ -19,6 +21,22 @@ void LoadsRecord::add(double time, const std::vector<Vec3>& nodal, const Vec3& t
   for (const auto& f : nodal) nodal_.insert(nodal_.end(), f.begin(), f.end());
   total_.insert(total_.end(), total.begin(), total.end());
   jump_.insert(jump_.end(), jump.begin(), jump.end());
+}
+
+void LoadsRecord::restore(std::vector<double> time, std::vector<double> nodal, std::vector<double> total,
+                          std::vector<double> jump) {
+  const std::size_t nt = time.size();
+  if (nodal.size() != nt * nodes_ * 3 || total.size() != nt * 3 || jump.size() != nt * shell_)
+    throw Error("loads: a restored record of " + std::to_string(nt) + " output times has " + std::to_string(nodal.size()) +
+                " nodal, " + std::to_string(total.size()) + " total and " + std::to_string(jump.size()) +
+                " pressure-jump values (" + std::to_string(nodes_) + " nodes, " + std::to_string(shell_) +
+                " shell triangles)");
+  for (std::size_t k = 1; k < nt; ++k)
+    if (!(time[k] > time[k - 1])) throw Error("loads: restored output times are not increasing");
+  time_ = std::move(time);
+  nodal_ = std::move(nodal);
+  total_ = std::move(total);
+  jump_ = std::move(jump);
 }
 
 stage::Loads LoadsRecord::to_stage(double rho, double U, double area, std::optional<double> period) const {

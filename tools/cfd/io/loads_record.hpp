@@ -20,6 +20,13 @@ class LoadsRecord {
   void add(double time, const std::vector<Vec3>& nodal, const Vec3& total, const std::vector<double>& jump);
 
   std::size_t size() const { return time_.size(); }
+  // The record so far as flat arrays (time [nt], nodal [nt nodes 3], total [nt 3], jump [nt shell];
+  // checkpoints) and its inverse, which checks the sizes against the record's shape.
+  const std::vector<double>& times() const { return time_; }
+  const std::vector<double>& nodal() const { return nodal_; }
+  const std::vector<double>& totals() const { return total_; }
+  const std::vector<double>& jumps() const { return jump_; }
+  void restore(std::vector<double> time, std::vector<double> nodal, std::vector<double> total, std::vector<double> jump);
   // The contract's struct; rho [kg/m^3], U [m/s], reference area [m^2], period T [s] if periodic.
   stage::Loads to_stage(double rho, double U, double reference_area, std::optional<double> period) const;
 

@@ -1,0 +1,61 @@
+// Hydrodynamic force on a fixed immersed body (2-D) from the momentum balance of a rectangular
+// control volume V around it: an independent check of the surface traction (surface_traction.hpp).
+// Integrating the momentum equation over the fluid in V (Gauss) gives the force per unit depth
+//
+//     F = -rho [ d/dt int_V u dV + oint_S ( u (u . n) + p n - nu du/dn ) dS ],
+//
+// S the rectangle's outer boundary with outward normal n, p kinematic. The transposed part of the
+// viscous stress, nu (grad u)^T n, is left out on S because it is left out on the body as well:
+// its integral over the closed fluid boundary is that of grad(div u) = 0, and on a resting no-slip
+// wall it vanishes pointwise (tangential derivatives of u are zero, n . du/dn = 0 by continuity).
+// The rectangle is snapped to cell faces; on them u (u . n) uses the solver's face-normal
+// velocity U (the conservative flux) and the linearly interpolated cell value of u, p is
+// interpolated linearly, du/dn is the compact difference of the two neighbouring centres. The
+// volume integral sums V_c u_c over the fluid cells (ghost and solid cells hold no fluid
+// momentum; cut cells contribute only where u is small, next to the wall). The time derivative is
+// taken from the recorded series by central differences (control_volume_forces).
+// The two measurements agree when the traction evaluation is right; where they disagree the
+// surface evaluation (probes, extrapolation, corners), not the flow, is at fault.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "cfd/face_field.hpp"
+#include "cfd/field.hpp"
+#include "cfd/ghost_cells.hpp"
+#include "cfd/grid.hpp"
+
+namespace finverse::cfd {
+
+// One instant: the fluid momentum in V and the surface integral over S (both kinematic, per rho).
+struct ControlVolumeSample {
+  double t = 0;
+  std::array<double, 2> momentum{}, flux{};
+};
+
+class ControlVolumeForce {
+ public:
+  // Rectangle [x0, x1] x [y0, y1], snapped to the nearest cell faces; it must hold the body with
+  // at least two fluid cells to spare on every side. Throws finverse::Error otherwise.
+  // ghosts must outlive this object.
+  ControlVolumeForce(const StretchedGrid& grid, const GhostCellSet& ghosts, double x0, double x1, double y0, double y1);
+
+  // The snapped rectangle's faces: cells [i0, i1) x [j0, j1).
+  std::array<int, 4> cells() const { return {i0_, i1_, j0_, j1_}; }
+
+  // u, v: cell velocities; U: face-normal velocities; p: kinematic pressure.
+  ControlVolumeSample evaluate(double t, const Field& u, const Field& v, const FaceField& U, const Field& p,
+                               double nu) const;
+
+ private:
+  StretchedGrid grid_;
+  const GhostCellSet* ghosts_;
+  int i0_ = 0, i1_ = 0, j0_ = 0, j1_ = 0;
+};
+
+// Force per unit depth [N/m] at every sample, -rho (dM/dt + flux), dM/dt by central differences
+// (one-sided at the ends). Needs at least two samples with increasing times.
+std::vector<std::array<double, 2>> control_volume_forces(const std::vector<ControlVolumeSample>& samples, double rho);
+
+}  // namespace finverse::cfd
