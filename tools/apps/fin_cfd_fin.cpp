@@ -18,6 +18,7 @@
 #include "core/log.hpp"
 #include "core/stage_files.hpp"
 #include "core/summary.hpp"
+#include "core/vtk_output.hpp"
 
 namespace finverse::fin_cfd {
 
@@ -30,6 +31,7 @@ struct FinCommands {
   cfd::io::FinFlowOptions flow;
   long checkpoint_every = 0;
   fs::path checkpoint, restart;
+  long snapshot_every = 0;
   fs::path plate_mesh, plate_motion;
   double plate_thickness = 0.1;  // / chord
   int plate_frames = 40;
@@ -76,9 +78,32 @@ int run_fin(const FinCommands& c, const CLI::App& app) {
                          fmt("%.5f s", s.time) + "  CFL " + fmt("%.3f", s.cfl) + "  Poisson " +
                          std::to_string(s.poisson_iterations) + " it  div " + fmt("%.1e", s.max_divergence));
   };
+  // Flow-field snapshots (velocity, pressure, vorticity, lambda_2) every snapshot_every-th output
+  // time, frame by frame; a restart keeps the frames before its first output and rewrites the rest.
+  std::unique_ptr<vtkio::GridSeries> series;
+  const fs::path pvd = c.out.parent_path() / (c.out.stem().string() + ".flow.pvd");
+  if (c.snapshot_every > 0)
+    ck.at_output = [&](long output, double t, const cfd::FlowSolver& solver) {
+      if (output % c.snapshot_every != 0) return;
+      const auto& g = solver.grid();
+      if (!series) {
+        series = std::make_unique<vtkio::GridSeries>(pvd, g.axis(0).faces(), g.axis(1).faces(), g.axis(2).faces());
+        if (!ck.restart.empty()) series->resume(t - 1e-9 * st.dt);
+      }
+      vtkio::GridFrame frame;
+      const std::size_t n = g.cells();
+      for (cfd::StateArray& a : solver.cell_output()) {
+        const std::size_t k = a.values.size() / n;
+        frame.cell_data.push_back(
+            {a.name, NdArray<double>(k == 1 ? std::vector<std::size_t>{n} : std::vector<std::size_t>{n, k},
+                                     std::move(a.values))});
+      }
+      series->add(t, frame);
+    };
   if (!ck.restart.empty()) log::info("restarting from " + ck.restart.string());
   stage::Loads loads = cfd::io::run_fin_flow(in, c.flow, st, report, ck);
   if (progress) progress->finish("t " + fmt("%.5f s", st.t_end));
+  if (series) log::info("wrote " + std::to_string(series->size()) + " flow snapshots to " + pvd.string());
   if (st.checkpoints > 0)
     log::info("wrote " + std::to_string(st.checkpoints) + " checkpoints to " + ck.file.string() + " (" +
               fmt("%.2f s", st.checkpoint_seconds) + " in all)");
@@ -203,6 +228,11 @@ FinCommands* add_fin_commands(CLI::App& app) {
   f->add_option("--checkpoint", c.checkpoint, "checkpoint file (default: <out stem>.checkpoint.h5 next to --out)");
   f->add_option("--restart", c.restart, "continue from this checkpoint (same inputs and options)")
       ->check(CLI::ExistingFile);
+  f->add_option("--snapshot-every", c.snapshot_every,
+                "write the flow field (velocity, pressure, vorticity, lambda2) every N-th output time to "
+                "<out stem>.flow.pvd (ParaView; 0: never)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
 
   c.plate = app.add_subcommand("thin_plate", "heaving and pitching rigid thin plate as mesh.h5 + motion.h5");
   c.plate->add_option("--mesh", c.plate_mesh, "output mesh.h5")->required();

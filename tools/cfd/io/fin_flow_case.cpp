@@ -196,6 +196,7 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
           throw failure(n, "step " + std::to_string(n) + " (t = " + num(t) + " s): the surface force is not finite");
         const SurfaceState now = motion.state(solver.time());
         rec.add(t, nodal_forces(body, F), total_force, pressure_jump(body, in.mid_triangles, now.surface, F));
+        if (ck.at_output) ck.at_output(n / m, t, solver);
       }
     }
     if (ck.every > 0 && n % ck.every == 0 && n < total) {

@@ -71,6 +71,9 @@ struct FinCheckpointing {
   // Called at the end of every step, after its outputs and checkpoint (observers; fault-injection
   // tests); a finverse::Error it throws ends the run as a failure of that step.
   std::function<void(long step, FlowSolver& solver)> after_step;
+  // Called at every output time that is written to loads.h5 (after its loads are recorded), e.g.
+  // for flow-field snapshots; `output` counts the output times from t_0 (1, 2, ...).
+  std::function<void(long output, double t, const FlowSolver& solver)> at_output;
 };
 
 // The swept bounding box of the body over [t0, t1] (sampled at `samples` times) and the fastest
