@@ -14,14 +14,12 @@
 namespace finverse::vision {
 namespace {
 
-double bilinear(const cv::Mat& f, double x, double y, double* gx, double* gy) {
+double bilinear(const cv::Mat& f, double x, double y) {
   x = std::clamp(x, 0.0, f.cols - 1.001);
   y = std::clamp(y, 0.0, f.rows - 1.001);
   const int i = static_cast<int>(x), j = static_cast<int>(y);
   const double a = x - i, b = y - j;
   const double f00 = f.at<float>(j, i), f10 = f.at<float>(j, i + 1), f01 = f.at<float>(j + 1, i), f11 = f.at<float>(j + 1, i + 1);
-  *gx = (1 - b) * (f10 - f00) + b * (f11 - f01);
-  *gy = (1 - a) * (f01 - f00) + a * (f11 - f10);
   return (1 - b) * ((1 - a) * f00 + a * f10) + b * ((1 - a) * f01 + a * f11);
 }
 
@@ -104,6 +102,12 @@ void add_point_row(const ModelView& m, const NdArray<std::int32_t>& tri, int t, 
 
 }  // namespace
 
+double sample_distance(const cv::Mat& f, double x, double y, double* gx, double* gy) {
+  *gx = bilinear(f, x + 0.5, y) - bilinear(f, x - 0.5, y);
+  *gy = bilinear(f, x, y + 0.5) - bilinear(f, x, y - 0.5);
+  return bilinear(f, x, y);
+}
+
 ModelView project_model(const Camera& cam, const NdArray<double>& X, const NdArray<std::int32_t>& tri) {
   const std::size_t nv = X.dim(0);
   const cv::Matx33d R = cam.rotation();
@@ -179,7 +183,7 @@ SilhouetteStats add_silhouette_residuals(const ViewData& view, const ModelView& 
     cv::Point2d u(0, 0);
     for (int k = 0; k < 3; ++k) u += bc[k] * m.uv[tri(t, k)];
     double gx, gy;
-    const double r = bilinear(view.sdf, u.x, u.y, &gx, &gy) + 0.5;
+    const double r = sample_distance(view.sdf, u.x, u.y, &gx, &gy) + 0.5;
     const double w = o.weight * huber_weight(r, o.huber_px);
     sum2 += r * r;
     ++st.residuals;

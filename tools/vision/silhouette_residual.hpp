@@ -45,6 +45,15 @@ struct SilhouetteStats {
   std::size_t residuals = 0;
 };
 
+// Value of the signed distance field `sdf` (CV_32F) at (x, y), bilinear, and its gradient as the
+// difference of the interpolated field half a pixel either side: at a pixel centre, where the
+// model's contour samples sit, the central difference (f[i+1] - f[i-1]) / 2. A one-sided
+// difference there reads zero on one side of a silhouette two pixels wide (both its pixels are
+// contour pixels at -0.5), so one edge of a thin edge-on strip would not steer the fit (measured
+// on the 100 validation frames: mean / max vertex error 0.49 / 2.45 -> 0.41 / 2.18 % c, worst
+// IoU against the truth back 0.957 -> 0.959, ventral 0.933 -> 0.939).
+double sample_distance(const cv::Mat& sdf, double x, double y, double* gx, double* gy);
+
 // Adds the silhouette rows of one view; with jacobian == nullptr, only their cost.
 SilhouetteStats add_silhouette_residuals(const ViewData& view, const ModelView& model, const NdArray<std::int32_t>& triangles,
                                          const SkinJacobian* jacobian, const SilhouetteOptions& options, NormalEquations& ne);

@@ -2,7 +2,8 @@
 // skinned template at zero joint angles is the template, the skinning Jacobian agrees with finite
 // differences, a single synthetic frame posed by known joint angles is recovered by the fit, the
 // spanwise curvature prior leaves linear trends across the rays alone but removes a kink, every
-// membrane vertex is skinned to the two rays that bracket it, the ray detector takes an edge-on
+// membrane vertex is skinned to the two rays that bracket it, the silhouette distance gradient
+// is symmetric on a thin strip, the ray detector takes an edge-on
 // view's whole strip for a dark line (why fin-track fits ray features in the side view only), and
 // fin-track's warnings and one-line errors on inconsistent or broken input.
 #include <gtest/gtest.h>
@@ -193,6 +194,26 @@ TEST(SkeletonFit, SpanCurvaturePriorKeepsLinearTrendsAndSmoothsAKink) {
   const auto smoothed = fitter.fit(none, kinked, &kinked, 10);
   const double kink = smoothed.pose.p[bend(5)] - 0.5 * (smoothed.pose.p[bend(4)] + smoothed.pose.p[bend(6)]);
   EXPECT_LT(std::abs(kink), 0.005);  // was 0.05
+}
+
+// The silhouette residual's distance-field gradient at the contour pixels of a strip two pixels
+// wide: both edges must point outwards with the same strength (a forward difference gives zero
+// on the left edge, where the next pixel in is the other contour pixel).
+TEST(SilhouetteResidual, DistanceGradientPointsOutOfBothEdgesOfAThinStrip) {
+  cv::Mat mask = cv::Mat::zeros(9, 12, CV_8U);
+  mask(cv::Rect(5, 0, 2, 9)).setTo(255);  // columns 5 and 6
+  const cv::Mat sdf = signed_distance(mask);
+  double gxl, gyl, gxr, gyr;
+  EXPECT_NEAR(sample_distance(sdf, 5, 4, &gxl, &gyl), -0.5, 1e-6);
+  EXPECT_NEAR(sample_distance(sdf, 6, 4, &gxr, &gyr), -0.5, 1e-6);
+  EXPECT_LT(gxl, -0.25);
+  EXPECT_GT(gxr, 0.25);
+  EXPECT_NEAR(gxl, -gxr, 1e-6);
+  EXPECT_NEAR(gyl, 0.0, 1e-6);
+  // Half-way between the edge pixels and the background the field is zero, its slope one.
+  double gx, gy;
+  EXPECT_NEAR(sample_distance(sdf, 6.5, 4, &gx, &gy), 0.0, 1e-6);
+  EXPECT_NEAR(gx, 1.0, 1e-6);
 }
 
 // Why fin-track fits ray features in the side view only: seen edge-on, the whole fin is a strip
