@@ -665,7 +665,7 @@ int sphere_re100(bool coarse, const BodyCaseArgs& a, const std::filesystem::path
 
 // ---- DFG 3D-1Z (3-D triangulated body crossing the domain boundary) -------------------------------
 
-int dfg_3d1z(bool coarse, const BodyCaseArgs& a, const std::filesystem::path& out, double& wall_out) {
+int dfg_3d1z(bool coarse, const BodyCaseArgs& a, int span_cells, const std::filesystem::path& out, double& wall_out) {
   const auto t0 = std::chrono::steady_clock::now();
   const nlohmann::json ref = read_reference(a.reference);
   if (!ref.contains("3D-1Z") || !ref["3D-1Z"].contains("cD") || !ref["3D-1Z"]["cD"].is_number() ||
@@ -681,6 +681,7 @@ int dfg_3d1z(bool coarse, const BodyCaseArgs& a, const std::filesystem::path& ou
   }
   if (a.cells_per_diameter > 0) ds.cells_per_diameter = a.cells_per_diameter;
   if (a.t_end > 0) ds.t_end = a.t_end;
+  if (span_cells > 0) ds.span_cells = span_cells;
   log::Progress progress("dfg_3d1z step",
                          // dt ~ cfl h / 0.6 (the fastest flow, beside the cylinder) at most
                          static_cast<std::size_t>(std::ceil(0.6 * ds.t_end / (ds.cfl * 0.1 / ds.cells_per_diameter))));
@@ -735,7 +736,7 @@ int dfg_3d1z(bool coarse, const BodyCaseArgs& a, const std::filesystem::path& ou
   s.info("max_divergence_end", r.max_divergence, "1/s");
   s.info("solver_seconds", r.cpu_seconds, "s");
   s.parameters() = {{"coarse", coarse}, {"cells_per_diameter", ds.cells_per_diameter}, {"h", r.h},
-                    {"grid", r.cells}, {"segments", ds.segments}, {"triangles", r.triangles},
+                    {"grid", r.cells}, {"span_cells", r.cells[2]}, {"segments", ds.segments}, {"triangles", r.triangles},
                     {"overhang", ds.overhang}, {"stretch_ratio", ds.stretch_ratio}, {"cfl", ds.cfl},
                     {"t_end", ds.t_end}, {"t_min", ds.t_min}, {"steady_window", ds.steady_window},
                     {"steady_tolerance", ds.steady_tolerance}, {"reference", a.reference}};
@@ -783,6 +784,9 @@ int main(int argc, char** argv) {
   BodyCaseArgs dfg3_args{0, 0, "data/reference/schaefer_turek.json"};
   auto* dfg3 = app.add_subcommand("dfg_3d1z", "DFG 3D-1Z cylinder benchmark (Re 20, steady, 3-D), immersed boundary");
   add_body_case_options(dfg3, dfg3_args, "s");
+  int dfg3_span_cells = 0;
+  dfg3->add_option("--span-cells", dfg3_span_cells, "cells along z (0: mid-span width about h; a multiple of 8)")
+      ->check(CLI::Range(0, 4096));
   auto* fin_commands = fin_cfd::add_fin_commands(app);
   return cli::run(app, standard, argc, argv, [&]() -> int {
     if (int rc = 0; fin_cfd::run_fin_commands(*fin_commands, app, coarse, rc)) return rc;
@@ -792,7 +796,7 @@ int main(int argc, char** argv) {
     if (*towed) return cylinder_towed(coarse, out_dir, wall);
     if (*oscillating) return cylinder_oscillating(coarse, out_dir, wall);
     if (*sphere) return sphere_re100(coarse, sphere_args, out_dir, wall);
-    if (*dfg3) return dfg_3d1z(coarse, dfg3_args, out_dir, wall);
+    if (*dfg3) return dfg_3d1z(coarse, dfg3_args, dfg3_span_cells, out_dir, wall);
     if (*d1) return dfg(1, coarse, dfg_args, out_dir, wall);
     if (*d2) return dfg(2, coarse, dfg_args, out_dir, wall);
     if (*th2) return turek_hron(2, coarse, th_args, out_dir, wall);

@@ -56,13 +56,14 @@ Dfg3dResult run_dfg_3d1z(const Dfg3dSetup& ds) {
   if (!(ds.t_end > 0)) throw Error("dfg_3d1z: t_end must be > 0");
   if (ds.segments < 8 || ds.segments % 4 != 0) throw Error("dfg_3d1z: segments must be a multiple of 4, at least 8");
   if (!(ds.overhang > 0)) throw Error("dfg_3d1z: overhang must be > 0");
+  if (ds.span_cells != 0 && ds.span_cells < 8) throw Error("dfg_3d1z: span_cells must be 0 (automatic) or at least 8");
   const auto t0 = std::chrono::steady_clock::now();
   const double Ubar = 4 * kUm / 9, h = kD / ds.cells_per_diameter;
   const double xlo = kXc - 0.1, xhi = kXc + 0.2, ylo = kYc - kD, yhi = kYc + kD;
   const int nx = round8(Axis::stretched(0, kLength, xlo, xhi, h, ds.stretch_ratio).size());
   const int ny = round8(Axis::stretched(0, kHeight, ylo, yhi, h, ds.stretch_ratio).size());
   // Mid-span width 1.285 H / nz (the mapping's slope at s = 1/2 is 1/2 + pi/4).
-  const int nz = ds.span_cells > 0 ? ds.span_cells : round8((0.5 + std::numbers::pi / 4) * kHeight / (1.3 * h));
+  const int nz = ds.span_cells > 0 ? ds.span_cells : round8((0.5 + std::numbers::pi / 4) * kHeight / h);
   const StretchedGrid grid(Axis::stretched_count(0, kLength, xlo, xhi, nx, ds.stretch_ratio),
                            Axis::stretched_count(0, kHeight, ylo, yhi, ny, ds.stretch_ratio), wall_clustered(kHeight, nz));
 

@@ -19,7 +19,10 @@
 // y), geometric stretching (ratio <= stretch_ratio) outside it to the inlet, the outlet and the y
 // walls; in z (no body edge to resolve) the cells cluster towards both walls by the mapping
 // z(s) = H [(1 - b) s + b (1 - cos(pi s)) / 2], b = 1/2, s in [0, 1] (wall cells half, mid-span cells
-// 1.29 times the mean width), with span_cells chosen so that the mid-span width is about 1.3 h.
+// 1.29 times the mean width), with span_cells chosen so that the mid-span width is about h: the
+// traction's probe length is the largest local cell width (surface_traction_3d.hpp), so a coarser
+// span lengthens the probes of the whole cylinder. Measured at D/12 and t = 2.0 s: span 48 cells
+// (mid-span 1.32 h, probes 1.32 h) cD 6.082, span 64 (0.99 h) 6.133, span 96 (0.66 h) 6.133.
 //
 // Coefficients: cD = 2 Fx / (rho Ubar^2 D H), cL = 2 Fy / (rho Ubar^2 D H) from the surface traction;
 // dp = p(0.45, 0.2, 0.205) - p(0.55, 0.2, 0.205), the wall pressures at the front and back of the
@@ -37,8 +40,8 @@
 namespace finverse::cfd {
 
 struct Dfg3dSetup {
-  int cells_per_diameter = 16;
-  int span_cells = 0;          // cells along z; 0: from h (mid-span width about 1.3 h), a multiple of 8
+  int cells_per_diameter = 12;
+  int span_cells = 0;          // cells along z; 0: from h (mid-span width about h), a multiple of 8
   int segments = 128;          // cylinder cross-section polygon (a vertex at the front and the back)
   double overhang = 0.05;      // end caps this far outside the z walls
   double stretch_ratio = 1.08;
