@@ -224,6 +224,19 @@ int channel(const ChannelArgs& a, const std::filesystem::path& out, double& wall
   return finish(s, dir, wall_out);
 }
 
+// The run statistics both 3-D body cases (sphere, DFG 3D-1Z) report.
+template <class Result>
+void solver_statistics_3d(Summary& s, const Result& r) {
+  s.info("steps", static_cast<double>(r.steps));
+  s.info("cells", static_cast<double>(r.cells[0]) * r.cells[1] * r.cells[2]);
+  s.info("ghost_cells", static_cast<double>(r.ghost_cells));
+  s.info("surface_samples", static_cast<double>(r.surface_samples));
+  s.info("mean_poisson_iterations", r.mean_poisson_iterations);
+  s.info("mean_momentum_iterations", r.mean_momentum_iterations);
+  s.info("max_divergence_end", r.max_divergence, "1/s");
+  s.info("solver_seconds", r.cpu_seconds, "s");
+}
+
 // The --reference file of a validation case (literature numbers, data/reference/*.json).
 nlohmann::json read_reference(const std::string& path) {
   std::ifstream in(path);
@@ -646,14 +659,7 @@ int sphere_re100(bool coarse, const BodyCaseArgs& a, const std::filesystem::path
   s.info("CD_viscous", r.cd_viscous);
   s.info("CL_lateral", r.cl);
   s.info("CD_drift_last_5", r.cd_drift);
-  s.info("steps", static_cast<double>(r.steps));
-  s.info("cells", static_cast<double>(r.cells[0]) * r.cells[1] * r.cells[2]);
-  s.info("ghost_cells", static_cast<double>(r.ghost_cells));
-  s.info("surface_samples", static_cast<double>(r.surface_samples));
-  s.info("mean_poisson_iterations", r.mean_poisson_iterations);
-  s.info("mean_momentum_iterations", r.mean_momentum_iterations);
-  s.info("max_divergence_end", r.max_divergence, "1/s");
-  s.info("solver_seconds", r.cpu_seconds, "s");
+  solver_statistics_3d(s, r);
   s.parameters() = {{"coarse", coarse}, {"re", ss.re}, {"cells_per_diameter", ss.cells_per_diameter},
                     {"t_end", ss.t_end}, {"cfl", ss.cfl}, {"box_x", ss.box_x}, {"box_half_width", ss.box_half_width},
                     {"core_x", ss.core_x}, {"core_half_width", ss.core_half_width},
@@ -727,14 +733,7 @@ int dfg_3d1z(bool coarse, const BodyCaseArgs& a, int span_cells, const std::file
   s.info("cD_drift_per_second", r.cd_drift, "1/s");
   s.info("steady", r.steady ? 1.0 : 0.0);
   s.info("t_final", r.history.back().t, "s");
-  s.info("steps", static_cast<double>(r.steps));
-  s.info("cells", static_cast<double>(r.cells[0]) * r.cells[1] * r.cells[2]);
-  s.info("ghost_cells", static_cast<double>(r.ghost_cells));
-  s.info("surface_samples", static_cast<double>(r.surface_samples));
-  s.info("mean_poisson_iterations", r.mean_poisson_iterations);
-  s.info("mean_momentum_iterations", r.mean_momentum_iterations);
-  s.info("max_divergence_end", r.max_divergence, "1/s");
-  s.info("solver_seconds", r.cpu_seconds, "s");
+  solver_statistics_3d(s, r);
   s.parameters() = {{"coarse", coarse}, {"cells_per_diameter", ds.cells_per_diameter}, {"h", r.h},
                     {"grid", r.cells}, {"span_cells", r.cells[2]}, {"segments", ds.segments}, {"triangles", r.triangles},
                     {"overhang", ds.overhang}, {"stretch_ratio", ds.stretch_ratio}, {"cfl", ds.cfl},

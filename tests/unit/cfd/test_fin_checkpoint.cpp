@@ -14,6 +14,7 @@
 
 #include "cfd/io/fin_flow_case.hpp"
 #include "cfd/io/thin_plate_case.hpp"
+#include "tiny_fin_case.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd::io {
@@ -21,28 +22,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-FinInput tiny_plate(double thickness = 0.2) {
-  ThinPlateSetup p;
-  p.nx = 6;
-  p.nz = 8;
-  p.thickness = thickness * p.chord;
-  const auto f = make_thin_plate(p);
-  return make_fin_input(f.mesh, f.motion, "plate/mesh.h5", "plate/motion.h5");
-}
+using test::tiny_plate;
 
-FinFlowOptions tiny_options() {
-  FinFlowOptions o;
-  o.reynolds = 100;
-  o.speed = 0.1;
-  o.cells_per_chord = 6;
-  o.upstream = o.lateral = o.spanwise = 1;
-  o.downstream = 1.5;
-  o.wake = 0.5;
-  o.stretch_ratio = 1.3;
-  o.periods = 0.1;  // 20 ms: four outputs 5 ms apart
-  o.output_periods = 0;
-  return o;
-}
+// 20 ms: four outputs 5 ms apart.
+FinFlowOptions tiny_options() { return test::tiny_options(0.1); }
 
 fs::path scratch(const std::string& name) {
   return fs::temp_directory_path() / ("finverse_fin_ckpt_" + std::to_string(::getpid()) + "_" + name + ".h5");

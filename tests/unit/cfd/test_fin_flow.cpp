@@ -9,33 +9,16 @@
 #include "cfd/io/fin_flow_case.hpp"
 #include "cfd/io/loads_record.hpp"
 #include "cfd/io/thin_plate_case.hpp"
+#include "tiny_fin_case.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd::io {
 namespace {
 
-FinInput tiny_plate() {
-  ThinPlateSetup p;
-  p.nx = 6;
-  p.nz = 8;
-  p.thickness = 0.2 * p.chord;
-  const auto f = make_thin_plate(p);
-  return make_fin_input(f.mesh, f.motion, "plate/mesh.h5", "plate/motion.h5");
-}
+using test::tiny_plate;
 
-FinFlowOptions tiny_options() {
-  FinFlowOptions o;
-  o.reynolds = 100;
-  o.speed = 0.1;
-  o.cells_per_chord = 6;
-  o.upstream = o.lateral = o.spanwise = 1;
-  o.downstream = 1.5;
-  o.wake = 0.5;
-  o.stretch_ratio = 1.3;
-  o.periods = 0.05;  // 10 ms: two outputs 5 ms apart
-  o.output_periods = 0;
-  return o;
-}
+// 10 ms: two outputs 5 ms apart.
+FinFlowOptions tiny_options() { return test::tiny_options(0.05); }
 
 TEST(FinFlow, TinyPlateRunGivesAConsistentLoadsHistory) {
   const FinInput in = tiny_plate();
