@@ -21,13 +21,12 @@ namespace finverse::cfd {
 void FlowSolver::settle_cleared_cells(const GhostCellSet& old, const std::vector<ClearedCell>& cells) {
   std::vector<std::array<int, 3>> kept;
   std::vector<double> kept_u;
-  for (int k = 0; k < grid_.nz(); ++k)
-    for (int j = 0; j < grid_.ny(); ++j)
-      for (int i = 0; i < grid_.nx(); ++i)
-        if (ib_->kind(i, j, k) == CellKind::Ghost && old.kind(i, j, k) != CellKind::Solid) {
-          kept.push_back({i, j, k});
-          for (int c = 0; c < dim(); ++c) kept_u.push_back(u_[static_cast<std::size_t>(c)](i, j, k));
-        }
+  // The ghost list, not a scan of the grid: this runs every step of a moving body.
+  for (const GhostCell& g : ib_->ghosts())
+    if (old.kind(g.i, g.j, g.k) != CellKind::Solid) {
+      kept.push_back({g.i, g.j, g.k});
+      for (int c = 0; c < dim(); ++c) kept_u.push_back(u_[static_cast<std::size_t>(c)](g.i, g.j, g.k));
+    }
   if (!cells.empty()) {
     for (int round = 0; round < 4; ++round) {
       for (std::size_t n = 0; n < cells.size(); ++n) {
