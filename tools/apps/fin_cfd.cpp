@@ -259,6 +259,7 @@ struct BodyCaseArgs {
   std::string reference;       // the case's data/reference/*.json
   double wake_box = 0;         // DFG, Turek-Hron: uniform box's downstream end (0: the case's default)
   double stretch_ratio = 0;    // DFG, Turek-Hron: stretching ratio outside the box (0: the default)
+  int core_cells_per_diameter = 0;  // DFG: a finer core around the body (0: none)
 };
 
 // Grid options of the channel benchmarks (DFG, Turek-Hron) on subcommand sc.
@@ -266,6 +267,10 @@ void add_channel_grid_options(CLI::App* sc, BodyCaseArgs& a, const std::string& 
   sc->add_option("--wake-box", a.wake_box, box_help)->check(CLI::PositiveNumber);
   sc->add_option("--stretch-ratio", a.stretch_ratio, "grid: largest cell-width ratio outside the uniform box")
       ->check(CLI::Range(1.0, 1.5));
+  sc->add_option("--core-cells-per-diameter", a.core_cells_per_diameter,
+                 "grid: a finer core of h = D / N around the body (boundary layers), joined to the box by "
+                 "ratio-1.1 growth (0: none)")
+      ->check(CLI::Range(0, 1000));
 }
 
 // The options of BodyCaseArgs on subcommand sc; `t_unit` names the unit of --t-end.
@@ -290,7 +295,9 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   ds.window = variant == 2 ? std::min(3.0, 0.4 * ds.t_end) : 0.0;
   if (a.wake_box > 0) ds.box_x1 = a.wake_box;
   if (a.stretch_ratio > 0) ds.stretch_ratio = a.stretch_ratio;
-  const std::size_t expected = static_cast<std::size_t>(std::ceil(ds.t_end / (ds.cfl * 0.1 / ds.cells_per_diameter / 1.8 /
+  ds.core_cells_per_diameter = a.core_cells_per_diameter;
+  const int finest = std::max(ds.cells_per_diameter, ds.core_cells_per_diameter);
+  const std::size_t expected = static_cast<std::size_t>(std::ceil(ds.t_end / (ds.cfl * 0.1 / finest / 1.8 /
                                                                               (variant == 1 ? 0.3 : 1.5))));
   log::Progress progress(name + " step", expected);
   ds.progress = [&](const StepStats& st) {
@@ -354,6 +361,7 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   s.parameters() = {{"coarse", coarse}, {"cells_per_diameter", ds.cells_per_diameter}, {"t_end", ds.t_end},
                     {"window", ds.window}, {"cfl", ds.cfl}, {"ramp_time", ds.ramp_time},
                     {"polygon_vertices", ds.polygon_vertices}, {"box_x1", ds.box_x1},
+                    {"core_cells_per_diameter", ds.core_cells_per_diameter},
                     {"stretch_ratio", ds.stretch_ratio}, {"reference", a.reference}};
   log::info(name + ": " +
             (variant == 1 ? "CD " + fmt("%.5f", r.cd) + "  CL " + fmt("%.5f", r.cl) + "  dp " + fmt("%.5f", r.dp)
@@ -382,10 +390,11 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, const std::files
   ts.window = variant == 3 ? std::min(1.0, 0.4 * ts.t_end) : 0.0;
   if (a.wake_box > 0) ts.wake_box = a.wake_box;
   if (a.stretch_ratio > 0) ts.stretch_ratio = a.stretch_ratio;
+  ts.core_cells_per_diameter = a.core_cells_per_diameter;
   // Once developed, the fastest flow past the body is about 1.8 Um: dt = cfl h / (1.8 Um).
   const double um = variant == 2 ? 1.5 : 3.0;
-  const std::size_t expected =
-      static_cast<std::size_t>(std::ceil(ts.t_end / (ts.cfl * 0.1 / ts.cells_per_diameter / 1.8 / um)));
+  const int finest = std::max(ts.cells_per_diameter, ts.core_cells_per_diameter);
+  const std::size_t expected = static_cast<std::size_t>(std::ceil(ts.t_end / (ts.cfl * 0.1 / finest / 1.8 / um)));
   log::Progress progress(name + " step", expected);
   ts.progress = [&](const StepStats& st) {
     progress.update(static_cast<std::size_t>(st.step),
@@ -453,7 +462,8 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, const std::files
   s.parameters() = {{"coarse", coarse}, {"cells_per_diameter", ts.cells_per_diameter}, {"t_end", ts.t_end},
                     {"window", ts.window}, {"cfl", ts.cfl}, {"ramp_time", ts.ramp_time},
                     {"circle_vertices", ts.circle_vertices}, {"wake_box", ts.wake_box},
-                    {"stretch_ratio", ts.stretch_ratio}, {"reference", a.reference}};
+                    {"stretch_ratio", ts.stretch_ratio}, {"core_cells_per_diameter", ts.core_cells_per_diameter},
+                    {"reference", a.reference}};
   log::info(name + ": " +
             (variant == 2 ? "drag " + fmt("%.4f", r.drag) + "  lift " + fmt("%.4f", r.lift)
                           : "drag " + fmt("%.3f", r.drag_mean) + " +- " + fmt("%.3f", r.drag_amplitude) + "  lift " +

@@ -131,6 +131,77 @@ Axis Axis::stretched_count(double lo, double hi, double ulo, double uhi, int n, 
                               " cells cannot span the domain with the given max ratio");
 }
 
+Axis Axis::nested(double lo, double hi, double core_lo, double core_hi, double h_core, double box_lo, double box_hi,
+                  double h_box, double transition_ratio, double max_ratio, int multiple) {
+  check_box(lo, hi, box_lo, box_hi, max_ratio);
+  if (!(box_lo <= core_lo && core_lo < core_hi && core_hi <= box_hi))
+    throw std::invalid_argument("Axis::nested: need box_lo <= core_lo < core_hi <= box_hi");
+  if (!(h_core > 0 && h_box >= h_core)) throw std::invalid_argument("Axis::nested: need 0 < h_core <= h_box");
+  if (!(transition_ratio > 1) || multiple < 1)
+    throw std::invalid_argument("Axis::nested: need transition ratio > 1 and multiple >= 1");
+  const int nc = std::max(1, static_cast<int>(std::lround((core_hi - core_lo) / h_core)));
+  const double hc = (core_hi - core_lo) / nc;
+  // m transition cells hc r^k (k = 1..m) with r = (h_box / hc)^(1 / (m + 1)) <= transition_ratio, so
+  // that the first box cell continues the geometric sequence.
+  const double growth = std::max(1.0, h_box / hc);
+  const int m = std::max(0, static_cast<int>(std::ceil(std::log(growth) / std::log(transition_ratio) - 1e-9)) - 1);
+  const double r = std::pow(growth, 1.0 / (m + 1));
+  // Faces from the core edge outwards (distances), ending exactly at the box edge; returns the
+  // width of the last cell.
+  const auto side = [&](double length, std::vector<double>& dist) {
+    double x = 0, w = hc;
+    for (int k = 0; k < m; ++k) {
+      w *= r;
+      x += w;
+      dist.push_back(x);
+    }
+    const double rest = length - x;
+    if (m > 0 && rest < 0.5 * h_box * (1 - 1e-12)) return -(x + h_box);  // the box length this side needs
+    if (rest <= 1e-12 * std::max(length, h_box)) return w;
+    const int n = std::max(1, static_cast<int>(std::lround(rest / h_box)));
+    for (int i = 1; i <= n; ++i) dist.push_back(x + rest * i / n);
+    dist.back() = length;
+    return rest / n;
+  };
+  std::vector<double> dl, dr;
+  double wl = side(core_lo - box_lo, dl), wr = side(box_hi - core_hi, dr);
+  // A box too short for the transition is widened on that side, as far as the domain allows.
+  if (wl < 0) {
+    box_lo = core_lo + wl;
+    dl.clear();
+    wl = box_lo >= lo ? side(core_lo - box_lo, dl) : -1.0;
+  }
+  if (wr < 0) {
+    box_hi = core_hi - wr;
+    dr.clear();
+    wr = box_hi <= hi ? side(box_hi - core_hi, dr) : -1.0;
+  }
+  if (wl < 0 || wr < 0)
+    throw std::invalid_argument("Axis::nested: the domain has no room for the transition (" + std::to_string(m) +
+                                " cells) plus one box cell beyond the core");
+  int mlo = cells_needed(box_lo - lo, wl, max_ratio), mhi = cells_needed(hi - box_hi, wr, max_ratio);
+  int spare = (multiple - (nc + static_cast<int>(dl.size() + dr.size()) + mlo + mhi) % multiple) % multiple;
+  for (; spare > 0; --spare) {
+    if (box_lo > lo && ((box_lo - lo) / wl - mlo >= (hi - box_hi) / wr - mhi || !(hi > box_hi))) ++mlo;
+    else if (hi > box_hi) ++mhi;
+    else throw std::invalid_argument("Axis::nested: no outer region to pad the cell count to a multiple of " +
+                                     std::to_string(multiple));
+  }
+  std::vector<double> faces;
+  if (mlo > 0) {
+    const std::vector<double> o = outer_faces(box_lo, wl, closing_ratio(box_lo - lo, wl, mlo), mlo, -1.0);
+    faces.assign(o.rbegin(), o.rend());
+  }
+  for (auto it = dl.rbegin(); it != dl.rend(); ++it) faces.push_back(core_lo - *it);
+  for (int i = 0; i <= nc; ++i) faces.push_back(i == nc ? core_hi : core_lo + hc * i);
+  for (double d : dr) faces.push_back(core_hi + d);
+  if (mhi > 0)
+    for (double x : outer_faces(box_hi, wr, closing_ratio(hi - box_hi, wr, mhi), mhi, +1.0)) faces.push_back(x);
+  faces.front() = lo;
+  faces.back() = hi;
+  return Axis(std::move(faces));
+}
+
 Axis Axis::coarsened() const {
   if (size() % 2 != 0) throw std::logic_error("Axis::coarsened: odd cell count");
   std::vector<double> f;

@@ -33,6 +33,17 @@ class Axis {
   // multigrid-friendly sizes).
   static Axis stretched_count(double lo, double hi, double ulo, double uhi, int n, double max_ratio);
 
+  // Two nested uniform regions, for a body whose boundary layer needs finer cells than its wake:
+  // cells of width ~h_core on [core_lo, core_hi], a geometric transition (ratio <= transition_ratio)
+  // up to ~h_box, uniform cells of ~h_box out to [box_lo, box_hi], then geometric growth (ratio <=
+  // max_ratio) to lo and hi. Every region is tiled exactly (widths adjusted by rounding the counts);
+  // the total count is padded to a multiple of `multiple` (multigrid levels) by giving the
+  // outermost regions more cells. Requires lo <= box_lo <= core_lo < core_hi <= box_hi <= hi,
+  // 0 < h_core <= h_box; a box side too close to the core for the transition plus one box cell is
+  // moved out (within [lo, hi]; std::invalid_argument if the domain is too short).
+  static Axis nested(double lo, double hi, double core_lo, double core_hi, double h_core, double box_lo, double box_hi,
+                     double h_box, double transition_ratio, double max_ratio, int multiple = 1);
+
   // Every other face: the axis of the next multigrid level. Requires an even cell count.
   Axis coarsened() const;
 

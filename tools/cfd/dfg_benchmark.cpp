@@ -34,11 +34,16 @@ DfgResult run_dfg(const DfgSetup& ds) {
   // walls. With a uniform y axis over the whole channel, CL changed non-monotonically with N
   // (0.0259, 0.0143, 0.0025, 0.0139 for N = 12, 24, 32, 48).
   const int ny = round8(Axis::stretched(0, kHeight, kYc - kD, kYc + kD, h, ratio).size());
-  const StretchedGrid grid(Axis::stretched_count(0, kLength, 0.1, ds.box_x1, nx, ratio),
+  const bool core = ds.core_cells_per_diameter > ds.cells_per_diameter;
+  const double hc = core ? kD / ds.core_cells_per_diameter : h;
+  const StretchedGrid grid =
+      core ? StretchedGrid(Axis::nested(0, kLength, kXc - 0.75 * kD, kXc + 1.25 * kD, hc, 0.1, ds.box_x1, h, 1.1, ratio, 8),
+                           Axis::nested(0, kHeight, kYc - 0.75 * kD, kYc + 0.75 * kD, hc, kYc - kD, kYc + kD, h, 1.1, ratio, 8))
+           : StretchedGrid(Axis::stretched_count(0, kLength, 0.1, ds.box_x1, nx, ratio),
                            Axis::stretched_count(0, kHeight, kYc - kD, kYc + kD, ny, ratio));
 
   FlowSolver solver;
-  solver.setup(grid, channel_benchmark_boundary(Um, ds.ramp_time), channel_benchmark_options(kNu, ds.cfl, h, Um));
+  solver.setup(grid, channel_benchmark_boundary(Um, ds.ramp_time), channel_benchmark_options(kNu, ds.cfl, hc, Um));
   const Polygon body = Polygon::circle(kXc, kYc, 0.5 * kD, ds.polygon_vertices);
   solver.immerse(body);
   solver.initialise({});

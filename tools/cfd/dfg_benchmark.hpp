@@ -4,6 +4,10 @@
 // parabolic inflow with centreline speed Um (0.3 or 1.5), convective outflow, no-slip walls.
 // Grid: a uniform box of h = D / N over [0.1, box_x1] x [0.1, 0.3] (symmetric about the cylinder
 // in y) and geometric stretching (ratio <= stretch_ratio) outside it, to the inlet, outlet and walls.
+// Optionally a finer core of h = D / N_core around the cylinder, [xc - 0.75 D, xc + 1.25 D] x
+// [yc - 0.75 D, yc + 0.75 D], joined to the box by geometric growth (ratio <= 1.1; Axis::nested):
+// at Re = 100 the boundary layer is about a fifth of D thick and the drag and lift amplitude
+// converge with the cells across it, while the wake needs only the box's spacing.
 //
 // Coefficients (rho = 1, Ubar = 2 Um / 3): CD = 2 Fx / (Ubar^2 D), CL = 2 Fy / (Ubar^2 D), from the
 // surface traction (surface_traction.hpp); dp = p(0.15, 0.2) - p(0.25, 0.2), the wall pressures at
@@ -23,6 +27,7 @@ namespace finverse::cfd {
 struct DfgSetup {
   int variant = 1;            // 1: 2D-1, 2: 2D-2
   int cells_per_diameter = 32;
+  int core_cells_per_diameter = 0;  // > cells_per_diameter: the finer core around the cylinder
   int polygon_vertices = 512;
   double t_end = 10;          // simulated time [s]
   double window = 3;          // 2D-2: the analysis window at the end [s]

@@ -68,11 +68,16 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
   const double bx0 = g.xc - D, bx1 = g.tip_x() + ts.wake_box * D, by0 = g.yc - D, by1 = g.yc + D;
   const int nx = round8(Axis::stretched(0, g.length, bx0, bx1, h, ratio).size());
   const int ny = round8(Axis::stretched(0, g.height, by0, by1, h, ratio).size());
-  const StretchedGrid grid(Axis::stretched_count(0, g.length, bx0, bx1, nx, ratio),
+  const bool core = ts.core_cells_per_diameter > ts.cells_per_diameter;
+  const double hc = core ? D / ts.core_cells_per_diameter : h;
+  const StretchedGrid grid =
+      core ? StretchedGrid(Axis::nested(0, g.length, g.xc - 0.75 * D, g.tip_x() + 0.5 * D, hc, bx0, bx1, h, 1.1, ratio, 8),
+                           Axis::nested(0, g.height, g.yc - 0.75 * D, g.yc + 0.75 * D, hc, by0, by1, h, 1.1, ratio, 8))
+           : StretchedGrid(Axis::stretched_count(0, g.length, bx0, bx1, nx, ratio),
                            Axis::stretched_count(0, g.height, by0, by1, ny, ratio));
 
   FlowSolver solver;
-  solver.setup(grid, channel_benchmark_boundary(Um, ts.ramp_time), channel_benchmark_options(kNu, ts.cfl, h, Um));
+  solver.setup(grid, channel_benchmark_boundary(Um, ts.ramp_time), channel_benchmark_options(kNu, ts.cfl, hc, Um));
   const Polygon body = turek_hron_body(g, ts.circle_vertices);
   solver.immerse(body);
   solver.initialise({});

@@ -8,7 +8,8 @@
 // (surface_traction.hpp), and the same from a control-volume momentum balance as an independent
 // check (control_volume_force.hpp). Grid as for DFG (dfg_benchmark.hpp): a uniform box of h = D / N
 // around cylinder, flag and wake_box diameters of near wake, symmetric about y = 0.2, geometric
-// stretching outside it.
+// stretching outside it; optionally a finer core of h = D / N_core over the body's boundary layers,
+// [xc - 0.75 D, tip + 0.5 D] x [yc - 0.75 D, yc + 0.75 D] (Axis::nested; see dfg_benchmark.hpp).
 #pragma once
 
 #include <array>
@@ -38,6 +39,7 @@ double turek_hron_body_area(const TurekHronGeometry& g);
 struct TurekHronSetup {
   int variant = 2;  // 2: CFD2 (Ubar = 1), 3: CFD3 (Ubar = 2)
   int cells_per_diameter = 32;
+  int core_cells_per_diameter = 0;  // > cells_per_diameter: the finer core around the body
   int circle_vertices = 512;
   double t_end = 10;   // simulated time [s]
   double window = 1;   // CFD3: the analysis window at the end [s]

@@ -76,6 +76,53 @@ TEST(Axis, StretchedCountGivesExactCount) {
   EXPECT_THROW(Axis::stretched_count(-100.0, 100.0, -0.5, 1.0, 8, 1.05), std::invalid_argument);
 }
 
+TEST(Axis, NestedHasFineCoreCoarserBoxAndBoundedRatios) {
+  // A cylinder of diameter 0.1 at x = 0.2 in a channel [0, 2.2]: D/48 around the body, D/24 in the
+  // wake box, 1.05 stretching to the ends.
+  const double hc = 0.1 / 48, hb = 0.1 / 24;
+  const Axis a = Axis::nested(0.0, 2.2, 0.125, 0.3, hc, 0.05, 0.6, hb, 1.1, 1.05, 8);
+  EXPECT_DOUBLE_EQ(a.lo(), 0.0);
+  EXPECT_DOUBLE_EQ(a.hi(), 2.2);
+  EXPECT_EQ(a.size() % 8, 0);
+  int core = 0, box = 0;
+  for (int i = 0; i < a.size(); ++i) {
+    const double c = a.centre(i);
+    if (c > 0.125 && c < 0.3) {
+      EXPECT_NEAR(a.width(i), hc, 1e-12) << "core cell " << i;
+      ++core;
+    } else if (c > 0.05 && c < 0.6) {
+      EXPECT_GT(a.width(i), hc * (1 + 1e-9)) << "transition/box cell " << i;
+      EXPECT_LT(a.width(i), hb * 1.1) << "transition/box cell " << i;
+      if (std::abs(a.width(i) / hb - 1) < 0.1) ++box;
+    }
+  }
+  EXPECT_EQ(core, 84);
+  EXPECT_GE(box, 75);  // (0.6 - 0.3 + 0.125 - 0.05) / hb = 90 less the two transitions
+  // Transition ratio 1.1 and the rounding of the box count; 1.05 outside.
+  EXPECT_LE(a.max_stretch_ratio(), 1.1 * 1.1);
+  bool face_on_core = false;
+  for (double f : a.faces()) face_on_core = face_on_core || std::abs(f - 0.3) < 1e-14;
+  EXPECT_TRUE(face_on_core);
+  // h_core = h_box: no transition cells, one uniform region from box_lo to box_hi.
+  const Axis u = Axis::nested(0.0, 2.2, 0.125, 0.3, hb, 0.05, 0.6, hb, 1.1, 1.05);
+  for (int i = 0; i < u.size(); ++i) {
+    if (u.centre(i) > 0.05 && u.centre(i) < 0.6) {
+      EXPECT_NEAR(u.width(i), hb, 0.05 * hb);
+    }
+  }
+  // A box side too close to the core is widened to hold the transition and one box cell; a domain
+  // too short for it is rejected.
+  const Axis w = Axis::nested(0.0, 2.2, 0.125, 0.3, hc, 0.12, 0.6, hb, 1.1, 1.05);
+  EXPECT_LE(w.max_stretch_ratio(), 1.1 * 1.1);
+  for (int i = 0; i < w.size(); ++i) {
+    if (w.centre(i) > 0.125 && w.centre(i) < 0.3) {
+      EXPECT_NEAR(w.width(i), hc, 1e-12);
+    }
+  }
+  EXPECT_THROW(Axis::nested(0.11, 2.2, 0.125, 0.3, hc, 0.12, 0.6, hb, 1.1, 1.05), std::invalid_argument);
+  EXPECT_THROW(Axis::nested(0.0, 2.2, 0.125, 0.3, hb, 0.05, 0.6, hc, 1.1, 1.05), std::invalid_argument);
+}
+
 TEST(Axis, CoarsenedTakesEveryOtherFace) {
   const Axis a = Axis::stretched_count(-3.0, 6.0, -0.5, 1.0, 64, 1.1);
   const Axis c = a.coarsened();
