@@ -22,11 +22,13 @@ class NormalEquations {
   void commit(double residual, double weight) {
     cost_ += weight * residual * residual;
     ++rows_;
-    for (std::size_t a = 0; a < touched_.size(); ++a) {
-      const int i = touched_[a];
-      const double wi = weight * row_[i];
-      g_[i] += wi * residual;
-      for (std::size_t b = 0; b < touched_.size(); ++b) A_(i, touched_[b]) += wi * row_[touched_[b]];
+    // Column by column (A is column-major): each column's updates stay within one column.
+    for (std::size_t b = 0; b < touched_.size(); ++b) {
+      const int j = touched_[b];
+      const double wj = weight * row_[j];
+      g_[j] += wj * residual;
+      double* col = A_.data() + static_cast<std::ptrdiff_t>(j) * A_.rows();
+      for (std::size_t a = 0; a < touched_.size(); ++a) col[touched_[a]] += wj * row_[touched_[a]];
     }
     for (int i : touched_) row_[i] = 0.0, mark_[i] = 0;
     touched_.clear();

@@ -93,6 +93,7 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
   s.threshold = std::max(o.min_contrast, o.noise_multiple * blurred_sigma);
   s.background = cv::Mat(H, W, CV_32F);
   s.mask = cv::Mat::zeros(H, W, CV_8U);
+  s.coverage = cv::Mat::zeros(H, W, CV_32F);
   for (int y = 0; y < H; ++y) {
     auto* bg = s.background.ptr<float>(y);
     const auto* im = smooth.ptr<float>(y);
@@ -128,7 +129,7 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
   cv::Rect roi = cv::boundingRect(s.mask);
   if (roi.area() > 0) {
     roi = cv::Rect(roi.x - margin, roi.y - margin, roi.width + 2 * margin, roi.height + 2 * margin) & cv::Rect(0, 0, W, H);
-    cv::Mat mask = s.mask(roi), bg = s.background(roi), raw, dark, dark_raw, core, dist, label, local;
+    cv::Mat mask = s.mask(roi), bg = s.background(roi), cover = s.coverage(roi), raw, dark, dark_raw, core, dist, label, local;
     frame(roi).convertTo(raw, CV_32F);
     dark = bg - smooth(roi);
     dark_raw = bg - raw;
@@ -149,6 +150,14 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
     cv::dilate(dark, local, disk);
     cv::Mat touching;  // largest darkening among the pixel and its 8 neighbours
     cv::dilate(dark, touching, cv::Mat());
+    // Slivers without a core (an edge ray, a prong of the fork, one or two pixels wide): the
+    // pre-blur spreads their darkening, so the soft segmentation reads their full contrast on
+    // the raw frame, as the largest darkening a little further out (a sub-pixel prong is never
+    // fully covered itself), less one noise sigma for picking the maximum of noisy samples.
+    cv::Mat sliver_full;
+    cv::dilate(dark_raw, sliver_full,
+               cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * o.contrast_radius_px + 3, 2 * o.contrast_radius_px + 3)));
+    sliver_full -= raw_sigma;
     for (int y = 0; y < roi.height; ++y) {
       const auto* d = dark_raw.ptr<float>(y);
       const auto* lm = local.ptr<float>(y);
@@ -157,10 +166,26 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
       const auto* l = label.ptr<int>(y);
       const auto* r = dist.ptr<float>(y);
       auto* m = mask.ptr<std::uint8_t>(y);
+      auto* cov = cover.ptr<float>(y);
+      const auto* sf = sliver_full.ptr<float>(y);
       for (int x = 0; x < roi.width; ++x) {
-        if (!m[x] || k[x]) continue;
         const double full = std::max<double>(t[x], r[x] <= o.contrast_radius_px ? full_at[static_cast<std::size_t>(l[x])] : lm[x]);
-        if (d[x] < o.coverage * full) m[x] = 0;
+        // Soft segmentation: the same ratio, kept (clipped to [-0.5, 1]: a darker ray beside a
+        // rim pixel must not read as more than full cover) wherever a fin contrast is near.
+        // The largest of nine noisy neighbours reads about 1.5 (blurred) sigmas high.
+        const double t_cov = t[x] - 1.5 * blurred_sigma;
+        const double full_cov = std::max(t_cov, r[x] <= o.contrast_radius_px ? full_at[static_cast<std::size_t>(l[x])]
+                                                                             : std::max<double>(lm[x], sf[x]));
+        if (k[x]) {
+          // Also on the core, against its own (pre-blurred) contrast or its neighbours': the
+          // pre-blur fills the gap between two prongs a pixel or two apart (the fork seen
+          // edge-on), which the raw frame shows light, and dilutes the contrast of the pixels
+          // beside the gap. Not clipped at 1, so the noise of a fully covered pixel stays unbiased.
+          cov[x] = static_cast<float>(std::clamp(d[x] / full_cov, -0.5, 1.5));
+          continue;
+        }
+        if (full_cov >= s.threshold) cov[x] = static_cast<float>(std::clamp(d[x] / full_cov, -0.5, 1.0));
+        if (m[x] && d[x] < o.coverage * full) m[x] = 0;
       }
     }
   }
@@ -170,7 +195,10 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
   int best = 0, best_area = 0;
   for (int l = 1; l < n; ++l)
     if (stats.at<int>(l, cv::CC_STAT_AREA) > best_area) best_area = stats.at<int>(l, cv::CC_STAT_AREA), best = l;
-  if (best == 0) return s;  // nothing darker than the background: an empty view
+  if (best == 0) {  // nothing darker than the background: an empty view
+    s.coverage.setTo(0);
+    return s;
+  }
   s.mask = labels == best;
   cv::Mat outside = s.mask == 0;
   const int nb = cv::connectedComponentsWithStats(outside, labels, stats, centroids, 4, CV_32S);
@@ -180,6 +208,10 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
     const bool touches_border = x0 == 0 || y0 == 0 || x0 + w == W || y0 + h == H;
     if (!touches_border) s.mask.setTo(255, labels == l);
   }
+  // The soft segmentation keeps the fin's rim: nothing beyond two pixels of the cleaned mask.
+  cv::Mat near;
+  cv::dilate(s.mask, near, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));
+  s.coverage.setTo(0, near == 0);
   return s;
 }
 

@@ -27,6 +27,12 @@ struct SegmentationOptions {
 struct Segmentation {
   cv::Mat mask;              // CV_8U, 255 on the fin
   cv::Mat background;        // CV_32F, fitted background in 8-bit levels
+  // CV_32F soft segmentation: the fraction of each pixel the fin covers, estimated as the raw
+  // darkening over the local full contrast of the rim test (a core pixel over its own; a sliver
+  // without a core over the largest raw darkening near it); 0 beyond two pixels of the mask.
+  // Clipped to [-0.5, 1] (core: 1.5) only, so the sensor noise stays unbiased. Sub-pixel
+  // evidence for the coverage residuals (coverage_residual.hpp).
+  cv::Mat coverage;
   double noise_sigma = 0;    // estimated sensor noise (8-bit levels) of the raw frame
   double threshold = 0;      // darkening (levels) that counts as fin
 };

@@ -20,7 +20,7 @@ struct SkeletonFitter::Linearisation {
 
 SkeletonFitter::SkeletonFitter(const Skeleton& s, const SkinBinding& b, const NdArray<std::int32_t>& tri, std::vector<int> ray_vertices,
                                const FitOptions& o)
-    : s_(s), b_(b), tri_(tri), ray_vertices_(std::move(ray_vertices)), o_(o) {
+    : s_(s), b_(b), tri_(tri), ray_vertices_(std::move(ray_vertices)), edges_(mesh_edges(tri)), o_(o) {
   if (b.size() == 0) throw Error("skeleton fit: empty template");
 }
 
@@ -37,10 +37,18 @@ SkeletonFitter::Linearisation SkeletonFitter::linearise(const std::vector<ViewDa
     per_view[v] = std::make_unique<NormalEquations>(P);
     if (!views[v].valid) continue;
     const auto m = project_model(views[v].camera, X, tri_);
-    stats[v] = add_silhouette_residuals(views[v], m, tri_, &J, o_.silhouette, *per_view[v]);
+    // The coverage term only near the answer (with the rays): from far off its band sees no
+    // model outline and the chamfer terms do the pulling. Where it is on, the chamfer (which
+    // knows the outline only to the pixel) steps back to coverage_chamfer_weight.
+    const bool coverage_on = use_rays && o_.coverage.weight > 0 &&
+                             std::find(o_.coverage_views.begin(), o_.coverage_views.end(), views[v].camera.name) != o_.coverage_views.end();
+    SilhouetteOptions so = o_.silhouette;
+    if (coverage_on) so.weight *= o_.coverage_chamfer_weight;
+    stats[v] = add_silhouette_residuals(views[v], m, tri_, &J, so, *per_view[v]);
     const bool ray_view = o_.ray_views.empty() ||
                           std::find(o_.ray_views.begin(), o_.ray_views.end(), views[v].camera.name) != o_.ray_views.end();
     if (use_rays && ray_view && o_.rays.weight > 0) add_ray_residuals(views[v], m, ray_vertices_, &J, o_.rays, *per_view[v]);
+    if (coverage_on) add_coverage_residuals(views[v], m, tri_, edges_, &J, o_.coverage, *per_view[v]);
   }
   Linearisation L{NormalEquations(P), std::move(stats)};
   for (const auto& ne : per_view) L.ne += *ne;
@@ -97,11 +105,16 @@ FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& sta
     const bool rays = !(cold && stage == 0);
     auto L = linearise(views, pose, prediction, nsig, rays);
     double lambda = 1e-2;
+    int rejected = 0;
     for (int it = 0; it < max_iterations; ++it) {
       ++out.iterations;
       Eigen::MatrixXd A = L.ne.A();
       for (std::size_t i = 0; i < P; ++i) A(i, i) += lambda * A(i, i) + 1e-9;
-      Eigen::VectorXd delta = A.ldlt().solve(-L.ne.g());
+      // A = J^T W J plus the damping is symmetric positive definite: Cholesky (blocked, several
+      // times faster than LDLT at ~400 parameters; a sparse Cholesky, with its ordering redone
+      // every step, measured no faster), LDLT only should it fail numerically.
+      const Eigen::LLT<Eigen::MatrixXd> llt(A);
+      Eigen::VectorXd delta = llt.info() == Eigen::Success ? Eigen::VectorXd(llt.solve(-L.ne.g())) : Eigen::VectorXd(A.ldlt().solve(-L.ne.g()));
       // Trust region in the infinity norm: the correspondences and the linearised projection
       // hold only for small changes (a tenth of a radian, a tenth of a chord).
       const double largest = delta.cwiseAbs().maxCoeff();
@@ -119,10 +132,13 @@ FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& sta
         pose = std::move(cand);
         L = std::move(Lc);
         lambda = std::max(lambda / 3, 1e-4);
+        rejected = 0;
         if (drop < o_.tolerance || largest_taken < o_.step_tolerance) break;
       } else {
         lambda *= 4;
-        if (lambda > 1e8) break;
+        // Near the minimum the piecewise-linear correspondences reject step after step: each
+        // further try costs a full linearisation for a change far below the tolerance.
+        if (lambda > 1e8 || (o_.max_rejections > 0 && ++rejected >= o_.max_rejections)) break;
       }
     }
     out.cost = L.ne.cost();

@@ -3,6 +3,9 @@
 // translation and every joint's rotation vector) minimising
 //   sum over views of the silhouette chamfer residuals (silhouette_residual.hpp), in pixels,
 //   + the distances of the projected ray axes to the detected rays (ray_features.hpp), pixels,
+//   + in the views named in coverage_views, the pixel coverages of the model against the soft
+//     segmentation (coverage_residual.hpp: places the outline to a fraction of a pixel, which the
+//     pixel-centre chamfer cannot, on the few-pixel-wide edge-on strips),
 //   + a temporal prior: the pose stays near the constant-velocity prediction from the previous
 //     two frames (smooth motion; also the warm start),
 //   + spatial priors: neighbouring rays bend alike (the membrane couples them; a weak prior on
@@ -19,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "vision/coverage_residual.hpp"
 #include "vision/ray_features.hpp"
 #include "vision/silhouette_residual.hpp"
 #include "vision/skeleton.hpp"
@@ -30,6 +34,9 @@ struct FitOptions {
   SilhouetteOptions silhouette;
   RayFeatureOptions rays;
   std::vector<std::string> ray_views;  // views whose ray features are used (empty: all)
+  CoverageOptions coverage;            // sub-pixel area term (coverage_residual.hpp) ...
+  std::vector<std::string> coverage_views;  // ... in these views (empty: none)
+  double coverage_chamfer_weight = 1.0;     // factor on the chamfer weight where the coverage term is on
   int iterations = 12;              // LM iterations per frame (warm started)
   int first_iterations = 60;        // ... for the first frame, from the rest pose
   double temporal_sigma = 0.05;     // rad (translation: chords) from the prediction
@@ -40,6 +47,7 @@ struct FitOptions {
   double max_step = 0.1;           // largest change of one parameter per LM step (rad, chords)
   double tolerance = 1e-3;          // stop when the cost falls by less than this fraction
   double step_tolerance = 1e-4;     // ... or when no parameter moved by more than this (rad, chords)
+  int max_rejections = 0;           // ... or after this many rejected steps in a row (0: never)
 };
 
 struct FrameFit {
@@ -71,6 +79,7 @@ class SkeletonFitter {
   const SkinBinding& b_;
   const NdArray<std::int32_t>& tri_;
   std::vector<int> ray_vertices_;
+  std::vector<MeshEdge> edges_;
   FitOptions o_;
 };
 

@@ -142,17 +142,51 @@ SkinJacobian skin_jacobian(const SkinBinding& b, const Skeleton& s, const Pose& 
       for (int c = 0; c < 3; ++c) J.cols[v].push_back(3 + 3 * j + c);
     }
   }
-  Pose q = pose;
+  // Perturbing joint j changes the frames of j and its descendants only: recompute those (with
+  // the same operations as forward_kinematics, so the values are the same) from the unperturbed
+  // frames and local transforms instead of the whole skeleton twice per parameter.
+  const JointFrames base = forward_kinematics(s, pose);
+  std::vector<cv::Matx33d> Rl(nj);
+  std::vector<cv::Vec3d> tl(nj);
+  for (std::size_t j = 0; j < nj; ++j) {
+    Rl[j] = rotation_matrix({pose.p[3 + 3 * j], pose.p[4 + 3 * j], pose.p[5 + 3 * j]});
+    tl[j] = s.joint_rest[j] - Rl[j] * s.joint_rest[j];
+  }
+  const cv::Vec3d translation(pose.p[0] * s.chord, pose.p[1] * s.chord, pose.p[2] * s.chord);
+  JointFrames fp = base, fm = base;
+  std::vector<char> changed(nj, 0);
+  auto perturbed = [&](std::size_t j, const cv::Vec3d& rv, JointFrames& f) {
+    for (std::size_t k = j; k < nj; ++k) {
+      changed[k] = k == j || (s.parent[k] >= 0 && changed[static_cast<std::size_t>(s.parent[k])]);
+      if (!changed[k]) continue;
+      cv::Matx33d R = Rl[k];
+      cv::Vec3d t = tl[k];
+      if (k == j) R = rotation_matrix(rv), t = s.joint_rest[k] - R * s.joint_rest[k];
+      if (s.parent[k] < 0) {
+        f.R[k] = R;
+        f.t[k] = t + translation;
+      } else {
+        const auto q = static_cast<std::size_t>(s.parent[k]);
+        f.R[k] = f.R[q] * R;
+        f.t[k] = f.R[q] * t + f.t[q];
+      }
+    }
+  };
+  auto restore = [&](std::size_t j) {
+    for (std::size_t k = j; k < nj; ++k)
+      if (changed[k]) fp.R[k] = fm.R[k] = base.R[k], fp.t[k] = fm.t[k] = base.t[k], changed[k] = 0;
+  };
   for (std::size_t j = 0; j < nj; ++j) {
     if (moved[j].empty()) continue;
     for (int c = 0; c < 3; ++c) {
       const std::size_t i = 3 + 3 * j + c;
-      q.p[i] = pose.p[i] + h;
-      const auto fp = forward_kinematics(s, q);
-      q.p[i] = pose.p[i] - h;
-      const auto fm = forward_kinematics(s, q);
-      q.p[i] = pose.p[i];
+      cv::Vec3d rv(pose.p[3 + 3 * j], pose.p[4 + 3 * j], pose.p[5 + 3 * j]);
+      rv[c] = pose.p[i] + h;
+      perturbed(j, rv, fp);
+      rv[c] = pose.p[i] - h;
+      perturbed(j, rv, fm);
       for (std::size_t v : moved[j]) J.vals[v].push_back((skin_vertex(b, fp, v) - skin_vertex(b, fm, v)) / (2 * h));
+      restore(j);
     }
   }
   return J;

@@ -17,6 +17,7 @@ ViewData prepare_view(const Camera& camera, const cv::Mat& frame, const Segmenta
                 " px but the calibration says " + std::to_string(camera.width) + "x" + std::to_string(camera.height));
   const auto seg = segment_fin(frame, so);
   v.mask = seg.mask;
+  v.coverage = seg.coverage;
   v.valid = cv::countNonZero(v.mask) > 0;
   if (!v.valid) return v;
   v.sdf = signed_distance(v.mask);

@@ -20,6 +20,7 @@ struct ViewData {
   bool valid = false;
   cv::Mat mask;                     // CV_8U data silhouette
   cv::Mat sdf;                      // its signed distance field (px)
+  cv::Mat coverage;                 // CV_32F soft segmentation (Segmentation::coverage)
   std::vector<cv::Point> contour;   // inner contour pixels of the data silhouette
   cv::Mat ray_distance;             // CV_32F distance (px) to the nearest detected ray pixel
 };
