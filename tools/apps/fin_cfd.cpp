@@ -290,12 +290,16 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   const std::string name = variant == 1 ? "dfg_2d1" : "dfg_2d2";
   DfgSetup ds;
   ds.variant = variant;
-  ds.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : (coarse ? 12 : 48);
+  ds.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : (coarse ? 12 : variant == 1 ? 48 : 24);
   ds.t_end = a.t_end > 0 ? a.t_end : variant == 1 ? (coarse ? 4.0 : 8.0) : (coarse ? 2.0 : 10.0);
   ds.window = variant == 2 ? std::min(3.0, 0.4 * ds.t_end) : 0.0;
   if (a.wake_box > 0) ds.box_x1 = a.wake_box;
   if (a.stretch_ratio > 0) ds.stretch_ratio = a.stretch_ratio;
-  ds.core_cells_per_diameter = a.core_cells_per_diameter;
+  // 2D-2 by default with a D/64 core over the boundary layer in a D/24 box (measured: CD_max
+  // -0.56 %, St +0.88 % of the bound midpoints, CL_max -3.1 %; uniform D/24: -6.1 %, +1.6 %, -11.9 %).
+  ds.core_cells_per_diameter = a.core_cells_per_diameter > 0 || a.cells_per_diameter > 0 || coarse || variant == 1
+                                   ? a.core_cells_per_diameter
+                                   : 64;
   const int finest = std::max(ds.cells_per_diameter, ds.core_cells_per_diameter);
   const std::size_t expected = static_cast<std::size_t>(std::ceil(ds.t_end / (ds.cfl * 0.1 / finest / 1.8 /
                                                                               (variant == 1 ? 0.3 : 1.5))));

@@ -54,7 +54,10 @@ DfgRun finverse_dfg_run(const std::string& path) {
   if (j.value("name", "") != "dfg_2d2")
     throw finverse::Error("--dfg " + path + ": expected a fin-cfd dfg_2d2 summary, found '" + j.value("name", "") + "'");
   DfgRun r;
-  r.label = "finverse " + std::to_string(j.at("parameters").value("cells_per_diameter", 0)) + " cells/D";
+  const nlohmann::json& P = j.at("parameters");
+  r.label = "finverse " + std::to_string(P.value("cells_per_diameter", 0)) + " cells/D";
+  if (P.value("core_cells_per_diameter", 0) > P.value("cells_per_diameter", 0))
+    r.label += ", core " + std::to_string(P.value("core_cells_per_diameter", 0)) + " cells/D";
   r.wall_s = j.at("timing").at("wall_s").get<double>();
   int graded = 0, passed = 0;
   for (const auto& m : j.at("metrics")) {
