@@ -13,23 +13,15 @@
 #include "vision/coverage_residual.hpp"
 #include "vision/segmentation.hpp"
 #include "vision/silhouette_coverage.hpp"
+#include "front_camera.hpp"
 
 using namespace finverse;
 using namespace finverse::vision;
+using finverse::vision::test::front_camera;
+using finverse::vision::test::kD;
+using finverse::vision::test::kF;
 
 namespace {
-
-// Pinhole camera on the -y axis: world (x, z) -> pixels u = cx + f x / d, v = cy - f z / d.
-constexpr double kF = 500, kD = 0.1;
-Camera front_camera() {
-  Camera c;
-  c.name = "front";
-  c.width = c.height = 64;
-  c.K = cv::Matx33d(kF, 0, 31.5, 0, kF, 31.5, 0, 0, 1);
-  c.rvec = cv::Vec3d(std::numbers::pi / 2, 0, 0);
-  c.tvec = cv::Vec3d(0, 0, kD);
-  return c;
-}
 
 // A strip of width w (px) centred on pixel column u0 at row 31.5, tilted by `angle` from the
 // image's vertical, 40 px long, as an n x 2 grid of quads (interior edges that are no outline).

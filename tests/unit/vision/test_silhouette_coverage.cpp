@@ -10,25 +10,16 @@
 
 #include "core/error.hpp"
 #include "vision/silhouette_coverage.hpp"
+#include "front_camera.hpp"
 #include "vision/silhouette_residual.hpp"
 
 using namespace finverse;
 using namespace finverse::vision;
+using finverse::vision::test::front_camera;
+using finverse::vision::test::kD;
+using finverse::vision::test::kF;
 
 namespace {
-
-// A pinhole camera on the -y axis looking at the origin: world (x, z) maps to pixels
-// u = cx + f x / d, v = cy - f z / d.
-constexpr double kF = 500, kD = 0.1;
-Camera front_camera() {
-  Camera c;
-  c.name = "front";
-  c.width = c.height = 64;
-  c.K = cv::Matx33d(kF, 0, 31.5, 0, kF, 31.5, 0, 0, 1);
-  c.rvec = cv::Vec3d(std::numbers::pi / 2, 0, 0);   // camera z = world +y, camera y = world -z
-  c.tvec = cv::Vec3d(0, 0, kD);
-  return c;
-}
 
 // A rectangle in the plane y = 0 covering pixels [u0, u1] x [v0, v1] (pixel units).
 NdArray<double> rectangle(double u0, double u1, double v0, double v1, NdArray<std::int32_t>* tri) {
