@@ -55,21 +55,26 @@ JointFrames forward_kinematics(const Skeleton& s, const Pose& pose) {
   f.R.resize(nj);
   f.t.resize(nj);
   const cv::Vec3d translation(pose.p[0] * s.chord, pose.p[1] * s.chord, pose.p[2] * s.chord);
-  // Joints are stored parents first, so one pass suffices. Local motion of joint j: rotate about
-  // its rest position, X = R_j (x - J_j) + J_j, composed with the parent's frame.
-  for (std::size_t j = 0; j < nj; ++j) {
-    const cv::Matx33d Rl = rotation_matrix({pose.p[3 + 3 * j], pose.p[4 + 3 * j], pose.p[5 + 3 * j]});
-    const cv::Vec3d tl = s.joint_rest[j] - Rl * s.joint_rest[j];
-    if (s.parent[j] < 0) {
-      f.R[j] = Rl;
-      f.t[j] = tl + translation;
-    } else {
-      const auto q = static_cast<std::size_t>(s.parent[j]);
-      f.R[j] = f.R[q] * Rl;
-      f.t[j] = f.R[q] * tl + f.t[q];
-    }
-  }
+  // Joints are stored parents first, so one pass suffices.
+  for (std::size_t j = 0; j < nj; ++j)
+    compose_joint_frame(s, j, {pose.p[3 + 3 * j], pose.p[4 + 3 * j], pose.p[5 + 3 * j]}, translation, f);
   return f;
+}
+
+// Local motion of joint j: rotate about its rest position, X = R_j (x - J_j) + J_j, composed with
+// the parent's frame.
+void compose_joint_frame(const Skeleton& s, std::size_t j, const cv::Vec3d& rotation_vector, const cv::Vec3d& translation,
+                         JointFrames& f) {
+  const cv::Matx33d Rl = rotation_matrix(rotation_vector);
+  const cv::Vec3d tl = s.joint_rest[j] - Rl * s.joint_rest[j];
+  if (s.parent[j] < 0) {
+    f.R[j] = Rl;
+    f.t[j] = tl + translation;
+  } else {
+    const auto q = static_cast<std::size_t>(s.parent[j]);
+    f.R[j] = f.R[q] * Rl;
+    f.t[j] = f.R[q] * tl + f.t[q];
+  }
 }
 
 }  // namespace finverse::vision

@@ -45,6 +45,12 @@ struct JointFrames {
 };
 JointFrames forward_kinematics(const Skeleton& s, const Pose& pose);
 
+// Frame of joint j from its local rotation (rotation vector about its rest position), the root
+// translation (m) and its parent's frame already in f: the step forward_kinematics takes per joint,
+// also used to recompute only the descendants of a perturbed joint (skinning.cpp).
+void compose_joint_frame(const Skeleton& s, std::size_t j, const cv::Vec3d& rotation_vector, const cv::Vec3d& translation,
+                         JointFrames& f);
+
 cv::Matx33d rotation_matrix(const cv::Vec3d& rotation_vector);
 
 }  // namespace finverse::vision

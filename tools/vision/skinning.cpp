@@ -142,34 +142,19 @@ SkinJacobian skin_jacobian(const SkinBinding& b, const Skeleton& s, const Pose& 
       for (int c = 0; c < 3; ++c) J.cols[v].push_back(3 + 3 * j + c);
     }
   }
-  // Perturbing joint j changes the frames of j and its descendants only: recompute those (with
-  // the same operations as forward_kinematics, so the values are the same) from the unperturbed
-  // frames and local transforms instead of the whole skeleton twice per parameter.
+  // Perturbing joint j changes the frames of j and its descendants only (joints are stored
+  // parents first): recompute those with forward_kinematics' own step from the unperturbed frames,
+  // instead of the whole skeleton twice per parameter. The values are the same.
   const JointFrames base = forward_kinematics(s, pose);
-  std::vector<cv::Matx33d> Rl(nj);
-  std::vector<cv::Vec3d> tl(nj);
-  for (std::size_t j = 0; j < nj; ++j) {
-    Rl[j] = rotation_matrix({pose.p[3 + 3 * j], pose.p[4 + 3 * j], pose.p[5 + 3 * j]});
-    tl[j] = s.joint_rest[j] - Rl[j] * s.joint_rest[j];
-  }
   const cv::Vec3d translation(pose.p[0] * s.chord, pose.p[1] * s.chord, pose.p[2] * s.chord);
   JointFrames fp = base, fm = base;
   std::vector<char> changed(nj, 0);
   auto perturbed = [&](std::size_t j, const cv::Vec3d& rv, JointFrames& f) {
     for (std::size_t k = j; k < nj; ++k) {
       changed[k] = k == j || (s.parent[k] >= 0 && changed[static_cast<std::size_t>(s.parent[k])]);
-      if (!changed[k]) continue;
-      cv::Matx33d R = Rl[k];
-      cv::Vec3d t = tl[k];
-      if (k == j) R = rotation_matrix(rv), t = s.joint_rest[k] - R * s.joint_rest[k];
-      if (s.parent[k] < 0) {
-        f.R[k] = R;
-        f.t[k] = t + translation;
-      } else {
-        const auto q = static_cast<std::size_t>(s.parent[k]);
-        f.R[k] = f.R[q] * R;
-        f.t[k] = f.R[q] * t + f.t[q];
-      }
+      if (changed[k])
+        compose_joint_frame(s, k, k == j ? rv : cv::Vec3d(pose.p[3 + 3 * k], pose.p[4 + 3 * k], pose.p[5 + 3 * k]),
+                            translation, f);
     }
   };
   auto restore = [&](std::size_t j) {
