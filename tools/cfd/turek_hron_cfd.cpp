@@ -51,6 +51,16 @@ double turek_hron_body_area(const TurekHronGeometry& g) {
   return std::numbers::pi * r * r + 2 * a * (g.tip_x() - g.xc) - overlap;
 }
 
+double turek_hron_kick(const TurekHronSetup& ts, const TurekHronGeometry& g, double x, double y, double t) {
+  const double s = (t - ts.kick_start) / ts.kick_duration;
+  if (ts.kick_velocity == 0 || s <= 0 || s >= 1) return 0;
+  // sin^2 envelope: its time integral is kick_duration / 2, so the peak amplitude below gives the
+  // blob's centre the velocity kick_velocity.
+  const double D = 2 * g.radius, dx = x - (g.tip_x() + D), dy = y - g.yc;
+  const double envelope = std::sin(std::numbers::pi * s) * std::sin(std::numbers::pi * s);
+  return 2 * ts.kick_velocity / ts.kick_duration * envelope * std::exp(-(dx * dx + dy * dy) / (D * D));
+}
+
 TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
   if (ts.variant != 2 && ts.variant != 3) throw Error("turek_hron: variant must be 2 (CFD2) or 3 (CFD3)");
   if (ts.cells_per_diameter < 4) throw Error("turek_hron: need at least 4 cells per diameter");
@@ -76,8 +86,14 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
            : StretchedGrid(Axis::stretched_count(0, g.length, bx0, bx1, nx, ratio),
                            Axis::stretched_count(0, g.height, by0, by1, ny, ratio));
 
+  if (ts.kick_velocity != 0 && !(ts.kick_duration > 0)) throw Error("turek_hron: kick_duration must be > 0");
+  FlowOptions options = channel_benchmark_options(kNu, ts.cfl, hc, Um);
+  if (ts.kick_velocity != 0)
+    options.body_force = [&ts, g](double x, double y, double, double t) -> std::array<double, 3> {
+      return {0, turek_hron_kick(ts, g, x, y, t), 0};
+    };
   FlowSolver solver;
-  solver.setup(grid, channel_benchmark_boundary(Um, ts.ramp_time), channel_benchmark_options(kNu, ts.cfl, hc, Um));
+  solver.setup(grid, channel_benchmark_boundary(Um, ts.ramp_time), options);
   const Polygon body = turek_hron_body(g, ts.circle_vertices);
   solver.immerse(body);
   solver.initialise({});
@@ -165,6 +181,16 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
     }
     r.periods = static_cast<int>(up.size()) - 1;
     if (r.periods >= 1) r.frequency = r.periods / (up.back() - up.front());
+    double pmin = 1e300, pmax = -1e300;
+    for (const TurekHronSample& s : r.history)
+      if (s.t >= t_start - ts.window && s.t < t_start) {
+        pmin = std::min(pmin, s.lift);
+        pmax = std::max(pmax, s.lift);
+      }
+    if (pmax >= pmin) {
+      r.lift_amplitude_previous = 0.5 * (pmax - pmin);
+      if (r.lift_amplitude > 0) r.lift_amplitude_change = (r.lift_amplitude - r.lift_amplitude_previous) / r.lift_amplitude;
+    }
   }
   r.cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

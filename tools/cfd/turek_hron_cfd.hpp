@@ -50,8 +50,18 @@ struct TurekHronSetup {
   // Control volume [x0, x1] x [y0, y1] of the independent momentum-balance force
   // (control_volume_force.hpp); two cells clear of the body, so the default needs N >= 8.
   std::array<double, 4> control_volume{0.11, 0.66, 0.11, 0.29};
+  // CFD3: a brief transverse push on the near wake that starts the shedding. The flag damps the
+  // wake instability (from rest at 32 cells/D it grows by ~2x per second and saturates only after
+  // t ~ 12 s); the saturated limit cycle does not depend on how it was started, so a push of
+  // kick_velocity (peak transverse velocity it gives the fluid at the blob's centre, [m/s]) over
+  // [kick_start, kick_start + kick_duration] in a Gaussian blob of radius D one diameter behind the
+  // tip shortens the run by ~10 s. kick_velocity = 0: no push.
+  double kick_start = 2.0, kick_duration = 0.25, kick_velocity = 0;
   std::function<void(const StepStats&)> progress;  // called after every step
 };
+
+// The push's body force per unit mass (kick_* above) at (x, y) and time t [m/s^2].
+double turek_hron_kick(const TurekHronSetup& setup, const TurekHronGeometry& g, double x, double y, double t);
 
 struct TurekHronSample {
   double t = 0, drag = 0, lift = 0;
@@ -67,6 +77,9 @@ struct TurekHronResult {
   // the lift from its upward crossings of the window mean.
   double drag = 0, lift = 0, drag_drift = 0;
   double drag_mean = 0, drag_amplitude = 0, lift_mean = 0, lift_amplitude = 0, frequency = 0;
+  // CFD3: the lift amplitude over the window before the analysis window, relative change
+  // (amplitude - previous) / amplitude: near 0 once the shedding has saturated.
+  double lift_amplitude_previous = 0, lift_amplitude_change = 0;
   // The same from the control-volume force (CFD2: final values; CFD3: window mean/amplitude).
   double drag_cv = 0, lift_cv = 0, drag_amplitude_cv = 0, lift_amplitude_cv = 0;
   int periods = 0;
