@@ -10,6 +10,10 @@
 // around cylinder, flag and wake_box diameters of near wake, symmetric about y = 0.2, geometric
 // stretching outside it; optionally a finer core of h = D / N_core over the body's boundary layers,
 // [xc - 0.75 D, tip + 0.5 D] x [yc - 0.75 D, yc + 0.75 D] (Axis::nested; see dfg_benchmark.hpp).
+// CFD3: the rigid flag keeps the wake close to its shedding threshold, so from rest the shedding
+// needs ~10 s to grow out of round-off; a brief transverse push on the near wake after the ramp
+// (TurekHronSetup::kick_*) starts it, and the last window's lift amplitude is compared with the
+// window before to show the limit cycle has been reached.
 #pragma once
 
 #include <array>
