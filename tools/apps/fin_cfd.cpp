@@ -261,9 +261,10 @@ struct BodyCaseArgs {
   double wake_box = 0;         // DFG, Turek-Hron: uniform box's downstream end (0: the case's default)
   double stretch_ratio = 0;    // DFG, Turek-Hron: stretching ratio outside the box (0: the default)
   int core_cells_per_diameter = 0;  // DFG: a finer core around the body (0: none)
+  double cfl = 0;              // DFG, Turek-Hron: target convective CFL number (0: the case's default)
 };
 
-// Grid options of the channel benchmarks (DFG, Turek-Hron) on subcommand sc.
+// Grid and time-step options of the channel benchmarks (DFG, Turek-Hron) on subcommand sc.
 void add_channel_grid_options(CLI::App* sc, BodyCaseArgs& a, const std::string& box_help) {
   sc->add_option("--wake-box", a.wake_box, box_help)->check(CLI::PositiveNumber);
   sc->add_option("--stretch-ratio", a.stretch_ratio, "grid: largest cell-width ratio outside the uniform box")
@@ -272,6 +273,8 @@ void add_channel_grid_options(CLI::App* sc, BodyCaseArgs& a, const std::string& 
                  "grid: a finer core of h = D / N around the body (boundary layers), joined to the box by "
                  "ratio-1.1 growth (0: none)")
       ->check(CLI::Range(0, 1000));
+  // The time step's share of an error: halve the CFL number and compare.
+  sc->add_option("--cfl", a.cfl, "time step: target convective CFL number (default 0.5)")->check(CLI::Range(0.01, 1.0));
 }
 
 // The options of BodyCaseArgs on subcommand sc; `t_unit` names the unit of --t-end.
@@ -296,6 +299,7 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   ds.window = variant == 2 ? std::min(3.0, 0.4 * ds.t_end) : 0.0;
   if (a.wake_box > 0) ds.box_x1 = a.wake_box;
   if (a.stretch_ratio > 0) ds.stretch_ratio = a.stretch_ratio;
+  if (a.cfl > 0) ds.cfl = a.cfl;
   // 2D-2 by default with a D/64 core over the boundary layer in a D/24 box (measured: CD_max
   // -0.56 %, St +0.88 % of the bound midpoints, CL_max -3.1 %; uniform D/24: -6.1 %, +1.6 %, -11.9 %).
   ds.core_cells_per_diameter = a.core_cells_per_diameter > 0 || a.cells_per_diameter > 0 || coarse || variant == 1
@@ -408,6 +412,7 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
   ts.window = variant == 3 ? std::min(1.0, 0.4 * ts.t_end) : 0.0;
   if (a.wake_box > 0) ts.wake_box = a.wake_box;
   if (a.stretch_ratio > 0) ts.stretch_ratio = a.stretch_ratio;
+  if (a.cfl > 0) ts.cfl = a.cfl;
   // Once developed, the fastest flow past the body is about 1.8 Um: dt = cfl h / (1.8 Um).
   const double um = variant == 2 ? 1.5 : 3.0;
   const int finest = std::max(ts.cells_per_diameter, ts.core_cells_per_diameter);
