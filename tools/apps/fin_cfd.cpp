@@ -262,12 +262,17 @@ struct BodyCaseArgs {
   double stretch_ratio = 0;    // DFG, Turek-Hron: stretching ratio outside the box (0: the default)
   int core_cells_per_diameter = 0;  // DFG: a finer core around the body (0: none)
   double cfl = 0;              // DFG, Turek-Hron: target convective CFL number (0: the case's default)
+  double wall_stretch_ratio = 0;  // DFG, Turek-Hron: ratio between the box and the channel walls (0: --stretch-ratio)
 };
 
 // Grid and time-step options of the channel benchmarks (DFG, Turek-Hron) on subcommand sc.
 void add_channel_grid_options(CLI::App* sc, BodyCaseArgs& a, const std::string& box_help) {
   sc->add_option("--wake-box", a.wake_box, box_help)->check(CLI::PositiveNumber);
   sc->add_option("--stretch-ratio", a.stretch_ratio, "grid: largest cell-width ratio outside the uniform box")
+      ->check(CLI::Range(1.0, 1.5));
+  sc->add_option("--wall-stretch-ratio", a.wall_stretch_ratio,
+                 "grid: the same between the box and the channel walls (default: --stretch-ratio; 1: the box's "
+                 "spacing out to the walls)")
       ->check(CLI::Range(1.0, 1.5));
   sc->add_option("--core-cells-per-diameter", a.core_cells_per_diameter,
                  "grid: a finer core of h = D / N around the body (boundary layers), joined to the box by "
@@ -300,6 +305,7 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   if (a.wake_box > 0) ds.box_x1 = a.wake_box;
   if (a.stretch_ratio > 0) ds.stretch_ratio = a.stretch_ratio;
   if (a.cfl > 0) ds.cfl = a.cfl;
+  if (a.wall_stretch_ratio > 0) ds.wall_stretch_ratio = a.wall_stretch_ratio;
   // 2D-2 by default with a D/64 core over the boundary layer in a D/24 box (measured: CD_max
   // -0.56 %, St +0.88 % of the bound midpoints, CL_max -3.1 %; uniform D/24: -6.1 %, +1.6 %, -11.9 %).
   ds.core_cells_per_diameter = a.core_cells_per_diameter > 0 || a.cells_per_diameter > 0 || coarse || variant == 1
@@ -371,7 +377,8 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
                     {"window", ds.window}, {"cfl", ds.cfl}, {"ramp_time", ds.ramp_time},
                     {"polygon_vertices", ds.polygon_vertices}, {"box_x1", ds.box_x1},
                     {"core_cells_per_diameter", ds.core_cells_per_diameter},
-                    {"stretch_ratio", ds.stretch_ratio}, {"reference", a.reference}};
+                    {"stretch_ratio", ds.stretch_ratio}, {"wall_stretch_ratio", ds.wall_stretch_ratio},
+                    {"reference", a.reference}};
   log::info(name + ": " +
             (variant == 1 ? "CD " + fmt("%.5f", r.cd) + "  CL " + fmt("%.5f", r.cl) + "  dp " + fmt("%.5f", r.dp)
                           : "CD_max " + fmt("%.5f", r.cd_max) + "  CL_max " + fmt("%.5f", r.cl_max) + "  St " +
@@ -413,6 +420,7 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
   if (a.wake_box > 0) ts.wake_box = a.wake_box;
   if (a.stretch_ratio > 0) ts.stretch_ratio = a.stretch_ratio;
   if (a.cfl > 0) ts.cfl = a.cfl;
+  if (a.wall_stretch_ratio > 0) ts.wall_stretch_ratio = a.wall_stretch_ratio;
   // Once developed, the fastest flow past the body is about 1.8 Um: dt = cfl h / (1.8 Um).
   const double um = variant == 2 ? 1.5 : 3.0;
   const int finest = std::max(ts.cells_per_diameter, ts.core_cells_per_diameter);
@@ -486,7 +494,8 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
   s.parameters() = {{"coarse", coarse}, {"cells_per_diameter", ts.cells_per_diameter}, {"t_end", ts.t_end},
                     {"window", ts.window}, {"cfl", ts.cfl}, {"ramp_time", ts.ramp_time},
                     {"circle_vertices", ts.circle_vertices}, {"wake_box", ts.wake_box},
-                    {"stretch_ratio", ts.stretch_ratio}, {"core_cells_per_diameter", ts.core_cells_per_diameter},
+                    {"stretch_ratio", ts.stretch_ratio}, {"wall_stretch_ratio", ts.wall_stretch_ratio},
+                    {"core_cells_per_diameter", ts.core_cells_per_diameter},
                     {"kick_velocity", ts.kick_velocity}, {"kick_start", ts.kick_start},
                     {"kick_duration", ts.kick_duration}, {"reference", a.reference}};
   log::info(name + ": " +

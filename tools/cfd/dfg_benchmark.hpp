@@ -35,6 +35,10 @@ struct DfgSetup {
   double ramp_time = 1.0;     // inflow ramp (1 - cos) / 2 [s]
   double box_x1 = 0.6;        // downstream end of the uniform box [m]
   double stretch_ratio = 1.05;  // largest ratio of neighbouring cell widths outside the box
+  // The same between the box and the channel walls (y); 0: stretch_ratio. 1 keeps the box's
+  // spacing out to the walls, whose unsteady (Stokes) layers under the passing vortices are about
+  // sqrt(2 nu / omega) ~ D/10 thick at Re 100.
+  double wall_stretch_ratio = 0;
   // Control volume [x0, x1] x [y0, y1] of the independent momentum-balance force
   // (control_volume_force.hpp); two cells clear of the body, so the default needs N >= 8.
   std::array<double, 4> control_volume{0.11, 0.45, 0.11, 0.29};
@@ -60,6 +64,11 @@ struct DfgResult {
   double mean_poisson_iterations = 0, max_poisson_iterations = 0, mean_momentum_iterations = 0;
   double cpu_seconds = 0;
 };
+
+// The benchmark's grid: a uniform box of h = D / cells_per_diameter (and the finer core, when set)
+// around the cylinder, geometric growth to the inlet and outlet (stretch_ratio) and to the channel
+// walls (wall_stretch_ratio).
+StretchedGrid dfg_grid(const DfgSetup& setup);
 
 DfgResult run_dfg(const DfgSetup& setup);
 

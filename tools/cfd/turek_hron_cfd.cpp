@@ -70,6 +70,7 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
   const double Ubar = ts.variant == 2 ? 1.0 : 2.0, Um = 1.5 * Ubar;
   const double h = D / ts.cells_per_diameter;
   const double ratio = ts.stretch_ratio;
+  const double wall_ratio = ts.wall_stretch_ratio > 0 ? ts.wall_stretch_ratio : ratio;
   if (!(ts.wake_box > 0 && g.tip_x() + ts.wake_box * D < g.length))
     throw Error("turek_hron: wake_box must be > 0 and end before the outlet");
   // The uniform box holds the cylinder, the flag and wake_box diameters of near wake; in y
@@ -77,14 +78,14 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
   // pattern, so the lift carries no alignment error).
   const double bx0 = g.xc - D, bx1 = g.tip_x() + ts.wake_box * D, by0 = g.yc - D, by1 = g.yc + D;
   const int nx = round8(Axis::stretched(0, g.length, bx0, bx1, h, ratio).size());
-  const int ny = round8(Axis::stretched(0, g.height, by0, by1, h, ratio).size());
+  const int ny = round8(Axis::stretched(0, g.height, by0, by1, h, wall_ratio).size());
   const bool core = ts.core_cells_per_diameter > ts.cells_per_diameter;
   const double hc = core ? D / ts.core_cells_per_diameter : h;
   const StretchedGrid grid =
       core ? StretchedGrid(Axis::nested(0, g.length, g.xc - 0.75 * D, g.tip_x() + 0.5 * D, hc, bx0, bx1, h, 1.1, ratio, 8),
-                           Axis::nested(0, g.height, g.yc - 0.75 * D, g.yc + 0.75 * D, hc, by0, by1, h, 1.1, ratio, 8))
+                           Axis::nested(0, g.height, g.yc - 0.75 * D, g.yc + 0.75 * D, hc, by0, by1, h, 1.1, wall_ratio, 8))
            : StretchedGrid(Axis::stretched_count(0, g.length, bx0, bx1, nx, ratio),
-                           Axis::stretched_count(0, g.height, by0, by1, ny, ratio));
+                           Axis::stretched_count(0, g.height, by0, by1, ny, wall_ratio));
 
   if (ts.kick_velocity != 0 && !(ts.kick_duration > 0)) throw Error("turek_hron: kick_duration must be > 0");
   FlowOptions options = channel_benchmark_options(kNu, ts.cfl, hc, Um);
