@@ -14,34 +14,34 @@ namespace finverse::cfd {
 
 namespace {
 constexpr double kLength = 2.2, kHeight = 0.41, kD = 0.1, kXc = 0.2, kYc = 0.2, kNu = 1e-3;
-
-// Cell counts that are multiples of 8 keep three halvings for the multigrid.
-int round8(double n) { return std::max(8, 8 * static_cast<int>(std::lround(n / 8))); }
 }  // namespace
 
 StretchedGrid dfg_grid(const DfgSetup& ds) {
   if (ds.cells_per_diameter < 4) throw Error("dfg: need at least 4 cells per diameter");
-  const double h = kD / ds.cells_per_diameter;
-  const double ratio = ds.stretch_ratio;
-  const double wall_ratio = ds.wall_stretch_ratio > 0 ? ds.wall_stretch_ratio : ratio;
   if (!(ds.box_x1 > kXc + kD && ds.box_x1 < kLength)) throw Error("dfg: box_x1 must lie between the cylinder and the outlet");
-  // In y a uniform core [0.1, 0.3], symmetric about the cylinder's centre, so that the ghost-cell
+  // In y a uniform box [0.1, 0.3], symmetric about the cylinder's centre, so that the ghost-cell
   // pattern is mirror symmetric and the lift carries no alignment error (the channel's own
   // asymmetry, 0.2 vs 0.21 to the walls, is what makes CL of 2D-1 non-zero), then out to the walls
-  // with ratio <= wall_ratio. With a uniform y axis over the whole channel, CL changed
+  // with ratio <= wall_stretch_ratio. With a uniform y axis over the whole channel, CL changed
   // non-monotonically with N (0.0259, 0.0143, 0.0025, 0.0139 for N = 12, 24, 32, 48). For 2D-2 the
   // cells at the walls matter: the passing vortices drive Stokes layers there, and ratio 1.05
   // (D/11 at the walls for a D/24 box) lowered the lift amplitude by about 1% against ratio 1.
-  if (ds.core_cells_per_diameter > ds.cells_per_diameter) {
-    const double hc = kD / ds.core_cells_per_diameter;
-    return StretchedGrid(
-        Axis::nested(0, kLength, kXc - 0.75 * kD, kXc + 1.25 * kD, hc, 0.1, ds.box_x1, h, 1.1, ratio, 8),
-        Axis::nested(0, kHeight, kYc - 0.75 * kD, kYc + 0.75 * kD, hc, kYc - kD, kYc + kD, h, 1.1, wall_ratio, 8));
-  }
-  const int nx = round8(Axis::stretched(0, kLength, 0.1, ds.box_x1, h, ratio).size());
-  const int ny = round8(Axis::stretched(0, kHeight, kYc - kD, kYc + kD, h, wall_ratio).size());
-  return StretchedGrid(Axis::stretched_count(0, kLength, 0.1, ds.box_x1, nx, ratio),
-                       Axis::stretched_count(0, kHeight, kYc - kD, kYc + kD, ny, wall_ratio));
+  ChannelGridSpec g;
+  g.length = kLength;
+  g.height = kHeight;
+  g.box_x0 = 0.1;
+  g.box_x1 = ds.box_x1;
+  g.box_y0 = kYc - kD;
+  g.box_y1 = kYc + kD;
+  g.h = kD / ds.cells_per_diameter;
+  g.core_x0 = kXc - 0.75 * kD;
+  g.core_x1 = kXc + 1.25 * kD;
+  g.core_y0 = kYc - 0.75 * kD;
+  g.core_y1 = kYc + 0.75 * kD;
+  g.h_core = ds.core_cells_per_diameter > ds.cells_per_diameter ? kD / ds.core_cells_per_diameter : 0;
+  g.ratio = ds.stretch_ratio;
+  g.wall_ratio = ds.wall_stretch_ratio;
+  return channel_grid(g);
 }
 
 DfgResult run_dfg(const DfgSetup& ds) {

@@ -15,9 +15,6 @@ namespace finverse::cfd {
 
 namespace {
 constexpr double kNu = 1e-3, kRho = 1000;
-
-// Cell counts that are multiples of 8 keep three halvings for the multigrid.
-int round8(double n) { return std::max(8, 8 * static_cast<int>(std::lround(n / 8))); }
 }  // namespace
 
 Polygon turek_hron_body(const TurekHronGeometry& g, int circle_vertices) {
@@ -68,24 +65,29 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
   const TurekHronGeometry g;
   const double D = 2 * g.radius;
   const double Ubar = ts.variant == 2 ? 1.0 : 2.0, Um = 1.5 * Ubar;
-  const double h = D / ts.cells_per_diameter;
-  const double ratio = ts.stretch_ratio;
-  const double wall_ratio = ts.wall_stretch_ratio > 0 ? ts.wall_stretch_ratio : ratio;
   if (!(ts.wake_box > 0 && g.tip_x() + ts.wake_box * D < g.length))
     throw Error("turek_hron: wake_box must be > 0 and end before the outlet");
   // The uniform box holds the cylinder, the flag and wake_box diameters of near wake; in y
   // it is symmetric about the body (the DFG driver's reason: a mirror-symmetric ghost-cell
   // pattern, so the lift carries no alignment error).
-  const double bx0 = g.xc - D, bx1 = g.tip_x() + ts.wake_box * D, by0 = g.yc - D, by1 = g.yc + D;
-  const int nx = round8(Axis::stretched(0, g.length, bx0, bx1, h, ratio).size());
-  const int ny = round8(Axis::stretched(0, g.height, by0, by1, h, wall_ratio).size());
+  ChannelGridSpec spec;
+  spec.length = g.length;
+  spec.height = g.height;
+  spec.box_x0 = g.xc - D;
+  spec.box_x1 = g.tip_x() + ts.wake_box * D;
+  spec.box_y0 = g.yc - D;
+  spec.box_y1 = g.yc + D;
+  spec.h = D / ts.cells_per_diameter;
+  spec.core_x0 = g.xc - 0.75 * D;
+  spec.core_x1 = g.tip_x() + 0.5 * D;
+  spec.core_y0 = g.yc - 0.75 * D;
+  spec.core_y1 = g.yc + 0.75 * D;
   const bool core = ts.core_cells_per_diameter > ts.cells_per_diameter;
-  const double hc = core ? D / ts.core_cells_per_diameter : h;
-  const StretchedGrid grid =
-      core ? StretchedGrid(Axis::nested(0, g.length, g.xc - 0.75 * D, g.tip_x() + 0.5 * D, hc, bx0, bx1, h, 1.1, ratio, 8),
-                           Axis::nested(0, g.height, g.yc - 0.75 * D, g.yc + 0.75 * D, hc, by0, by1, h, 1.1, wall_ratio, 8))
-           : StretchedGrid(Axis::stretched_count(0, g.length, bx0, bx1, nx, ratio),
-                           Axis::stretched_count(0, g.height, by0, by1, ny, wall_ratio));
+  const double hc = core ? D / ts.core_cells_per_diameter : spec.h;
+  spec.h_core = core ? hc : 0;
+  spec.ratio = ts.stretch_ratio;
+  spec.wall_ratio = ts.wall_stretch_ratio;
+  const StretchedGrid grid = channel_grid(spec);
 
   if (ts.kick_velocity != 0 && !(ts.kick_duration > 0)) throw Error("turek_hron: kick_duration must be > 0");
   FlowOptions options = channel_benchmark_options(kNu, ts.cfl, hc, Um);
@@ -106,7 +108,7 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
   const double flag_x0 = g.xc + std::sqrt(g.radius * g.radius - 0.25 * g.flag_thickness * g.flag_thickness);
 
   TurekHronResult r;
-  r.h = h;
+  r.h = spec.h;
   r.cells = static_cast<long>(grid.cells());
   r.ghost_cells = static_cast<long>(solver.immersed()->ghosts().size());
   long poisson = 0;

@@ -1,0 +1,119 @@
+// The grid of the cylinder-in-a-channel benchmarks (channel_benchmark.hpp, channel_grid; the DFG
+// driver's dfg_grid): the core and box hold their spacings, the counts allow three multigrid
+// halvings, the uniform box around the cylinder is symmetric about its centre, and
+// wall_stretch_ratio sets the growth between the box and the channel walls on its own: 1 keeps the
+// box's spacing out to the walls (the Stokes layers that the passing vortices drive there), while
+// the default ratio 1.05 lets the cells grow, as it still does towards the outlet.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "cfd/channel_benchmark.hpp"
+#include "cfd/dfg_benchmark.hpp"
+
+namespace finverse::cfd {
+namespace {
+
+double widest(const Axis& a, double lo, double hi) {
+  double w = 0;
+  for (int i = 0; i < a.size(); ++i)
+    if (a.face(i) >= lo - 1e-12 && a.face(i + 1) <= hi + 1e-12) w = std::max(w, a.width(i));
+  return w;
+}
+
+// The Turek-Hron channel with its flag: box from 1 D before the cylinder to 2 D behind the tip.
+ChannelGridSpec turek_hron_like(double h, double h_core) {
+  ChannelGridSpec s;
+  s.length = 2.5;
+  s.height = 0.41;
+  s.box_x0 = 0.1;
+  s.box_x1 = 0.8;
+  s.box_y0 = 0.1;
+  s.box_y1 = 0.3;
+  s.h = h;
+  s.core_x0 = 0.125;
+  s.core_x1 = 0.65;
+  s.core_y0 = 0.125;
+  s.core_y1 = 0.275;
+  s.h_core = h_core;
+  return s;
+}
+
+TEST(ChannelGrid, CoreAndBoxKeepTheirSpacingsAndTheCountsHalveThreeTimes) {
+  const double h = 0.1 / 16, hc = 0.1 / 32;
+  const StretchedGrid g = channel_grid(turek_hron_like(h, hc));
+  const double lo[2] = {0.125, 0.125}, hi[2] = {0.65, 0.275}, blo[2] = {0.1, 0.1}, bhi[2] = {0.8, 0.3};
+  const double end[2] = {2.5, 0.41};
+  for (int d = 0; d < 2; ++d) {
+    const Axis& a = g.axis(d);
+    EXPECT_EQ(a.size() % 8, 0) << "axis " << d;
+    EXPECT_DOUBLE_EQ(a.face(0), 0.0);
+    EXPECT_DOUBLE_EQ(a.face(a.size()), end[d]);
+    EXPECT_LE(widest(a, lo[d], hi[d]), 1.02 * hc) << "axis " << d;
+    EXPECT_LE(widest(a, blo[d], bhi[d]), 1.02 * h) << "axis " << d;
+    EXPECT_LE(a.max_stretch_ratio(), 1.1 + 1e-9) << "axis " << d;
+  }
+}
+
+TEST(ChannelGrid, WithoutACoreTheBoxIsUniformAndAZeroWallRatioMeansTheOuterRatio) {
+  ChannelGridSpec s = turek_hron_like(0.1 / 16, 0);
+  const StretchedGrid plain = channel_grid(s);
+  for (int d = 0; d < 2; ++d) EXPECT_EQ(plain.axis(d).size() % 8, 0);
+  EXPECT_LE(widest(plain.axis(0), 0.1, 0.8), 1.02 * s.h);
+  // A core no finer than the box is no core.
+  s.h_core = s.h;
+  EXPECT_EQ(channel_grid(s).axis(0).faces(), plain.axis(0).faces());
+  s.h_core = 0;
+  s.wall_ratio = s.ratio;
+  EXPECT_EQ(channel_grid(s).axis(1).faces(), plain.axis(1).faces());
+  // The wall ratio acts on y alone; ratio 1 leaves the wall cells as wide as the box spacing up
+  // to the rounding of the count to a multiple of 8.
+  s.wall_ratio = 1.0;
+  const StretchedGrid walls = channel_grid(s);
+  EXPECT_EQ(walls.axis(0).faces(), plain.axis(0).faces());
+  EXPECT_LE(widest(walls.axis(1), 0.0, 0.41), 1.1 * s.h);
+  EXPECT_GT(widest(plain.axis(1), 0.0, 0.41), 1.3 * s.h);
+}
+
+TEST(DfgGrid, WallStretchRatioOfOneKeepsTheBoxSpacingOutToTheWalls) {
+  DfgSetup ds;
+  ds.variant = 2;
+  ds.cells_per_diameter = 16;
+  ds.core_cells_per_diameter = 32;
+  const double h = 0.1 / 16;
+  const StretchedGrid stretched = dfg_grid(ds);
+  ds.wall_stretch_ratio = 1.0;
+  const StretchedGrid uniform = dfg_grid(ds);
+  const Axis &ys = stretched.axis(1), &yu = uniform.axis(1);
+  EXPECT_DOUBLE_EQ(ys.face(0), 0.0);
+  EXPECT_DOUBLE_EQ(yu.face(yu.size()), 0.41);
+  // Ratio 1.05: the wall cells are clearly wider than the box's; ratio 1: none is.
+  EXPECT_GT(widest(ys, 0.0, 0.1), 1.3 * h);
+  EXPECT_GT(widest(ys, 0.3, 0.41), 1.3 * h);
+  EXPECT_LE(widest(yu, 0.0, 0.41), 1.02 * h);
+  EXPECT_GT(yu.size(), ys.size());
+  // The x axis, and the multigrid-friendly counts, are untouched.
+  EXPECT_EQ(uniform.axis(0).size(), stretched.axis(0).size());
+  EXPECT_EQ(yu.size() % 8, 0);
+}
+
+TEST(DfgGrid, BoxIsSymmetricAboutTheCylinder) {
+  DfgSetup ds;
+  ds.variant = 2;
+  ds.cells_per_diameter = 16;
+  ds.core_cells_per_diameter = 32;
+  ds.wall_stretch_ratio = 1.0;
+  const Axis y = dfg_grid(ds).axis(1);
+  // Every face inside [0.1, 0.3] has its mirror image about y = 0.2.
+  for (int i = 0; i <= y.size(); ++i) {
+    const double f = y.face(i);
+    if (f < 0.1 - 1e-12 || f > 0.3 + 1e-12) continue;
+    double nearest = 1;
+    for (int j = 0; j <= y.size(); ++j) nearest = std::min(nearest, std::abs(y.face(j) - (0.4 - f)));
+    EXPECT_LT(nearest, 1e-12) << "face " << f;
+  }
+}
+
+}  // namespace
+}  // namespace finverse::cfd
