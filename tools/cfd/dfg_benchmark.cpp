@@ -26,22 +26,20 @@ StretchedGrid dfg_grid(const DfgSetup& ds) {
   // non-monotonically with N (0.0259, 0.0143, 0.0025, 0.0139 for N = 12, 24, 32, 48). For 2D-2 the
   // cells at the walls matter: the passing vortices drive Stokes layers there, and ratio 1.05
   // (D/11 at the walls for a D/24 box) lowered the lift amplitude by about 1% against ratio 1.
-  ChannelGridSpec g;
-  g.length = kLength;
-  g.height = kHeight;
-  g.box_x0 = 0.1;
-  g.box_x1 = ds.box_x1;
-  g.box_y0 = kYc - kD;
-  g.box_y1 = kYc + kD;
-  g.h = kD / ds.cells_per_diameter;
-  g.core_x0 = kXc - 0.75 * kD;
-  g.core_x1 = kXc + 1.25 * kD;
-  g.core_y0 = kYc - 0.75 * kD;
-  g.core_y1 = kYc + 0.75 * kD;
-  g.h_core = ds.core_cells_per_diameter > ds.cells_per_diameter ? kD / ds.core_cells_per_diameter : 0;
-  g.ratio = ds.stretch_ratio;
-  g.wall_ratio = ds.wall_stretch_ratio;
-  return channel_grid(g);
+  return channel_grid({.length = kLength,
+                       .height = kHeight,
+                       .box_x0 = 0.1,
+                       .box_x1 = ds.box_x1,
+                       .box_y0 = kYc - kD,
+                       .box_y1 = kYc + kD,
+                       .h = kD / ds.cells_per_diameter,
+                       .core_x0 = kXc - 0.75 * kD,
+                       .core_x1 = kXc + 1.25 * kD,
+                       .core_y0 = kYc - 0.75 * kD,
+                       .core_y1 = kYc + 0.75 * kD,
+                       .h_core = ds.core_cells_per_diameter > ds.cells_per_diameter ? kD / ds.core_cells_per_diameter : 0,
+                       .ratio = ds.stretch_ratio,
+                       .wall_ratio = ds.wall_stretch_ratio});
 }
 
 DfgResult run_dfg(const DfgSetup& ds) {

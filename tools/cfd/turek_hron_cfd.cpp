@@ -70,24 +70,22 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
   // The uniform box holds the cylinder, the flag and wake_box diameters of near wake; in y
   // it is symmetric about the body (the DFG driver's reason: a mirror-symmetric ghost-cell
   // pattern, so the lift carries no alignment error).
-  ChannelGridSpec spec;
-  spec.length = g.length;
-  spec.height = g.height;
-  spec.box_x0 = g.xc - D;
-  spec.box_x1 = g.tip_x() + ts.wake_box * D;
-  spec.box_y0 = g.yc - D;
-  spec.box_y1 = g.yc + D;
-  spec.h = D / ts.cells_per_diameter;
-  spec.core_x0 = g.xc - 0.75 * D;
-  spec.core_x1 = g.tip_x() + 0.5 * D;
-  spec.core_y0 = g.yc - 0.75 * D;
-  spec.core_y1 = g.yc + 0.75 * D;
   const bool core = ts.core_cells_per_diameter > ts.cells_per_diameter;
-  const double hc = core ? D / ts.core_cells_per_diameter : spec.h;
-  spec.h_core = core ? hc : 0;
-  spec.ratio = ts.stretch_ratio;
-  spec.wall_ratio = ts.wall_stretch_ratio;
-  const StretchedGrid grid = channel_grid(spec);
+  const double h = D / ts.cells_per_diameter, hc = core ? D / ts.core_cells_per_diameter : h;
+  const StretchedGrid grid = channel_grid({.length = g.length,
+                                           .height = g.height,
+                                           .box_x0 = g.xc - D,
+                                           .box_x1 = g.tip_x() + ts.wake_box * D,
+                                           .box_y0 = g.yc - D,
+                                           .box_y1 = g.yc + D,
+                                           .h = h,
+                                           .core_x0 = g.xc - 0.75 * D,
+                                           .core_x1 = g.tip_x() + 0.5 * D,
+                                           .core_y0 = g.yc - 0.75 * D,
+                                           .core_y1 = g.yc + 0.75 * D,
+                                           .h_core = core ? hc : 0,
+                                           .ratio = ts.stretch_ratio,
+                                           .wall_ratio = ts.wall_stretch_ratio});
 
   if (ts.kick_velocity != 0 && !(ts.kick_duration > 0)) throw Error("turek_hron: kick_duration must be > 0");
   FlowOptions options = channel_benchmark_options(kNu, ts.cfl, hc, Um);
@@ -108,7 +106,7 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
   const double flag_x0 = g.xc + std::sqrt(g.radius * g.radius - 0.25 * g.flag_thickness * g.flag_thickness);
 
   TurekHronResult r;
-  r.h = spec.h;
+  r.h = h;
   r.cells = static_cast<long>(grid.cells());
   r.ghost_cells = static_cast<long>(solver.immersed()->ghosts().size());
   long poisson = 0;

@@ -24,20 +24,8 @@ double widest(const Axis& a, double lo, double hi) {
 
 // The Turek-Hron channel with its flag: box from 1 D before the cylinder to 2 D behind the tip.
 ChannelGridSpec turek_hron_like(double h, double h_core) {
-  ChannelGridSpec s;
-  s.length = 2.5;
-  s.height = 0.41;
-  s.box_x0 = 0.1;
-  s.box_x1 = 0.8;
-  s.box_y0 = 0.1;
-  s.box_y1 = 0.3;
-  s.h = h;
-  s.core_x0 = 0.125;
-  s.core_x1 = 0.65;
-  s.core_y0 = 0.125;
-  s.core_y1 = 0.275;
-  s.h_core = h_core;
-  return s;
+  return {.length = 2.5, .height = 0.41, .box_x0 = 0.1, .box_x1 = 0.8, .box_y0 = 0.1, .box_y1 = 0.3, .h = h,
+          .core_x0 = 0.125, .core_x1 = 0.65, .core_y0 = 0.125, .core_y1 = 0.275, .h_core = h_core};
 }
 
 TEST(ChannelGrid, CoreAndBoxKeepTheirSpacingsAndTheCountsHalveThreeTimes) {
