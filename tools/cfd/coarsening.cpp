@@ -28,6 +28,45 @@ AxisCoarsening AxisCoarsening::pairs(const std::vector<bool>& merge) {
   return a;
 }
 
+namespace {
+// Pairs within each run of consecutive cells no wider than `limit`. A run of odd length keeps one
+// cell single: the widest of those whose removal leaves even parts on both sides. Leaving always
+// the run's last cell single instead (plain left-to-right pairing) keeps that cell, often a wall
+// cell, at its fine width level after level; being the narrowest cell of the level it then caps
+// h_min and with it the coarsening of the whole grid (a DFG 2D-2 grid, 288 x 168, went
+// 139x57 -> 119x43 -> ... and MG-PCG needed 19 iterations instead of 8).
+std::vector<bool> pair_runs(const Axis& ax, double limit) {
+  const int n = ax.size();
+  std::vector<bool> merge(static_cast<std::size_t>(n), false);
+  int s = 0;
+  while (s < n) {
+    if (!(ax.width(s) <= limit)) {
+      ++s;
+      continue;
+    }
+    int e = s;  // the run is s .. e
+    while (e + 1 < n && ax.width(e + 1) <= limit) ++e;
+    const int len = e - s + 1;
+    int single = -1;
+    if (len % 2 == 1) {
+      single = s;
+      for (int i = s + 2; i <= e; i += 2)
+        if (ax.width(i) > ax.width(single)) single = i;
+    }
+    for (int i = s; i < e;) {
+      if (i == single) {
+        ++i;
+        continue;
+      }
+      merge[static_cast<std::size_t>(i)] = true;
+      i += 2;
+    }
+    s = e + 1;
+  }
+  return merge;
+}
+}  // namespace
+
 Coarsening choose_coarsening(const PoissonOperator& op, double ratio) {
   const StretchedGrid& g = op.grid();
   double hmin = std::numeric_limits<double>::infinity();
@@ -45,10 +84,7 @@ Coarsening choose_coarsening(const PoissonOperator& op, double ratio) {
         cd = AxisCoarsening::pairs(std::vector<bool>(static_cast<std::size_t>(n), true));
       continue;
     }
-    std::vector<bool> merge(static_cast<std::size_t>(n), false);
-    for (int i = 0; i + 1 < n; ++i)
-      merge[static_cast<std::size_t>(i)] = std::max(ax.width(i), ax.width(i + 1)) <= limit;
-    cd = AxisCoarsening::pairs(merge);
+    cd = AxisCoarsening::pairs(pair_runs(ax, limit));
   }
   return c;
 }

@@ -298,21 +298,35 @@ void subtract(const PoissonOperator& op, Field& x, Weight w, const std::vector<d
 
 void PoissonOperator::remove_mean(Field& r) const {
   if (!any_singular()) return;
-  if (active_cells_ == grid_.cells() && components() == 1) {
-    // One singular component covering the grid (no immersed body): a parallel, ordered sum and a
-    // parallel shift. Called twice per MG-PCG iteration, so worth the separate path.
+  // Called twice per MG-PCG iteration, so the usual cases get a parallel, ordered sum and a
+  // parallel shift: one singular component covering the grid (no immersed body), or one singular
+  // component and inactive cells (a body: its cells carry component -1).
+  if (components() == 1) {
     const int nx = grid_.nx(), ny = grid_.ny(), lines = grid_.ny() * grid_.nz();
+    const bool all = active_cells_ == grid_.cells();
+    const int* comp = component_.data();
     const double mean = ordered_line_sum(nx, ny, grid_.nz(), [&](int j, int k) {
                           const double* p = &r(0, j, k);
                           double s = 0;
-                          for (int i = 0; i < nx; ++i) s += p[i];
+                          if (all) {
+                            for (int i = 0; i < nx; ++i) s += p[i];
+                          } else {
+                            const int* c = comp + cell_index(0, j, k);
+                            for (int i = 0; i < nx; ++i) s += c[i] == 0 ? p[i] : 0.0;
+                          }
                           return s;
                         }) /
                         static_cast<double>(active_cells_);
 #pragma omp parallel for schedule(static) if (static_cast<long>(grid_.cells()) >= parallel_min_cells)
     for (int l = 0; l < lines; ++l) {
       double* p = &r(0, l % ny, l / ny);
-      for (int i = 0; i < nx; ++i) p[i] -= mean;
+      if (all) {
+        for (int i = 0; i < nx; ++i) p[i] -= mean;
+      } else {
+        const int* c = comp + cell_index(0, l % ny, l / ny);
+        for (int i = 0; i < nx; ++i)
+          if (c[i] == 0) p[i] -= mean;
+      }
     }
     return;
   }
