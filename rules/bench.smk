@@ -2,6 +2,8 @@
 # Peers come from Debian packages installed by tools/scripts/install-deps.sh --peers; a
 # benchmark whose peer executable is not built is absent from the DAG.
 
+import re
+
 MPIRUN = "mpirun --oversubscribe --allow-run-as-root" if os.geteuid() == 0 else "mpirun --oversubscribe"
 
 if have("fin-poisson-hypre"):
@@ -31,14 +33,22 @@ if have("fin-poisson-hypre"):
 # fin-cfd-bench compares the cheapest run of each that is within 1% of the bound midpoints. The
 # jobs take all THREADS cores, so with -c THREADS they run one at a time (nothing else timed
 # beside them). Full variant only: the coarse grids grade nothing. finverse's grids are named
-# <box>c<core>: h = D / box in the wake box and D / core over the boundary layer (fin-cfd
-# --core-cells-per-diameter; the drag and lift amplitude at Re 100 converge with the cells across
-# the boundary layer, the wake needs far fewer).
+# <box>c<core>[w<ratio>]: h = D / box in the wake box and D / core over the boundary layer (fin-cfd
+# --core-cells-per-diameter; the drag converges with the cells across the boundary layer, the wake
+# needs far fewer), and the growth ratio of the cells between the box and the channel walls
+# (--wall-stretch-ratio; the lift amplitude needs the walls' Stokes layers resolved).
 # OpenFOAM's St converges from below (measured, 2 ranks: 0.2825, 0.2927, 0.2966 at 16, 24, 32 cells
 # per quarter, 91, 347, 676 s; CD_max is within 1% from 16 on, CL_max from 32), so 48 is the first
 # mesh expected inside 1% on all three.
-DFG_BENCH_FINVERSE = ["24c48", "24c64"]
-DFG_BENCH_OPENFOAM = [24, 32, 48]
+DFG_BENCH_FINVERSE = config["bench"]["dfg2d2_finverse"] or ["24c48", "24c64"]
+
+
+def dfg_grid_flags(name):
+    m = re.fullmatch(r"(\d+)(?:c(\d+))?(?:w([0-9.]+))?", name)
+    flags = f"--cells-per-diameter {m[1]} --core-cells-per-diameter {m[2] or 0}"
+    return flags + (f" --wall-stretch-ratio {m[3]}" if m[3] else "")
+
+DFG_BENCH_OPENFOAM = config["bench"]["dfg2d2_openfoam"] or [24, 32, 48]
 
 if have("fin-cfd"):
     rule bench_dfg2d2_finverse:
@@ -50,13 +60,12 @@ if have("fin-cfd"):
         log:
             "results/logs/bench/dfg2d2_finverse_N{n}.log",
         wildcard_constraints:
-            n=r"\d+(c\d+)?",
+            n=r"\d+(c\d+)?(w[0-9.]+)?",
         threads: THREADS
         resources:
             mem_mb=500,
         params:
-            grid=lambda wildcards: "--cells-per-diameter {} --core-cells-per-diameter {}".format(
-                *(wildcards.n.split("c") + ["0"])[:2]),
+            grid=lambda wildcards: dfg_grid_flags(wildcards.n),
         shell:
             "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} --out-dir results/bench/dfg2d2/finverse_N{wildcards.n}"
             " dfg_2d2 {params.grid} --reference {input.reference} > {log} 2>&1 || [ $? -eq 1 ]"

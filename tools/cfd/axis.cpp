@@ -23,9 +23,14 @@ double geometric_length(double h, double r, int m) {
   return len;
 }
 
-// Fewest cells that cover length L growing from h with ratio at most r_max.
+// Fewest cells that cover length L growing from h with ratio at most r_max (r_max < 1: the
+// fewest that reach L while shrinking by r_max per cell).
 int cells_needed(double L, double h, double r_max) {
   if (L <= 0) return 0;
+  if (r_max < 1 && h * r_max / (1 - r_max) < L * (1 - 1e-12))
+    throw std::invalid_argument("Axis: cells shrinking with ratio " + std::to_string(r_max) +
+                                " from width " + std::to_string(h) + " cannot reach the domain bound " +
+                                std::to_string(L) + " away");
   int m = 0;
   double len = 0, w = h;
   while (len < L * (1 - 1e-12)) {
@@ -133,7 +138,10 @@ Axis Axis::stretched_count(double lo, double hi, double ulo, double uhi, int n, 
 
 Axis Axis::nested(double lo, double hi, double core_lo, double core_hi, double h_core, double box_lo, double box_hi,
                   double h_box, double transition_ratio, double max_ratio, int multiple) {
-  check_box(lo, hi, box_lo, box_hi, max_ratio);
+  // A ratio below 1 shrinks the outer cells towards lo and hi (walls with boundary layers of their
+  // own); the shrinking series must still be able to reach the bounds.
+  check_box(lo, hi, box_lo, box_hi, std::max(max_ratio, 1.0));
+  if (!(max_ratio > 0)) throw std::invalid_argument("Axis::nested: max ratio must be > 0");
   if (!(box_lo <= core_lo && core_lo < core_hi && core_hi <= box_hi))
     throw std::invalid_argument("Axis::nested: need box_lo <= core_lo < core_hi <= box_hi");
   if (!(h_core > 0 && h_box >= h_core)) throw std::invalid_argument("Axis::nested: need 0 < h_core <= h_box");

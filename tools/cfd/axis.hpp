@@ -38,7 +38,9 @@ class Axis {
   // up to ~h_box, uniform cells of ~h_box out to [box_lo, box_hi], then geometric growth (ratio <=
   // max_ratio) to lo and hi. Every region is tiled exactly (widths adjusted by rounding the counts);
   // the total count is padded to a multiple of `multiple` (multigrid levels) by giving the
-  // outermost regions more cells. Requires lo <= box_lo <= core_lo < core_hi <= box_hi <= hi,
+  // outermost regions more cells. max_ratio < 1 makes the outer cells shrink towards lo and hi
+  // instead (by about that ratio per cell; padding cells soften it), for bounds that are walls with
+  // boundary layers of their own. Requires lo <= box_lo <= core_lo < core_hi <= box_hi <= hi,
   // 0 < h_core <= h_box; a box side too close to the core for the transition plus one box cell is
   // moved out (within [lo, hi]; std::invalid_argument if the domain is too short).
   static Axis nested(double lo, double hi, double core_lo, double core_hi, double h_core, double box_lo, double box_hi,

@@ -3,11 +3,13 @@
 // halvings, the uniform box around the cylinder is symmetric about its centre, and
 // wall_stretch_ratio sets the growth between the box and the channel walls on its own: 1 keeps the
 // box's spacing out to the walls (the Stokes layers that the passing vortices drive there), while
-// the default ratio 1.05 lets the cells grow, as it still does towards the outlet.
+// the default ratio 1.05 lets the cells grow, as it still does towards the outlet, and a ratio
+// below 1 makes them shrink towards the walls.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "cfd/channel_benchmark.hpp"
 #include "cfd/dfg_benchmark.hpp"
@@ -84,6 +86,37 @@ TEST(DfgGrid, WallStretchRatioOfOneKeepsTheBoxSpacingOutToTheWalls) {
   // The x axis, and the multigrid-friendly counts, are untouched.
   EXPECT_EQ(uniform.axis(0).size(), stretched.axis(0).size());
   EXPECT_EQ(yu.size() % 8, 0);
+}
+
+TEST(DfgGrid, WallRatioBelowOneRefinesTheCellsTowardsTheWalls) {
+  // 0.97 from a D/24 box: the cells shrink monotonically from the box edge to the walls, the
+  // outermost is several times finer than the box (the walls' Stokes layers, about D/10 thick at
+  // the shedding frequency), and the box and core keep their spacings.
+  DfgSetup ds;
+  ds.variant = 2;
+  ds.cells_per_diameter = 24;
+  ds.core_cells_per_diameter = 48;
+  ds.wall_stretch_ratio = 0.97;
+  const double h = 0.1 / 24;
+  const Axis y = dfg_grid(ds).axis(1);
+  EXPECT_DOUBLE_EQ(y.face(0), 0.0);
+  EXPECT_DOUBLE_EQ(y.face(y.size()), 0.41);
+  EXPECT_EQ(y.size() % 8, 0);
+  EXPECT_LT(y.width(0), 0.35 * h);
+  EXPECT_LT(y.width(y.size() - 1), 0.35 * h);
+  for (int i = 0; i + 1 < y.size(); ++i) {
+    if (y.face(i + 2) <= 0.1 + 1e-12) {
+      EXPECT_LT(y.width(i), y.width(i + 1)) << "lower wall region, cell " << i;
+    }
+    if (y.face(i) >= 0.3 - 1e-12) {
+      EXPECT_GT(y.width(i), y.width(i + 1)) << "upper wall region, cell " << i;
+    }
+  }
+  EXPECT_LE(y.max_stretch_ratio(), 1.1 + 1e-9);
+  EXPECT_LE(widest(y, 0.1, 0.3), 1.02 * h);
+  // A shrinking series that cannot reach the wall is refused.
+  ds.wall_stretch_ratio = 0.9;
+  EXPECT_THROW(dfg_grid(ds), std::invalid_argument);
 }
 
 TEST(DfgGrid, BoxIsSymmetricAboutTheCylinder) {
