@@ -546,9 +546,10 @@ int ib_couette(bool coarse, const std::filesystem::path& out, double& wall_out) 
 
 // ---- Moving immersed body: towed and oscillating cylinders -----------------------------------------
 
-int cylinder_towed(bool coarse, const std::filesystem::path& out, double& wall_out) {
+int cylinder_towed(bool coarse, bool staircase_balance, const std::filesystem::path& out, double& wall_out) {
   const auto t0 = std::chrono::steady_clock::now();
   TowedCylinderSetup ts;
+  ts.cut_cell_continuity = !staircase_balance;
   if (coarse) {
     ts.cells_per_diameter = 8;
     ts.t_end = 3;
@@ -598,6 +599,7 @@ int cylinder_towed(bool coarse, const std::filesystem::path& out, double& wall_o
   s.parameters() = {{"coarse", coarse}, {"re", ts.re}, {"cells_per_diameter", ts.cells_per_diameter},
                     {"t_end", ts.t_end}, {"t_compare", ts.t_compare}, {"half_height", ts.half_height},
                     {"filter_cells", ts.filter_cells}, {"cfl", ts.cfl}, {"coupling_fraction", ts.coupling_fraction},
+                    {"cut_cell_continuity", ts.cut_cell_continuity},
                     {"polygon_vertices", ts.polygon_vertices}, {"fixed_offsets", ts.fixed_offsets}};
   wall_out = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return finish(s, dir, wall_out);
@@ -605,42 +607,55 @@ int cylinder_towed(bool coarse, const std::filesystem::path& out, double& wall_o
 
 int cylinder_oscillating(bool coarse, const std::filesystem::path& out, double& wall_out) {
   const auto t0 = std::chrono::steady_clock::now();
-  OscillatingCylinderSetup os;
-  if (coarse) {
-    os.cells_per_diameter = 8;
-    os.steps_per_period = 100;
-    os.periods = 2;
-    os.periods_analysed = 1;
-    os.half_width = 5;
-    os.polygon_vertices = 128;
-  }
+  OscillatingCylinderSetup os = coarse ? OscillatingCylinderSetup::coarse() : OscillatingCylinderSetup{};
   Summary s("validation", "cylinder_oscillating",
             "in-line oscillating cylinder in fluid at rest (KC 5, Re 100, Duetsch et al. 1998): high-frequency content "
-            "of the force history with and without the freshly-cleared-cell treatment (information)");
+            "of the force history with the moving-body treatment (cut-cell mass balance and cleared-cell values), "
+            "with the cleared-cell values alone, and with neither");
   const std::filesystem::path dir = out / "cylinder_oscillating";
   std::filesystem::create_directories(dir);
+  // Three variants: the full treatment (cut-cell mass balance and cleared-cell values), the
+  // staircase mass balance with the cleared-cell values, and neither.
+  struct Variant {
+    const char* tag;
+    bool cut, fresh;
+  };
+  const Variant variants[] = {{"with_treatment", true, true}, {"staircase_balance", false, true}, {"without_treatment", false, false}};
   std::vector<OscillatingCylinderResult> r;
-  for (bool treatment : {true, false}) {
-    os.fresh_cell_treatment = treatment;
+  for (const Variant& v : variants) {
+    os.fresh_cell_treatment = v.fresh;
+    os.cut_cell_continuity = v.cut;
     r.push_back(run_oscillating_cylinder(os));
     const OscillatingCylinderResult& q = r.back();
-    const std::string tag = treatment ? "with_treatment" : "without_treatment";
+    const std::string tag = v.tag;
     log::info("cylinder_oscillating " + tag + ": energy above 10 f " + fmt("%.3e", q.high_frequency_fraction) +
               ", max |d2F| / max|F| " + fmt("%.3e", q.max_second_difference) + ", Cd " + fmt("%.3f", q.cd_morison) +
               ", Ca " + fmt("%.3f", q.ca_morison) + ", " + std::to_string(q.cleared_cells) + " cleared cells (" +
               fmt("%.1f s", q.cpu_seconds) + ")");
-    s.info("high_frequency_energy_fraction_" + tag, q.high_frequency_fraction);
+    // Issue 4: a force history without spikes from cells being cleared. The in-line force at KC 5
+    // is a smooth Morison-type signal whose harmonics above 10 f carry a negligible share of its
+    // energy, so 0.1% above 10 f grades "without spikes" (the staircase balance: about 2% at 16
+    // cells per diameter). The coarse grid only reports.
+    if (v.cut && v.fresh && !coarse)
+      s.at_most("high_frequency_energy_fraction_" + tag, q.high_frequency_fraction, 1e-3,
+                "issue 4: no force spikes from freshly cleared cells (energy above 10 f <= 0.1%)");
+    else
+      s.info("high_frequency_energy_fraction_" + tag, q.high_frequency_fraction);
     s.info("max_second_difference_over_amplitude_" + tag, q.max_second_difference);
     s.info("cd_morison_" + tag, q.cd_morison);
     s.info("ca_morison_" + tag, q.ca_morison);
     s.info("cleared_cells_" + tag, static_cast<double>(q.cleared_cells));
+    s.info("max_continuity_residual_" + tag, q.max_continuity_residual);
   }
-  s.info("high_frequency_reduction_factor", r[1].high_frequency_fraction / std::max(r[0].high_frequency_fraction, 1e-300));
+  // Energy above 10 f without any treatment over that with the full treatment.
+  s.info("high_frequency_reduction_factor", r[2].high_frequency_fraction / std::max(r[0].high_frequency_fraction, 1e-300));
+  s.info("high_frequency_reduction_factor_cut_cells",
+         r[1].high_frequency_fraction / std::max(r[0].high_frequency_fraction, 1e-300));
   std::ostringstream csv;
-  csv << "t,fx_with_treatment,fx_without_treatment\n";
-  char line[96];
+  csv << "t,fx_with_treatment,fx_staircase_balance,fx_without_treatment\n";
+  char line[128];
   for (std::size_t n = 0; n < r[0].time.size(); ++n) {
-    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g\n", r[0].time[n], r[0].fx[n], r[1].fx[n]);
+    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.9g\n", r[0].time[n], r[0].fx[n], r[1].fx[n], r[2].fx[n]);
     csv << line;
   }
   write_text_atomic(dir / "forces.csv", csv.str());
@@ -806,6 +821,9 @@ int main(int argc, char** argv) {
   chan->add_flag("--vtk", ch.vtk, "also write <out>/channel/flow.pvd (ParaView)");
   auto* couette = app.add_subcommand("ib_couette", "Couette flow between two immersed circles: observed order");
   auto* towed = app.add_subcommand("cylinder_towed", "towed cylinder against the fixed cylinder in a stream (Re 20)");
+  bool towed_staircase = false;
+  towed->add_flag("--staircase-balance", towed_staircase,
+                  "the towed body without the cut-cell mass balance (to measure what it changes)");
   auto* oscillating = app.add_subcommand("cylinder_oscillating", "in-line oscillating cylinder (KC 5, Re 100): force spikes");
   BodyCaseArgs dfg_args{0, 0, "data/reference/schaefer_turek.json", 0, 0};
   auto* d1 = app.add_subcommand("dfg_2d1", "DFG 2D-1 cylinder benchmark (Re 20, steady), immersed boundary");
@@ -841,7 +859,7 @@ int main(int argc, char** argv) {
     double wall = 0;
     if (*tg) return taylor_green(coarse, out_dir, wall);
     if (*couette) return ib_couette(coarse, out_dir, wall);
-    if (*towed) return cylinder_towed(coarse, out_dir, wall);
+    if (*towed) return cylinder_towed(coarse, towed_staircase, out_dir, wall);
     if (*oscillating) return cylinder_oscillating(coarse, out_dir, wall);
     if (*sphere) return sphere_re100(coarse, sphere_args, out_dir, wall);
     if (*dfg3) return dfg_3d1z(coarse, dfg3_args, dfg3_span_cells, out_dir, wall);

@@ -58,9 +58,12 @@ void FlowSolver::face_predictor(double dt, double tau) {
 }
 
 PoissonSolveStats FlowSolver::solve_pressure_correction(double dt) {
-  for_each_cell(grid_, [&](int i, int j, int k) { rhs_(i, j, k) = divergence(Ustar_, i, j, k) / dt; });
+  for_each_cell(grid_, [&](int i, int j, int k) { rhs_(i, j, k) = continuity_residual(Ustar_, i, j, k) / dt; });
   const PoissonSolveStats st = poisson_.solve(rhs_, BoundaryValues{}, phi_);
-  if (ib_) ib_->impose_neumann(phi_);  // ghost values: dphi/dn = 0 at the boundary intercept
+  // The cut faces are corrected with phi as solved (update_velocity); the cell-centred gradients
+  // take the ghost values of the Neumann condition dphi/dn = 0 at the boundary intercept.
+  if (cut_) copy_interior(phi_, phi_solved_);
+  if (ib_) ib_->impose_neumann(phi_);
   if (!st.converged)
     throw Error("flow solver: step " + std::to_string(step_ + 1) + ": pressure-correction solve did not converge (" +
                 std::to_string(st.iterations) + " iterations, relative residual " +

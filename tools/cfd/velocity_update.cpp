@@ -15,9 +15,16 @@ namespace finverse::cfd {
 void FlowSolver::update_velocity(double dt) {
   for (int d = 0; d < dim(); ++d) {
     const auto D = static_cast<std::size_t>(d);
-    for_each_face(grid_, d, [&](int i, int j, int k) {
-      U_(d, i, j, k) = Ustar_(d, i, j, k) - (masked_face(d, i, j, k) ? 0.0 : dt * face_gradient(phi_, d, i, j, k));
-    });
+    if (cut_) {  // every face with fluid on it, with phi as solved (also in the cut ghost cells)
+      for_each_face(grid_, d, [&](int i, int j, int k) {
+        const bool open = cut_->aperture(d, i, j, k) > 0;
+        U_(d, i, j, k) = Ustar_(d, i, j, k) - (open ? dt * face_gradient(phi_solved_, d, i, j, k) : 0.0);
+      });
+    } else {
+      for_each_face(grid_, d, [&](int i, int j, int k) {
+        U_(d, i, j, k) = Ustar_(d, i, j, k) - (masked_face(d, i, j, k) ? 0.0 : dt * face_gradient(phi_, d, i, j, k));
+      });
+    }
     cell_gradient(phi_, d, grad_);
     Field& u = u_[D];
     const Field& us = ustar_[D];

@@ -2,7 +2,8 @@
 // Galilean invariance (a body carried by a uniform stream at the stream's velocity leaves the
 // stream untouched and feels no force), the re-classification after a shift of half a cell, and
 // the values of freshly cleared cells next to a body started impulsively in still fluid, and the
-// drag of a cylinder towed through fluid at rest against the same cylinder fixed in a stream.
+// drag of a cylinder towed through fluid at rest against the same cylinder fixed in a stream, and
+// the cut-cell mass balance, which removes the force spikes of cells being cleared and covered.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 
 #include "cfd/flow_solver.hpp"
 #include "cfd/ghost_cells.hpp"
+#include "cfd/moving_cylinder.hpp"
 #include "cfd/rigid_motion.hpp"
 #include "cfd/surface_traction.hpp"
 
@@ -198,6 +200,22 @@ TEST(MovingBody, TowedCylinderFeelsTheDragOfTheFixedOne) {
   }
   EXPECT_NEAR(towed_viscous / fixed_viscous, 1.0, 0.04);
   EXPECT_NEAR(towed_total / fixed_total, 1.0, 0.03);
+}
+
+TEST(MovingBody, CutCellBalanceRemovesTheSpikesOfClearedAndCoveredCells) {
+  // In-line oscillating cylinder (KC 5, Re 100) on the coarse grid, 8 cells per diameter, 100
+  // steps per period: with the staircase mass balance the force's energy above 10 oscillation
+  // frequencies is 6.8% of the total (12% without the cleared-cell values either), with the
+  // cut-cell balance 0.24% (measured). The cut cells' continuity holds to the solver tolerance.
+  OscillatingCylinderSetup os = OscillatingCylinderSetup::coarse();
+  const OscillatingCylinderResult cut = run_oscillating_cylinder(os);
+  os.cut_cell_continuity = false;
+  const OscillatingCylinderResult staircase = run_oscillating_cylinder(os);
+  EXPECT_GT(cut.cleared_cells, 100);
+  EXPECT_GT(staircase.high_frequency_fraction, 0.03);
+  EXPECT_LT(cut.high_frequency_fraction, 0.1 * staircase.high_frequency_fraction);
+  EXPECT_LT(cut.max_second_difference, 0.5 * staircase.max_second_difference);
+  EXPECT_LT(cut.max_continuity_residual, 1e-6);
 }
 
 }  // namespace
