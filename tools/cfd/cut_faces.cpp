@@ -81,4 +81,26 @@ CutFaces cut_faces(const StretchedGrid& g, const Polygon& body) {
   return cf;
 }
 
+CutFaces cut_faces(const StretchedGrid& g, const std::vector<SolidRegion>& regions) {
+  CutFaces cf{FaceCoefficients(g, 1.0), FaceCoefficients(g, 0.0)};
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = 0; i <= g.nx(); ++i) cf.centroid(0, i, j, 0) = g.yc(j);
+  for (int j = 0; j <= g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i) cf.centroid(1, i, j, 0) = g.xc(i);
+  for (const SolidRegion& r : regions) {
+    const CutFaces one = cut_faces(g, r.polygon);
+    for (int d = 0; d < 2; ++d) {
+      const std::vector<double>& a = one.aperture.values(d);
+      for (std::size_t f = 0; f < a.size(); ++f) {
+        const double solid = r.outside ? a[f] : 1 - a[f];
+        const int nx = g.nx() + (d == 0);
+        const int i = static_cast<int>(f % static_cast<std::size_t>(nx)), j = static_cast<int>(f / static_cast<std::size_t>(nx));
+        double& alpha = cf.aperture(d, i, j, 0);
+        alpha = alpha - solid < 1e-12 ? 0.0 : alpha - solid;
+      }
+    }
+  }
+  return cf;
+}
+
 }  // namespace finverse::cfd

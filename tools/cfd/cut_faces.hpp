@@ -15,6 +15,9 @@
 #include "cfd/face_coefficients.hpp"
 #include "cfd/grid.hpp"
 #include "cfd/immersed_polygon.hpp"
+#include "cfd/surface_geometry.hpp"
+
+#include <vector>
 
 namespace finverse::cfd {
 
@@ -29,5 +32,25 @@ struct CutFaces {
 // Polygon::contains). Apertures below 1e-12 are set to 0, so a face that only touches the polygon
 // is open and a face that it barely clears is closed.
 CutFaces cut_faces(const StretchedGrid& grid, const Polygon& body);
+// Several disjoint solid regions (a region with outside = true is solid outside its polygon): the
+// fluid aperture is what no region covers. The centroids are left at the face centres (a fixed
+// body carries no flux through its surface).
+CutFaces cut_faces(const StretchedGrid& grid, const std::vector<SolidRegion>& regions);
+
+// 3-D (cut_faces_3d.cpp): the apertures of a 3-D grid's faces against a closed triangulated
+// surface (the centroids are left at the face centres: a deforming body's flux is not that of a
+// rigid field, so it is integrated over the surface pieces instead), and the pieces of the surface
+// inside each cell: the triangles split by the grid planes, each with its area vector (outward
+// normal times area) and centroid. Where the surface lies in a grid plane, a point on the plane
+// counts as below it (cells are the half-open boxes (lo, hi]) in both, so that over every cell
+//     sum_f (+-) alpha_f A_f e_f = sum over its pieces of the area vectors
+// to round-off: the apertures and the pieces close the cell's fluid part.
+struct SurfacePiece {
+  std::array<int, 3> cell{};
+  int triangle = -1;
+  Vec3 area_vector{}, centroid{};
+};
+CutFaces cut_faces(const StretchedGrid& grid, const SurfaceGeometry& body);
+std::vector<SurfacePiece> surface_pieces(const StretchedGrid& grid, const SurfaceGeometry& body);
 
 }  // namespace finverse::cfd

@@ -50,7 +50,9 @@ DfgResult run_dfg(const DfgSetup& ds) {
   const double hc = kD / std::max(ds.cells_per_diameter, ds.core_cells_per_diameter);
 
   FlowSolver solver;
-  solver.setup(grid, channel_benchmark_boundary(Um, ds.ramp_time), channel_benchmark_options(kNu, ds.cfl, hc, Um));
+  FlowOptions options = channel_benchmark_options(kNu, ds.cfl, hc, Um);
+  options.cut_cell_continuity_fixed = ds.cut_cell_continuity;
+  solver.setup(grid, channel_benchmark_boundary(Um, ds.ramp_time), options);
   const Polygon body = Polygon::circle(kXc, kYc, 0.5 * kD, ds.polygon_vertices);
   solver.immerse(body);
   solver.initialise({});

@@ -14,8 +14,8 @@ double FlowSolver::max_divergence() const {
   for (int k = 0; k < grid_.nz(); ++k)
     for (int j = 0; j < grid_.ny(); ++j)
       for (int i = 0; i < grid_.nx(); ++i)
-        if (fluid(i, j, k) || (cut_ && is_cut_cell_[static_cast<std::size_t>(i + grid_.nx() * j)]))
-          m = std::max(m, std::abs(continuity_residual(U_, i, j, k)));
+        if (fluid(i, j, k) && !cut_cell(i, j, k)) m = std::max(m, std::abs(divergence(U_, i, j, k)));
+  if (cut_) m = std::max(m, cut_residual_max_);
   return m;
 }
 

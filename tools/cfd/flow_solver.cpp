@@ -61,7 +61,8 @@ void FlowSolver::setup(const StretchedGrid& grid, const FlowBoundary& boundary, 
   fresh_.clear();
   cut_.reset();
   cut_cells_.clear();
-  is_cut_cell_.clear();
+  cut_flux_.clear();
+  cut_slot_.clear();
 }
 
 void FlowSolver::immerse(const Polygon& body) { immerse(std::vector<SolidRegion>{SolidRegion{body, false}}); }
@@ -82,9 +83,15 @@ void FlowSolver::immerse(const std::vector<SolidRegion>& regions, const Velocity
       const auto v = wall_velocity(g.boundary.point[0], g.boundary.point[1], grid_.zc(0), 0.0);
       for (int c = 0; c < dim(); ++c) ib_wall_[static_cast<std::size_t>(c)].push_back(v[static_cast<std::size_t>(c)]);
     }
-  FaceCoefficients masked(grid_, 1.0);
-  masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
-  poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
+  if (opt_.cut_cell_continuity_fixed) {
+    const CutFaces cf = cut_faces(grid_, regions);
+    place_cut_cells(cf, {grid_.axis(0).lo(), grid_.axis(0).hi(), grid_.axis(1).lo(), grid_.axis(1).hi(), -1e300, 1e300});
+    poisson_.setup(grid_, cut_->aperture, bnd_.pressure_conditions(), opt_.poisson);
+  } else {
+    FaceCoefficients masked(grid_, 1.0);
+    masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
+    poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
+  }
   ib_momentum_.setup(grid_);
 }
 
@@ -355,25 +362,6 @@ double FlowSolver::divergence(const FaceField& U, int i, int j, int k) const {
     ++h[d];
     s += (U(d, h[0], h[1], h[2]) - U(d, i, j, k)) * face_area(d, i, j, k);
   }
-  return s / grid_.volume(i, j, k);
-}
-
-double FlowSolver::continuity_residual(const FaceField& U, int i, int j, int k) const {
-  if (!cut_ || !is_cut_cell_[static_cast<std::size_t>(i + grid_.nx() * j)]) return divergence(U, i, j, k);
-  // Fluid parts of the faces, less the rigid body's flux through them: by the divergence theorem
-  // over the cell's fluid part, the latter is minus the body's flux through the body's piece.
-  double s = 0;
-  for (int d = 0; d < 2; ++d)
-    for (int side = 0; side < 2; ++side) {
-      int f[3] = {i, j, k};
-      f[d] += side;
-      const double alpha = cut_->aperture(d, f[0], f[1], 0);
-      if (alpha == 0) continue;
-      const double t = cut_->centroid(d, f[0], f[1], 0);
-      const double x = d == 0 ? grid_.axis(0).face(f[0]) : t, y = d == 0 ? t : grid_.axis(1).face(f[1]);
-      const double ub = moving_->velocity(body_state_, x, y)[static_cast<std::size_t>(d)];
-      s += (side ? 1.0 : -1.0) * alpha * face_area(d, f[0], f[1], f[2]) * (U(d, f[0], f[1], f[2]) - ub);
-    }
   return s / grid_.volume(i, j, k);
 }
 

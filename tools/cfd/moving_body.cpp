@@ -43,45 +43,15 @@ void FlowSolver::place_body(double t) {
   // The pressure operator's face mask follows the body (the multigrid hierarchy is rebuilt); with
   // the cut-cell balance the faces are weighted by their fluid apertures instead.
   if (opt_.cut_cell_continuity) {
-    place_cut_cells();
+    place_cut_cells(cut_faces(grid_, body_now_), polygon_box(body_now_), {}, [&](int d, const Vec3& x) {
+      return moving_->velocity(body_state_, x[0], x[1])[static_cast<std::size_t>(d)];
+    });
     poisson_.setup(grid_, cut_->aperture, bnd_.pressure_conditions(), opt_.poisson);
     return;
   }
   FaceCoefficients masked(grid_, 1.0);
   masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
   poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
-}
-
-void FlowSolver::place_cut_cells() {
-  cut_ = cut_faces(grid_, body_now_);
-  cut_cells_.clear();
-  is_cut_cell_.assign(static_cast<std::size_t>(grid_.nx()) * static_cast<std::size_t>(grid_.ny()), 0);
-  // Only cells near the body can be cut: those of the polygon's bounding box, one cell wider.
-  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
-  for (const auto& v : body_now_.vertices())
-    for (int a = 0; a < 2; ++a) {
-      lo[a] = std::min(lo[a], v[static_cast<std::size_t>(a)]);
-      hi[a] = std::max(hi[a], v[static_cast<std::size_t>(a)]);
-    }
-  const auto range = [&](int a) {
-    const Axis& ax = grid_.axis(a);
-    int first = 0, last = ax.size() - 1;
-    while (first < last && ax.face(first + 1) < lo[a]) ++first;
-    while (last > first && ax.face(last) > hi[a]) --last;
-    return std::array<int, 2>{std::max(first - 1, 0), std::min(last + 1, ax.size() - 1)};
-  };
-  const auto rx = range(0), ry = range(1);
-  for (int j = ry[0]; j <= ry[1]; ++j)
-    for (int i = rx[0]; i <= rx[1]; ++i) {
-      const double a[4] = {cut_->aperture(0, i, j, 0), cut_->aperture(0, i + 1, j, 0), cut_->aperture(1, i, j, 0),
-                           cut_->aperture(1, i, j + 1, 0)};
-      const bool some = a[0] > 0 || a[1] > 0 || a[2] > 0 || a[3] > 0;
-      const bool partial = a[0] < 1 || a[1] < 1 || a[2] < 1 || a[3] < 1;
-      if (some && (partial || ib_->kind(i, j) != CellKind::Fluid)) {
-        cut_cells_.push_back({i, j, 0});
-        is_cut_cell_[static_cast<std::size_t>(i + grid_.nx() * j)] = 1;
-      }
-    }
 }
 
 void FlowSolver::move_body(double t) {

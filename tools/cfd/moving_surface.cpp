@@ -4,6 +4,7 @@
 // from one placement to the next with the freshly-cleared-cell treatment of moving_body.cpp, and
 // the per-triangle surface forces; see flow_solver.hpp.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -88,12 +89,16 @@ void FlowSolver::place_surface(double t) {
     h.barycentric = g.barycentric;
     const Vec3 v = surface_->interpolate(surface_state_.velocity, h);
     const Vec3 a = surface_->interpolate(surface_state_.acceleration, h);
-    for (int c = 0; c < 3; ++c) ib_wall_[static_cast<std::size_t>(c)].push_back(v[static_cast<std::size_t>(c)]);
+    for (int c = 0; c < 3; ++c) {
+      ib_wall_[static_cast<std::size_t>(c)].push_back(v[static_cast<std::size_t>(c)]);
+      body_velocity_[static_cast<std::size_t>(c)](g.i, g.j, g.k) = v[static_cast<std::size_t>(c)];
+    }
     // Normal momentum balance at the no-slip wall (kinematic pressure): dp/dn = -a_B . n.
     ib_dpdn_.push_back(-dot3(a, g.normal));
   }
-  // Solid cells: the velocity of their closest surface point (the last resort of a cleared cell
-  // and the flux of faces inside the body).
+  // Solid cells (and, above, ghost cells): the velocity of their closest surface point (the last
+  // resort of a cleared cell, and the flux of faces inside the body, which the cut-cell balance
+  // needs where such a face has fluid on it).
   for (int k = 0; k < grid_.nz(); ++k)
     for (int j = 0; j < grid_.ny(); ++j)
       for (int i = 0; i < grid_.nx(); ++i) {
@@ -101,9 +106,65 @@ void FlowSolver::place_surface(double t) {
         const Vec3 v = surface_->interpolate(surface_state_.velocity, surface_->closest({grid_.xc(i), grid_.yc(j), grid_.zc(k)}));
         for (int c = 0; c < 3; ++c) body_velocity_[static_cast<std::size_t>(c)](i, j, k) = v[static_cast<std::size_t>(c)];
       }
+  if (opt_.cut_cell_continuity_3d) {
+    place_surface_cut_cells();
+    poisson_.setup(grid_, cut_->aperture, bnd_.pressure_conditions(), opt_.poisson);
+    return;
+  }
   FaceCoefficients masked(grid_, 1.0);
   masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
   poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
+}
+
+// The cut-cell balance of the placed surface: apertures, and the body's flux G_c through its
+// pieces in each cell, with u_B interpolated linearly over the piece's triangle at the piece's
+// centroid (exact for the linear vertex interpolation). A body whose volume changes (a thin body
+// bending, to second order) would make the pressure equation incompatible; as with the staircase
+// balance (body_face_velocities) the net flux is removed, spread over the pieces by area.
+void FlowSolver::place_surface_cut_cells() {
+  const std::vector<SurfacePiece> pieces = surface_pieces(grid_, *surface_);
+  const auto& pts = surface_->surface().points;
+  const auto& tris = surface_->surface().triangles;
+  const auto& vel = surface_state_.velocity;
+  std::vector<std::pair<std::array<int, 3>, double>> flux;
+  flux.reserve(pieces.size());
+  std::vector<double> area(pieces.size());
+  double net = 0, total = 0;
+  for (std::size_t n = 0; n < pieces.size(); ++n) {
+    const SurfacePiece& p = pieces[n];
+    const Vec3& A = p.area_vector;
+    area[n] = std::sqrt(dot3(A, A));
+    double g = 0;
+    if (!vel.empty()) {
+      const auto& t = tris[static_cast<std::size_t>(p.triangle)];
+      const Vec3 &a = pts[static_cast<std::size_t>(t[0])], &b = pts[static_cast<std::size_t>(t[1])],
+                 &c = pts[static_cast<std::size_t>(t[2])];
+      const auto diff = [](const Vec3& u, const Vec3& v) { return Vec3{u[0] - v[0], u[1] - v[1], u[2] - v[2]}; };
+      const auto cross = [](const Vec3& u, const Vec3& v) {
+        return Vec3{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      };
+      const Vec3 N = cross(diff(b, a), diff(c, a));
+      const double nn = dot3(N, N);
+      const double la = dot3(cross(diff(b, p.centroid), diff(c, p.centroid)), N) / nn;
+      const double lb = dot3(cross(diff(c, p.centroid), diff(a, p.centroid)), N) / nn;
+      const double lc = 1 - la - lb;
+      const Vec3 &va = vel[static_cast<std::size_t>(t[0])], &vb = vel[static_cast<std::size_t>(t[1])],
+                 &vc = vel[static_cast<std::size_t>(t[2])];
+      const Vec3 v{la * va[0] + lb * vb[0] + lc * vc[0], la * va[1] + lb * vb[1] + lc * vc[1],
+                   la * va[2] + lb * vb[2] + lc * vc[2]};
+      g = dot3(v, A);
+    }
+    flux.push_back({p.cell, g});
+    net += g;
+    total += area[n];
+  }
+  if (total > 0)
+    for (std::size_t n = 0; n < flux.size(); ++n) flux[n].second -= net * area[n] / total;
+  const Vec3 lo = surface_->lower(), hi = surface_->upper();
+  place_cut_cells(cut_faces(grid_, *surface_), {lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]}, flux,
+                  [&](int d, const Vec3& x) {
+                    return surface_->interpolate(vel, surface_->closest(x))[static_cast<std::size_t>(d)];
+                  });
 }
 
 void FlowSolver::move_surface(double t) {

@@ -52,6 +52,7 @@ struct TurekHronSetup {
   double wake_box = 1.0;        // the uniform box ends this many diameters behind the flag's tip
   double stretch_ratio = 1.05;  // largest ratio of neighbouring cell widths outside the box
   double wall_stretch_ratio = 0;  // the same between the box and the channel walls (y); 0: stretch_ratio
+  bool cut_cell_continuity = false;  // the cut-cell mass balance (FlowOptions::cut_cell_continuity_fixed)
   // Control volume [x0, x1] x [y0, y1] of the independent momentum-balance force
   // (control_volume_force.hpp); two cells clear of the body, so the default needs N >= 8.
   std::array<double, 4> control_volume{0.11, 0.66, 0.11, 0.29};

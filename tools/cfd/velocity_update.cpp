@@ -7,6 +7,16 @@
 // are divergence-free only to truncation error, as on every collocated grid. On non-periodic sides
 // Gf phi = 0 (homogeneous Neumann), so the prescribed boundary fluxes are kept; so are the fluxes
 // on the closed faces of an immersed body, whose ghost cells then get the velocity condition again.
+// With the cut-cell balance a face with fluid on it is corrected by alpha dt Gf phi: it then stores
+// the mean velocity over the whole face, alpha times the fluid part's U* - dt Gf phi plus (1 - alpha)
+// times U* for the solid part, which moves with the wall. The fluid part's own velocity is large in
+// a cell with a tiny fluid part whose wall velocity varies (its volume changes fast and feeds
+// through a tiny aperture); the momentum equations' convective fluxes take the full face, and the
+// mean keeps them bounded (a thin pitching plate at 20 cells per chord blew up within 8 steps with
+// the unweighted velocity stored).
+#include <algorithm>
+#include <cmath>
+
 #include "cfd/flow_solver.hpp"
 #include "cfd/loops.hpp"
 
@@ -17,8 +27,8 @@ void FlowSolver::update_velocity(double dt) {
     const auto D = static_cast<std::size_t>(d);
     if (cut_) {  // every face with fluid on it, with phi as solved (also in the cut ghost cells)
       for_each_face(grid_, d, [&](int i, int j, int k) {
-        const bool open = cut_->aperture(d, i, j, k) > 0;
-        U_(d, i, j, k) = Ustar_(d, i, j, k) - (open ? dt * face_gradient(phi_solved_, d, i, j, k) : 0.0);
+        const double alpha = cut_->aperture(d, i, j, k);
+        U_(d, i, j, k) = Ustar_(d, i, j, k) - (alpha > 0 ? alpha * dt * face_gradient(phi_solved_, d, i, j, k) : 0.0);
       });
     } else {
       for_each_face(grid_, d, [&](int i, int j, int k) {
@@ -29,6 +39,25 @@ void FlowSolver::update_velocity(double dt) {
     Field& u = u_[D];
     const Field& us = ustar_[D];
     for_each_cell(grid_, [&](int i, int j, int k) { u(i, j, k) = us(i, j, k) - dt * grad_(i, j, k); });
+  }
+  if (cut_) {
+    // The balance itself, with the fluid parts' velocities U* - dt Gf phi (the stored faces carry
+    // their aperture-weighted mean, above), for max_divergence().
+    cut_residual_max_ = 0;
+    for (std::size_t n = 0; n < cut_cells_.size(); ++n) {
+      const auto [i, j, k] = cut_cells_[n];
+      double s = -cut_flux_[n];
+      for (int d = 0; d < dim(); ++d)
+        for (int side = 0; side < 2; ++side) {
+          int f[3] = {i, j, k};
+          f[d] += side;
+          const double alpha = cut_->aperture(d, f[0], f[1], f[2]);
+          if (alpha == 0) continue;
+          const double U = Ustar_(d, f[0], f[1], f[2]) - dt * face_gradient(phi_solved_, d, f[0], f[1], f[2]);
+          s += (side ? 1.0 : -1.0) * alpha * face_area(d, f[0], f[1], f[2]) * U;
+        }
+      cut_residual_max_ = std::max(cut_residual_max_, std::abs(s) / grid_.volume(i, j, k));
+    }
   }
   for_each_cell(grid_, [&](int i, int j, int k) { p_(i, j, k) += phi_(i, j, k); });
   if (ib_) {

@@ -5,7 +5,10 @@
 // invariance of the moving triangulated boundary, with cells cleared on the way).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <vector>
 
 #include "cfd/flow_solver.hpp"
 #include "cfd/ghost_cells.hpp"
@@ -121,13 +124,17 @@ TEST(ImmersedFlow3D, FixedSphereInAStreamKeepsTheFacesDivergenceFree) {
   EXPECT_LT(std::abs(F.total[1]) + std::abs(F.total[2]), 0.2 * F.total[0]);
 }
 
-TEST(ImmersedFlow3D, SphereCarriedByAUniformStreamLeavesItUntouched) {
+class SphereCarriedByAUniformStream : public ::testing::TestWithParam<bool> {};
+
+TEST_P(SphereCarriedByAUniformStream, LeavesItUntouched) {
+  // With the staircase and with the cut-cell mass balance (the pieces' fluxes balance the faces').
   const StretchedGrid g(Axis::uniform(0, 1, 20), Axis::uniform(0, 1, 20), Axis::uniform(0, 1, 20));
   const Vec3 U{0.5, 0.25, -0.2};
   const TriangulatedSurface ref = icosphere({0.45, 0.5, 0.52}, 0.2, 3);
   FlowOptions opt;
   opt.nu = 1e-3;
   opt.dt = 0.02;
+  opt.cut_cell_continuity_3d = GetParam();
   FlowSolver s;
   s.setup(g, FlowBoundary::all_periodic(), opt);
   s.immerse(SurfaceMotion([&](double t) {
@@ -155,6 +162,52 @@ TEST(ImmersedFlow3D, SphereCarriedByAUniformStreamLeavesItUntouched) {
   const SurfaceForces F = s.surface_forces();
   EXPECT_LT(std::abs(F.total[0]) + std::abs(F.total[1]) + std::abs(F.total[2]), 1e-9);
   EXPECT_NEAR(s.body_surface()->lower()[0], 0.45 - 0.2 + U[0] * s.time(), 1e-12);
+}
+
+INSTANTIATE_TEST_SUITE_P(ImmersedFlow3D, SphereCarriedByAUniformStream, ::testing::Values(false, true));
+
+TEST(ImmersedFlow3D, CutCellBalanceSmoothsTheForceOfAHeavingSphere) {
+  // A sphere 7.2 cells across heaving in fluid at rest (closed box, Re about 20 on the heave
+  // speed): with the staircase balance the largest step-to-step second difference of the lateral
+  // force is 0.32 of its largest value, with the cut-cell balance 0.07 (measured); the balance
+  // holds to the solver tolerance.
+  const auto run = [](bool cut, double& residual) {
+    const StretchedGrid g(Axis::uniform(0, 1, 24), Axis::uniform(0, 1, 24), Axis::uniform(0, 1, 24));
+    FlowOptions opt;
+    opt.nu = 1e-2;
+    opt.dt = 0.005;
+    opt.cut_cell_continuity_3d = cut;
+    FlowSolver s;
+    s.setup(g, FlowBoundary{}, opt);
+    const TriangulatedSurface ref = icosphere({0.5, 0.5, 0.5}, 0.15, 3);
+    const double A = 0.05, w = 2 * std::numbers::pi;
+    s.immerse(SurfaceMotion([&](double t) {
+      SurfaceState st;
+      st.surface = ref;
+      for (auto& p : st.surface.points) p[1] += A * std::sin(w * t);
+      st.velocity.assign(ref.points.size(), Vec3{0, A * w * std::cos(w * t), 0});
+      st.acceleration.assign(ref.points.size(), Vec3{0, -A * w * w * std::sin(w * t), 0});
+      return st;
+    }));
+    s.initialise({});
+    std::vector<double> fy;
+    residual = 0;
+    for (int n = 0; n < 80; ++n) {
+      residual = std::max(residual, s.step().max_divergence);
+      fy.push_back(s.surface_forces().total[1]);
+    }
+    double d2 = 0, fmax = 0;
+    for (std::size_t n = 10; n + 1 < fy.size(); ++n) {
+      d2 = std::max(d2, std::abs(fy[n + 1] - 2 * fy[n] + fy[n - 1]));
+      fmax = std::max(fmax, std::abs(fy[n]));
+    }
+    return d2 / fmax;
+  };
+  double r_cut = 0, r_staircase = 0;
+  const double cut = run(true, r_cut), staircase = run(false, r_staircase);
+  EXPECT_GT(staircase, 0.2);
+  EXPECT_LT(cut, 0.4 * staircase);
+  EXPECT_LT(r_cut, 1e-8);
 }
 
 }  // namespace

@@ -142,6 +142,7 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   opt.cfl_limit = o.cfl_limit;
   opt.helmholtz_rtol = 1e-8;
   opt.poisson.rtol = o.poisson_rtol;
+  opt.cut_cell_continuity_3d = o.cut_cells;
   FlowSolver solver;
   try {
     solver.setup(st.grid, b, opt);

@@ -70,7 +70,8 @@ nlohmann::json fin_flow_config(const FinFlowOptions& o, const FinInput& in) {
                         {"--periods", o.periods},
                         {"--output-periods", o.output_periods},
                         {"--output-interval", o.output_interval},
-                        {"--poisson-rtol", o.poisson_rtol}};
+                        {"--poisson-rtol", o.poisson_rtol},
+                        {"--cut-cells", o.cut_cells}};
   return {{"case", "fin"}, {"options", opt}, {"input", fin_input_fingerprint(in)}};
 }
 
