@@ -556,16 +556,8 @@ int ib_couette(bool coarse, const std::filesystem::path& out, double& wall_out) 
 
 int cylinder_towed(bool coarse, bool staircase_balance, const std::filesystem::path& out, double& wall_out) {
   const auto t0 = std::chrono::steady_clock::now();
-  TowedCylinderSetup ts;
+  TowedCylinderSetup ts = coarse ? TowedCylinderSetup::coarse() : TowedCylinderSetup{};
   ts.cut_cell_continuity = !staircase_balance;
-  if (coarse) {
-    ts.cells_per_diameter = 8;
-    ts.t_end = 3;
-    ts.t_compare = 1.5;
-    ts.half_height = 6;
-    ts.polygon_vertices = 128;
-    ts.cfl = 0.4;
-  }
   log::Progress progress("cylinder_towed step", static_cast<std::size_t>(std::ceil(ts.t_end / (ts.cfl / ts.cells_per_diameter))));
   ts.progress = [&](const StepStats& st) {
     progress.update(static_cast<std::size_t>(st.step), "t " + fmt("%.3f", st.time) + "  Poisson " +

@@ -58,6 +58,19 @@ struct TowedCylinderSetup {
   int fixed_offsets = 4;      // fixed cylinders at x = k dx / fixed_offsets, k = 0 .. fixed_offsets-1
   bool cut_cell_continuity = true;  // the towed body's FlowOptions::cut_cell_continuity
   std::function<void(const StepStats&)> progress;
+
+  // The coarse (CI) variant: 8 cells per diameter, 0.4 cells per step, towed 3 diameters in a box
+  // of half-height 6, compared from t = 1.5.
+  static TowedCylinderSetup coarse() {
+    TowedCylinderSetup ts;
+    ts.cells_per_diameter = 8;
+    ts.t_end = 3;
+    ts.t_compare = 1.5;
+    ts.half_height = 6;
+    ts.polygon_vertices = 128;
+    ts.cfl = 0.4;
+    return ts;
+  }
 };
 
 struct TowedCylinderResult {
