@@ -80,6 +80,41 @@ void FlowSolver::place_cut_cells(CutFaces faces, const std::array<double, 6>& bo
         if (g != 0) flux.push_back({flat(i, j, 0), g});
       }
   for (const auto& [cell, g] : piece_flux) flux.push_back({flat(cell[0], cell[1], cell[2]), g});
+  // A body cell with fluid cells on two opposite sides (a body about two cells thick, or its rim)
+  // holds fluid on both sides of the body, which its single balance would join through the body;
+  // it stays closed, as in the staircase balance. The fluid parts of its faces then count as wall:
+  // their flux alpha A u_B moves into the neighbours' balances, which keeps each of them consistent
+  // with the body's motion and the fluxes' sum unchanged (the closed cell's own flux is dropped).
+  std::vector<unsigned char> closed(grid_.cells(), 0);
+  for (int k = rz[0]; k <= rz[1]; ++k)
+    for (int j = ry[0]; j <= ry[1]; ++j)
+      for (int i = rx[0]; i <= rx[1]; ++i) {
+        if (fluid(i, j, k)) continue;
+        bool two_sided = false;
+        for (int d = 0; d < dim() && !two_sided; ++d) {
+          int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+          --lo[d];
+          ++hi[d];
+          two_sided = lo[d] >= 0 && hi[d] < grid_.n(d) && fluid(lo[0], lo[1], lo[2]) && fluid(hi[0], hi[1], hi[2]);
+        }
+        if (!two_sided) continue;
+        closed[flat(i, j, k)] = 1;
+        for (int d = 0; d < dim(); ++d)
+          for (int side = 0; side < 2; ++side) {
+            int f[3] = {i, j, k};
+            f[d] += side;
+            if (f[d] == 0 || f[d] == grid_.n(d)) continue;
+            double& alpha = cut_->aperture(d, f[0], f[1], f[2]);
+            if (alpha == 0) continue;
+            Vec3 x{grid_.xc(f[0]), grid_.yc(f[1]), grid_.zc(f[2])};
+            x[static_cast<std::size_t>(d)] = grid_.axis(d).face(f[d]);
+            const double q = alpha * face_area(d, f[0], f[1], f[2]) * (wall_velocity ? wall_velocity(d, x) : 0.0);
+            alpha = 0;
+            int n[3] = {i, j, k};
+            n[d] += side ? 1 : -1;  // the neighbour across the face: its high face (side 0) or low face
+            flux.push_back({flat(n[0], n[1], n[2]), side ? q : -q});
+          }
+      }
   // A face between two fluid cells stays whole: the momentum equations' cell-centred pressure
   // gradient spans it in full, and a projection whose face weight there differed from it would not
   // be a projection (measured: a box plate heaving in a stream, 3.8 cells thick, blew up within 14
@@ -126,6 +161,7 @@ void FlowSolver::place_cut_cells(CutFaces faces, const std::array<double, 6>& bo
   // neighbours that the body pokes into): the fluxes add up to the body's net flux, zero, which the
   // pressure equation's solvability needs.
   for (const auto& [c, g] : flux) {
+    if (closed[c]) continue;
     int& slot = cut_slot_[c];
     if (slot < 0) {
       slot = static_cast<int>(cut_cells_.size());

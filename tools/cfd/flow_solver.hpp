@@ -133,16 +133,19 @@ struct FlowOptions {
   // pressure correction (see the header comment); false: the staircase mass balance of the fixed
   // bodies (only to measure the spurious force oscillations that it removes).
   bool cut_cell_continuity = true;
-  // The same for a moving triangulated body (immerse(SurfaceMotion)); off by default: it smooths the
-  // force of a thick body (a heaving sphere 9.6 cells across: largest second difference of the
-  // force 4x smaller) but not yet that of a thin one (a pitching plate 4 cells thick in a stream:
-  // high-frequency energy of C_Y 16% -> 10%, largest second difference 0.66 -> 0.78, CFL 0.58 ->
-  // 0.89), whose cut cells hold fluid on both sides of the plate.
+  // The same for a moving triangulated body (immerse(SurfaceMotion)); experimental, off by default.
+  // Measured: a heaving sphere 9.6 cells across, largest second difference of the force 4x smaller;
+  // a rigid plate two (four) cells thick pitching and heaving in a stream (fin-cfd thin_plate),
+  // energy of C_Y above a quarter of the Nyquist frequency 95% -> 13% (18% -> 14%) after the
+  // start-up; but on the deforming fin of the tiny case (body two cells thick) the CFL number peaks
+  // at 3.4 (staircase 1.4) and the loads are no smoother. Closing every body cell with fluid cells
+  // on opposite sides (cut_cell_balance.cpp) is what keeps the fin from blowing up (it did within 18
+  // steps without), but it also closes rim cells whose fluid is connected around the rim: without
+  // it the plates gave 5.4% (5.2%).
   bool cut_cell_continuity_3d = false;
   // The same for fixed 2-D bodies (immerse(Polygon), immerse(regions)); off by default: the channel
-  // benchmarks were validated with the staircase balance, and on DFG 2D-1 the cut-cell balance is
-  // not closer to the reference (measured, 48 cells per diameter: CD +0.41% -> +0.56%, dp -0.80% ->
-  // +0.78%; 24: CD +0.16% -> +0.69%, dp -1.1% -> -0.05%).
+  // benchmarks were validated with the staircase balance. On DFG 2D-1 (48 cells per diameter, errors
+  // from the bound midpoints) it moves CD +0.40% -> +0.56%, CL -1.75% -> -0.48%, dp -0.70% -> +0.89%.
   bool cut_cell_continuity_fixed = false;
   // Body force per unit mass, evaluated at cell centres at t^{n+1/2}.
   VelocityFunction body_force;

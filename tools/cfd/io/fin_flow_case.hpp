@@ -50,7 +50,7 @@ struct FinFlowOptions {
   double output_interval = 0;    // [s]; 0: the motion's smallest frame spacing
   double poisson_rtol = 1e-7;
   // The cut-cell mass balance instead of the staircase one (FlowOptions::cut_cell_continuity_3d;
-  // experimental for thin bodies).
+  // experimental).
   bool cut_cells = false;
   double chord = 0;              // [m]; 0: mesh.h5 attribute chord, else the rest mesh's x extent
 };
