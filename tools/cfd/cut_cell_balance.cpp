@@ -175,13 +175,9 @@ void FlowSolver::place_cut_cells(CutFaces faces, const std::array<double, 6>& bo
   }
 }
 
-double FlowSolver::continuity_residual(const FaceField& U, int i, int j, int k) const {
-  if (!cut_) return divergence(U, i, j, k);
-  const int slot = cut_slot_[static_cast<std::size_t>(i) +
-                             static_cast<std::size_t>(grid_.nx()) *
-                                 (static_cast<std::size_t>(j) + static_cast<std::size_t>(grid_.ny()) * static_cast<std::size_t>(k))];
-  if (slot < 0) return divergence(U, i, j, k);
-  double s = -cut_flux_[static_cast<std::size_t>(slot)];
+double FlowSolver::cut_balance(std::size_t n, const std::function<double(int, int, int, int)>& U) const {
+  const auto [i, j, k] = cut_cells_[n];
+  double s = -cut_flux_[n];
   for (int d = 0; d < dim(); ++d)
     for (int side = 0; side < 2; ++side) {
       int f[3] = {i, j, k};
@@ -189,7 +185,17 @@ double FlowSolver::continuity_residual(const FaceField& U, int i, int j, int k) 
       const double alpha = cut_->aperture(d, f[0], f[1], f[2]);
       if (alpha != 0) s += (side ? 1.0 : -1.0) * alpha * face_area(d, f[0], f[1], f[2]) * U(d, f[0], f[1], f[2]);
     }
-  return s / grid_.volume(i, j, k);
+  return s;
+}
+
+double FlowSolver::continuity_residual(const FaceField& U, int i, int j, int k) const {
+  if (!cut_) return divergence(U, i, j, k);
+  const int slot = cut_slot_[static_cast<std::size_t>(i) +
+                             static_cast<std::size_t>(grid_.nx()) *
+                                 (static_cast<std::size_t>(j) + static_cast<std::size_t>(grid_.ny()) * static_cast<std::size_t>(k))];
+  if (slot < 0) return divergence(U, i, j, k);
+  return cut_balance(static_cast<std::size_t>(slot), [&](int d, int a, int b, int c) { return U(d, a, b, c); }) /
+         grid_.volume(i, j, k);
 }
 
 bool FlowSolver::cut_cell(int i, int j, int k) const {

@@ -83,16 +83,21 @@ void FlowSolver::immerse(const std::vector<SolidRegion>& regions, const Velocity
       const auto v = wall_velocity(g.boundary.point[0], g.boundary.point[1], grid_.zc(0), 0.0);
       for (int c = 0; c < dim(); ++c) ib_wall_[static_cast<std::size_t>(c)].push_back(v[static_cast<std::size_t>(c)]);
     }
-  if (opt_.cut_cell_continuity_fixed) {
-    const CutFaces cf = cut_faces(grid_, regions);
-    place_cut_cells(cf, {grid_.axis(0).lo(), grid_.axis(0).hi(), grid_.axis(1).lo(), grid_.axis(1).hi(), -1e300, 1e300});
-    poisson_.setup(grid_, cut_->aperture, bnd_.pressure_conditions(), opt_.poisson);
-  } else {
-    FaceCoefficients masked(grid_, 1.0);
-    masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
-    poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
-  }
+  if (opt_.cut_cell_continuity_fixed)
+    place_cut_cells(cut_faces(grid_, regions),
+                    {grid_.axis(0).lo(), grid_.axis(0).hi(), grid_.axis(1).lo(), grid_.axis(1).hi(), -1e300, 1e300});
+  setup_pressure_operator();
   ib_momentum_.setup(grid_);
+}
+
+void FlowSolver::setup_pressure_operator() {
+  if (cut_) {
+    poisson_.setup(grid_, cut_->aperture, bnd_.pressure_conditions(), opt_.poisson);
+    return;
+  }
+  FaceCoefficients masked(grid_, 1.0);
+  masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
+  poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
 }
 
 bool FlowSolver::masked_face(int d, int i, int j, int k) const {

@@ -290,6 +290,12 @@ class FlowSolver {
                        const std::vector<std::pair<std::array<int, 3>, double>>& piece_flux = {},
                        const std::function<double(int, const Vec3&)>& wall_velocity = {});
   bool cut_cell(int i, int j, int k) const;
+  // The pressure operator of the current geometry: faces weighted by their apertures with the
+  // cut-cell balance, else every face of a non-fluid cell closed (the multigrid is rebuilt).
+  void setup_pressure_operator();
+  // The cut-cell balance of cut cell n (sum_f alpha_f A_f U_f - G_c) with the fluid parts' face
+  // velocities U(d, i, j, k).
+  double cut_balance(std::size_t n, const std::function<double(int, int, int, int)>& U) const;
   void move_body(double t);
   void body_face_velocities(FaceField& U, const std::array<Field, 3>& u) const;
   // The masked interior faces of the current geometry in the order (d, k, j, i) of a full scan,

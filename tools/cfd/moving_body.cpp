@@ -42,16 +42,11 @@ void FlowSolver::place_body(double t) {
   }
   // The pressure operator's face mask follows the body (the multigrid hierarchy is rebuilt); with
   // the cut-cell balance the faces are weighted by their fluid apertures instead.
-  if (opt_.cut_cell_continuity) {
+  if (opt_.cut_cell_continuity)
     place_cut_cells(cut_faces(grid_, body_now_), polygon_box(body_now_), {}, [&](int d, const Vec3& x) {
       return moving_->velocity(body_state_, x[0], x[1])[static_cast<std::size_t>(d)];
     });
-    poisson_.setup(grid_, cut_->aperture, bnd_.pressure_conditions(), opt_.poisson);
-    return;
-  }
-  FaceCoefficients masked(grid_, 1.0);
-  masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
-  poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
+  setup_pressure_operator();
 }
 
 void FlowSolver::move_body(double t) {

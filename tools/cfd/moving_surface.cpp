@@ -30,9 +30,7 @@ void FlowSolver::immerse(const TriangulatedSurface& body) {
   index_body_faces();
   ib_dpdn_.clear();
   for (auto& w : ib_wall_) w.clear();
-  FaceCoefficients masked(grid_, 1.0);
-  masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
-  poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
+  setup_pressure_operator();
   ib_momentum_.setup(grid_);
 }
 
@@ -106,14 +104,8 @@ void FlowSolver::place_surface(double t) {
         const Vec3 v = surface_->interpolate(surface_state_.velocity, surface_->closest({grid_.xc(i), grid_.yc(j), grid_.zc(k)}));
         for (int c = 0; c < 3; ++c) body_velocity_[static_cast<std::size_t>(c)](i, j, k) = v[static_cast<std::size_t>(c)];
       }
-  if (opt_.cut_cell_continuity_3d) {
-    place_surface_cut_cells();
-    poisson_.setup(grid_, cut_->aperture, bnd_.pressure_conditions(), opt_.poisson);
-    return;
-  }
-  FaceCoefficients masked(grid_, 1.0);
-  masked.mask_cells([&](int i, int j, int k) { return ib_->solid(i, j, k); });
-  poisson_.setup(grid_, masked, bnd_.pressure_conditions(), opt_.poisson);
+  if (opt_.cut_cell_continuity_3d) place_surface_cut_cells();
+  setup_pressure_operator();
 }
 
 // The cut-cell balance of the placed surface: apertures, and the body's flux G_c through its
