@@ -145,7 +145,7 @@ struct FlowOptions {
   bool cut_cell_continuity_3d = false;
   // The same for fixed 2-D bodies (immerse(Polygon), immerse(regions)); off by default: the channel
   // benchmarks were validated with the staircase balance. On DFG 2D-1 (48 cells per diameter, errors
-  // from the bound midpoints) it moves CD +0.40% -> +0.56%, CL -1.75% -> -0.48%, dp -0.70% -> +0.89%;
+  // from the bound midpoints) it moves CD +0.40% -> +0.53%, CL -1.75% -> +0.09%, dp -0.70% -> +1.02%;
   // on DFG 2D-2 (24c48, walls 0.97) CD_max -0.53% -> +0.23%, CL_max -1.56% -> -1.31%, St +0.96% ->
   // +0.80%; Turek-Hron CFD2 drag -0.35% -> +0.33%, lift +1.40% -> +1.36%. CFD3 is not measured.
   bool cut_cell_continuity_fixed = false;
