@@ -261,6 +261,7 @@ struct BodyCaseArgs {
   double wake_box = 0;         // DFG, Turek-Hron: uniform box's downstream end (0: the case's default)
   double stretch_ratio = 0;    // DFG, Turek-Hron: stretching ratio outside the box (0: the default)
   int core_cells_per_diameter = 0;  // DFG: a finer core around the body (0: none)
+  double core_wake = 0;        // DFG, Turek-Hron: the core's length behind the body [D] (0: the default)
   double cfl = 0;              // DFG, Turek-Hron: target convective CFL number (0: the case's default)
   double wall_stretch_ratio = 0;  // DFG, Turek-Hron: ratio between the box and the channel walls (0: --stretch-ratio)
   bool cut_cells = false;         // DFG, Turek-Hron: cut-cell mass balance for the fixed body
@@ -279,6 +280,10 @@ void add_channel_grid_options(CLI::App* sc, BodyCaseArgs& a, const std::string& 
                  "grid: a finer core of h = D / N around the body (boundary layers), joined to the box by "
                  "ratio-1.1 growth (0: none)")
       ->check(CLI::Range(0, 1000));
+  sc->add_option("--core-wake", a.core_wake,
+                 "grid: the core's length behind the body [diameters] (DFG: behind the cylinder, default 0.75; "
+                 "Turek-Hron: behind the flag's tip, default 0.5)")
+      ->check(CLI::PositiveNumber);
   // The time step's share of an error: halve the CFL number and compare.
   sc->add_option("--cfl", a.cfl, "time step: target convective CFL number (default 0.5)")->check(CLI::Range(0.01, 1.0));
   sc->add_flag("--cut-cells", a.cut_cells,
@@ -310,6 +315,7 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   if (a.stretch_ratio > 0) ds.stretch_ratio = a.stretch_ratio;
   if (a.cfl > 0) ds.cfl = a.cfl;
   if (a.wall_stretch_ratio > 0) ds.wall_stretch_ratio = a.wall_stretch_ratio;
+  if (a.core_wake > 0) ds.core_wake = a.core_wake;
   ds.cut_cell_continuity = a.cut_cells;
   // 2D-2 by default with a D/64 core over the boundary layer in a D/24 box (measured: CD_max
   // -0.56 %, St +0.88 % of the bound midpoints, CL_max -3.1 %; uniform D/24: -6.1 %, +1.6 %, -11.9 %).
@@ -381,7 +387,7 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   s.parameters() = {{"coarse", coarse}, {"cells_per_diameter", ds.cells_per_diameter}, {"t_end", ds.t_end},
                     {"window", ds.window}, {"cfl", ds.cfl}, {"ramp_time", ds.ramp_time},
                     {"polygon_vertices", ds.polygon_vertices}, {"box_x1", ds.box_x1},
-                    {"core_cells_per_diameter", ds.core_cells_per_diameter},
+                    {"core_cells_per_diameter", ds.core_cells_per_diameter}, {"core_wake", ds.core_wake},
                     {"stretch_ratio", ds.stretch_ratio}, {"wall_stretch_ratio", ds.wall_stretch_ratio},
                     {"cut_cell_continuity", ds.cut_cell_continuity},
                     {"reference", a.reference}};
@@ -427,6 +433,7 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
   if (a.stretch_ratio > 0) ts.stretch_ratio = a.stretch_ratio;
   if (a.cfl > 0) ts.cfl = a.cfl;
   if (a.wall_stretch_ratio > 0) ts.wall_stretch_ratio = a.wall_stretch_ratio;
+  if (a.core_wake > 0) ts.core_wake = a.core_wake;
   ts.cut_cell_continuity = a.cut_cells;
   // Once developed, the fastest flow past the body is about 1.8 Um: dt = cfl h / (1.8 Um).
   const double um = variant == 2 ? 1.5 : 3.0;
@@ -503,7 +510,7 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
                     {"circle_vertices", ts.circle_vertices}, {"wake_box", ts.wake_box},
                     {"stretch_ratio", ts.stretch_ratio}, {"wall_stretch_ratio", ts.wall_stretch_ratio},
                     {"cut_cell_continuity", ts.cut_cell_continuity},
-                    {"core_cells_per_diameter", ts.core_cells_per_diameter},
+                    {"core_cells_per_diameter", ts.core_cells_per_diameter}, {"core_wake", ts.core_wake},
                     {"kick_velocity", ts.kick_velocity}, {"kick_start", ts.kick_start},
                     {"kick_duration", ts.kick_duration}, {"reference", a.reference}};
   log::info(name + ": " +

@@ -19,6 +19,8 @@ constexpr double kLength = 2.2, kHeight = 0.41, kD = 0.1, kXc = 0.2, kYc = 0.2, 
 StretchedGrid dfg_grid(const DfgSetup& ds) {
   if (ds.cells_per_diameter < 4) throw Error("dfg: need at least 4 cells per diameter");
   if (!(ds.box_x1 > kXc + kD && ds.box_x1 < kLength)) throw Error("dfg: box_x1 must lie between the cylinder and the outlet");
+  if (!(ds.core_wake > 0 && kXc + (0.5 + ds.core_wake) * kD < ds.box_x1))
+    throw Error("dfg: core_wake must be > 0 and end inside the uniform box (box_x1)");
   // In y a uniform box [0.1, 0.3], symmetric about the cylinder's centre, so that the ghost-cell
   // pattern is mirror symmetric and the lift carries no alignment error (the channel's own
   // asymmetry, 0.2 vs 0.21 to the walls, is what makes CL of 2D-1 non-zero), then out to the walls
@@ -34,7 +36,7 @@ StretchedGrid dfg_grid(const DfgSetup& ds) {
                        .box_y1 = kYc + kD,
                        .h = kD / ds.cells_per_diameter,
                        .core_x0 = kXc - 0.75 * kD,
-                       .core_x1 = kXc + 1.25 * kD,
+                       .core_x1 = kXc + (0.5 + ds.core_wake) * kD,
                        .core_y0 = kYc - 0.75 * kD,
                        .core_y1 = kYc + 0.75 * kD,
                        .h_core = ds.core_cells_per_diameter > ds.cells_per_diameter ? kD / ds.core_cells_per_diameter : 0,

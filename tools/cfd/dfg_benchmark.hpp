@@ -4,7 +4,7 @@
 // parabolic inflow with centreline speed Um (0.3 or 1.5), convective outflow, no-slip walls.
 // Grid: a uniform box of h = D / N over [0.1, box_x1] x [0.1, 0.3] (symmetric about the cylinder
 // in y) and geometric stretching (ratio <= stretch_ratio) outside it, to the inlet, outlet and walls.
-// Optionally a finer core of h = D / N_core around the cylinder, [xc - 0.75 D, xc + 1.25 D] x
+// Optionally a finer core of h = D / N_core around the cylinder, [xc - 0.75 D, xc + D/2 + core_wake D] x
 // [yc - 0.75 D, yc + 0.75 D], joined to the box by geometric growth (ratio <= 1.1; Axis::nested):
 // at Re = 100 the boundary layer is about a fifth of D thick and the drag and lift amplitude
 // converge with the cells across it, while the wake needs only the box's spacing.
@@ -28,6 +28,7 @@ struct DfgSetup {
   int variant = 1;            // 1: 2D-1, 2: 2D-2
   int cells_per_diameter = 32;
   int core_cells_per_diameter = 0;  // > cells_per_diameter: the finer core around the cylinder
+  double core_wake = 0.75;    // the core ends this many diameters behind the cylinder's rear
   int polygon_vertices = 512;
   double t_end = 10;          // simulated time [s]
   double window = 3;          // 2D-2: the analysis window at the end [s]

@@ -67,6 +67,8 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
   const double Ubar = ts.variant == 2 ? 1.0 : 2.0, Um = 1.5 * Ubar;
   if (!(ts.wake_box > 0 && g.tip_x() + ts.wake_box * D < g.length))
     throw Error("turek_hron: wake_box must be > 0 and end before the outlet");
+  if (!(ts.core_wake > 0 && ts.core_wake < ts.wake_box))
+    throw Error("turek_hron: core_wake must be > 0 and end inside the uniform box (wake_box)");
   // The uniform box holds the cylinder, the flag and wake_box diameters of near wake; in y
   // it is symmetric about the body (the DFG driver's reason: a mirror-symmetric ghost-cell
   // pattern, so the lift carries no alignment error).
@@ -80,7 +82,7 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
                                            .box_y1 = g.yc + D,
                                            .h = h,
                                            .core_x0 = g.xc - 0.75 * D,
-                                           .core_x1 = g.tip_x() + 0.5 * D,
+                                           .core_x1 = g.tip_x() + ts.core_wake * D,
                                            .core_y0 = g.yc - 0.75 * D,
                                            .core_y1 = g.yc + 0.75 * D,
                                            .h_core = core ? hc : 0,

@@ -9,7 +9,7 @@
 // check (control_volume_force.hpp). Grid as for DFG (dfg_benchmark.hpp): a uniform box of h = D / N
 // around cylinder, flag and wake_box diameters of near wake, symmetric about y = 0.2, geometric
 // stretching outside it; optionally a finer core of h = D / N_core over the body's boundary layers,
-// [xc - 0.75 D, tip + 0.5 D] x [yc - 0.75 D, yc + 0.75 D] (Axis::nested; see dfg_benchmark.hpp).
+// [xc - 0.75 D, tip + core_wake D] x [yc - 0.75 D, yc + 0.75 D] (Axis::nested; see dfg_benchmark.hpp).
 // CFD3: the rigid flag keeps the wake close to its shedding threshold, so from rest the shedding
 // needs ~10 s to grow out of round-off; a brief transverse push on the near wake after the ramp
 // (TurekHronSetup::kick_*) starts it, and the last window's lift amplitude is compared with the
@@ -44,6 +44,7 @@ struct TurekHronSetup {
   int variant = 2;  // 2: CFD2 (Ubar = 1), 3: CFD3 (Ubar = 2)
   int cells_per_diameter = 32;
   int core_cells_per_diameter = 0;  // > cells_per_diameter: the finer core around the body
+  double core_wake = 0.5;  // the core ends this many diameters behind the flag's tip
   int circle_vertices = 512;
   double t_end = 10;   // simulated time [s]
   double window = 1;   // CFD3: the analysis window at the end [s]

@@ -13,6 +13,7 @@
 
 #include "cfd/channel_benchmark.hpp"
 #include "cfd/dfg_benchmark.hpp"
+#include "core/error.hpp"
 
 namespace finverse::cfd {
 namespace {
@@ -117,6 +118,27 @@ TEST(DfgGrid, WallRatioBelowOneRefinesTheCellsTowardsTheWalls) {
   // A shrinking series that cannot reach the wall is refused.
   ds.wall_stretch_ratio = 0.9;
   EXPECT_THROW(dfg_grid(ds), std::invalid_argument);
+}
+
+TEST(DfgGrid, CoreWakeSetsHowFarTheCoreReachesBehindTheCylinder) {
+  // Default: the core ends 0.75 D behind the cylinder's rear (x = 0.325); core_wake 2 carries its
+  // spacing to x = 0.45, and the cells between are then no wider than the core's.
+  DfgSetup ds;
+  ds.variant = 2;
+  ds.cells_per_diameter = 16;
+  ds.core_cells_per_diameter = 32;
+  const double hc = 0.1 / 32;
+  const Axis x_default = dfg_grid(ds).axis(0);
+  ds.core_wake = 2.0;
+  const Axis x_long = dfg_grid(ds).axis(0);
+  EXPECT_LE(widest(x_long, 0.125, 0.45), 1.02 * hc);
+  EXPECT_GT(widest(x_default, 0.125, 0.45), 1.3 * hc);
+  EXPECT_LE(widest(x_default, 0.125, 0.325), 1.02 * hc);
+  EXPECT_GT(x_long.size(), x_default.size());
+  EXPECT_EQ(x_long.size() % 8, 0);
+  // The core must end inside the uniform box.
+  ds.core_wake = 5.0;
+  EXPECT_THROW(dfg_grid(ds), Error);
 }
 
 TEST(DfgGrid, BoxIsSymmetricAboutTheCylinder) {
