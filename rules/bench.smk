@@ -36,11 +36,12 @@ if have("fin-poisson-hypre"):
 # <box>c<core>[w<ratio>]: h = D / box in the wake box and D / core over the boundary layer (fin-cfd
 # --core-cells-per-diameter; the drag converges with the cells across the boundary layer, the wake
 # needs far fewer), and the growth ratio of the cells between the box and the channel walls
-# (--wall-stretch-ratio; the lift amplitude needs the walls' Stokes layers resolved).
+# (--wall-stretch-ratio; the lift amplitude needs the walls' Stokes layers resolved). Every finverse
+# run uses fin-cfd's default cut-cell balance; 24c48w0.97 is fin-cfd dfg_2d2's default grid.
 # OpenFOAM's St converges from below (measured, 2 ranks: 0.2825, 0.2927, 0.2966 at 16, 24, 32 cells
 # per quarter, 91, 347, 676 s; CD_max is within 1% from 16 on, CL_max from 32), so 48 is the first
 # mesh expected inside 1% on all three.
-DFG_BENCH_FINVERSE = config["bench"]["dfg2d2_finverse"] or ["24c48", "24c64"]
+DFG_BENCH_FINVERSE = config["bench"]["dfg2d2_finverse"] or ["24c48w0.97", "24c64w0.97"]
 
 
 def dfg_grid_flags(name):

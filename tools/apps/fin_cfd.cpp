@@ -4,11 +4,11 @@
 //   fin-cfd channel [--checkpoint-every N] [--restart FILE] [--vtk]
 //                                       parabolic inlet, convective outlet, no-slip walls: the
 //                                       developed profile and dp/dx = -8 nu Um / H^2
-//   fin-cfd dfg_2d1 | dfg_2d2 [--cells-per-diameter N] [--t-end T]
+//   fin-cfd dfg_2d1 | dfg_2d2 [--cells-per-diameter N] [--t-end T] [--staircase-balance]
 //                                       DFG cylinder benchmarks (Schaefer & Turek 1996) with the
 //                                       ghost-cell immersed boundary; forces.csv force history
 //   fin-cfd turek_hron_cfd2 | turek_hron_cfd3 [--cells-per-diameter N] [--core-cells-per-diameter M]
-//                                       [--t-end T] [--kick-velocity V (CFD3)]
+//                                       [--t-end T] [--kick-velocity V (CFD3)] [--staircase-balance]
 //                                       Turek-Hron rigid-flag benchmarks (Turek & Hron 2006) with
 //                                       the ghost-cell immersed boundary; forces.csv force history
 //   fin-cfd ib_couette                  Couette flow between two immersed circles: observed order
@@ -264,7 +264,7 @@ struct BodyCaseArgs {
   double core_wake = 0;        // DFG, Turek-Hron: the core's length behind the body [D] (0: the default)
   double cfl = 0;              // DFG, Turek-Hron: target convective CFL number (0: the case's default)
   double wall_stretch_ratio = 0;  // DFG, Turek-Hron: ratio between the box and the channel walls (0: --stretch-ratio)
-  bool cut_cells = false;         // DFG, Turek-Hron: cut-cell mass balance for the fixed body
+  bool staircase_balance = false;  // DFG, Turek-Hron: the staircase mass balance instead of the cut-cell one
 };
 
 // Grid and time-step options of the channel benchmarks (DFG, Turek-Hron) on subcommand sc.
@@ -286,9 +286,9 @@ void add_channel_grid_options(CLI::App* sc, BodyCaseArgs& a, const std::string& 
       ->check(CLI::PositiveNumber);
   // The time step's share of an error: halve the CFL number and compare.
   sc->add_option("--cfl", a.cfl, "time step: target convective CFL number (default 0.5)")->check(CLI::Range(0.01, 1.0));
-  sc->add_flag("--cut-cells", a.cut_cells,
-               "mass balance: the cut-cell balance of the moving bodies also for this fixed body (default: the "
-               "staircase balance)");
+  sc->add_flag("--staircase-balance", a.staircase_balance,
+               "mass balance: close the faces of every non-fluid cell (the staircase balance) instead of the "
+               "default cut-cell balance (Seo & Mittal 2011), to compare");
 }
 
 // The options of BodyCaseArgs on subcommand sc; `t_unit` names the unit of --t-end.
@@ -316,12 +316,14 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   if (a.cfl > 0) ds.cfl = a.cfl;
   if (a.wall_stretch_ratio > 0) ds.wall_stretch_ratio = a.wall_stretch_ratio;
   if (a.core_wake > 0) ds.core_wake = a.core_wake;
-  ds.cut_cell_continuity = a.cut_cells;
-  // 2D-2 by default with a D/64 core over the boundary layer in a D/24 box (measured: CD_max
-  // -0.56 %, St +0.88 % of the bound midpoints, CL_max -3.1 %; uniform D/24: -6.1 %, +1.6 %, -11.9 %).
-  ds.core_cells_per_diameter = a.core_cells_per_diameter > 0 || a.cells_per_diameter > 0 || coarse || variant == 1
-                                   ? a.core_cells_per_diameter
-                                   : 64;
+  ds.cut_cell_continuity = !a.staircase_balance;
+  // 2D-2 by default: a D/48 core over the boundary layer in a D/24 box, the cells shrinking towards
+  // the channel walls (ratio 0.97: the Stokes layers that the passing vortices drive there), and the
+  // cut-cell balance (measured: CD_max +0.23 %, St +0.80 % of the bound midpoints, CL_max -1.31 %;
+  // the former default, staircase balance, walls 1.05 and a D/64 core: -0.56 %, +0.88 %, -3.1 %).
+  const bool default_grid = variant == 2 && !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
+  ds.core_cells_per_diameter = default_grid ? 48 : a.core_cells_per_diameter;
+  if (default_grid && a.wall_stretch_ratio == 0) ds.wall_stretch_ratio = 0.97;
   const int finest = std::max(ds.cells_per_diameter, ds.core_cells_per_diameter);
   const std::size_t expected = static_cast<std::size_t>(std::ceil(ds.t_end / (ds.cfl * 0.1 / finest / 1.8 /
                                                                               (variant == 1 ? 0.3 : 1.5))));
@@ -413,19 +415,20 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
   const std::string name = variant == 2 ? "turek_hron_cfd2" : "turek_hron_cfd3";
   TurekHronSetup ts;
   ts.variant = variant;
-  // Default grids (measured against the reference):
-  //   CFD2: D/24 box + D/48 core: drag -0.35 %, lift +1.4 % (uniform D/32: -2.8 %, +0.7 %); steady
-  //         to 0.003 N/m per second by t = 6 s.
-  //   CFD3: D/32 box reaching 2 D behind the tip + D/64 core: drag mean -2.3 %, lift amplitude
-  //         -12.5 %, frequency +0.9 % (uniform D/32: -7.4 %, -42 %, 0.0 %): the flag holds the wake
-  //         near its shedding threshold, so the amplitude converges slowly with the boundary layers.
+  // Default grids (measured against the reference, cut-cell balance):
+  //   CFD2: D/24 box + D/48 core: drag +0.33 %, lift +1.36 % (staircase: -0.35 %, +1.4 %; uniform
+  //         D/32: -2.8 %, +0.7 %); steady to 0.003 N/m per second by t = 6 s.
+  //   CFD3: D/32 box reaching 2 D behind the tip + D/64 core: drag mean -1.4 %, drag amplitude
+  //         -3.6 %, lift amplitude -8.1 %, frequency +1.1 % (staircase: -2.3 %, -9.5 %, -12.5 %,
+  //         +0.9 %; uniform D/32: -7.4 %, -49 %, -42 %, 0.0 %): the flag holds the wake near its
+  //         shedding threshold, so the amplitude converges slowly.
   const bool default_grid = !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
   ts.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : coarse ? 12 : variant == 2 ? 24 : 32;
   ts.core_cells_per_diameter = default_grid ? (variant == 2 ? 48 : 64) : a.core_cells_per_diameter;
   if (default_grid && variant == 3) ts.wake_box = 2;
   // CFD3 from rest saturates only after t ~ 12 s (measured at 32 cells/D); the push on the wake
   // at the end of the ramp (TurekHronSetup::kick_*) starts the shedding at once: with it the lift
-  // amplitude is saturated from t ~ 5 s (D/32 + D/64 core: 389 N/m over [5, 6), 383 over [6, 7)).
+  // amplitude is saturated from t ~ 5.5 s (D/32 + D/64 core, cut cells: 405 N/m over [5, 6), 402 over [6, 7)).
   if (variant == 3) ts.kick_velocity = kick_velocity >= 0 ? kick_velocity : 2.0;
   ts.t_end = a.t_end > 0 ? a.t_end : variant == 2 ? (coarse ? 2.0 : 6.0) : (coarse ? 1.0 : 7.0);
   ts.window = variant == 3 ? std::min(1.0, 0.4 * ts.t_end) : 0.0;
@@ -434,7 +437,7 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
   if (a.cfl > 0) ts.cfl = a.cfl;
   if (a.wall_stretch_ratio > 0) ts.wall_stretch_ratio = a.wall_stretch_ratio;
   if (a.core_wake > 0) ts.core_wake = a.core_wake;
-  ts.cut_cell_continuity = a.cut_cells;
+  ts.cut_cell_continuity = !a.staircase_balance;
   // Once developed, the fastest flow past the body is about 1.8 Um: dt = cfl h / (1.8 Um).
   const double um = variant == 2 ? 1.5 : 3.0;
   const int finest = std::max(ts.cells_per_diameter, ts.core_cells_per_diameter);

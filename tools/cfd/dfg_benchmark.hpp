@@ -40,8 +40,10 @@ struct DfgSetup {
   // spacing out to the walls, whose unsteady (Stokes) layers under the passing vortices are about
   // sqrt(2 nu / omega) ~ D/10 thick at Re 100.
   double wall_stretch_ratio = 0;
-  // The cut-cell mass balance for the fixed cylinder (FlowOptions::cut_cell_continuity_fixed).
-  bool cut_cell_continuity = false;
+  // The cut-cell mass balance for the fixed cylinder (FlowOptions::cut_cell_continuity_fixed);
+  // false: the staircase balance, to compare (the cut-cell balance's own effect on each number is
+  // in the comment of that option).
+  bool cut_cell_continuity = true;
   // Control volume [x0, x1] x [y0, y1] of the independent momentum-balance force
   // (control_volume_force.hpp); two cells clear of the body, so the default needs N >= 8.
   std::array<double, 4> control_volume{0.11, 0.45, 0.11, 0.29};
