@@ -420,10 +420,10 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
   // Default grids (measured against the reference, cut-cell balance):
   //   CFD2: D/24 box + D/48 core: drag +0.33 %, lift +1.36 % (staircase: -0.35 %, +1.4 %; uniform
   //         D/32: -2.8 %, +0.7 %); steady to 0.003 N/m per second by t = 6 s.
-  //   CFD3: D/32 box reaching 2 D behind the tip + D/64 core: drag mean -1.4 %, drag amplitude
-  //         -3.6 %, lift amplitude -8.1 %, frequency +1.1 % (staircase: -2.3 %, -9.5 %, -12.5 %,
-  //         +0.9 %; uniform D/32: -7.4 %, -49 %, -42 %, 0.0 %): the flag holds the wake near its
-  //         shedding threshold, so the amplitude converges slowly.
+  //   CFD3: D/32 box reaching 2 D behind the tip + D/64 core, cells shrinking towards the walls
+  //         (0.98, below): drag mean -1.27 %, drag amplitude +1.33 %, lift amplitude -1.72 %,
+  //         frequency +1.10 % (walls 1.05: -1.4 %, -3.6 %, -8.1 %, +1.1 %; and the staircase
+  //         balance: -2.3 %, -9.5 %, -12.5 %, +0.9 %; uniform D/32: -7.4 %, -49 %, -42 %, 0.0 %).
   const bool default_grid = !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
   ts.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : coarse ? 12 : variant == 2 ? 24 : 32;
   ts.core_cells_per_diameter = default_grid ? (variant == 2 ? 48 : 64) : a.core_cells_per_diameter;
@@ -436,7 +436,7 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
   if (default_grid && variant == 3 && a.wall_stretch_ratio == 0) ts.wall_stretch_ratio = 0.98;
   // CFD3 from rest saturates only after t ~ 12 s (measured at 32 cells/D); the push on the wake
   // at the end of the ramp (TurekHronSetup::kick_*) starts the shedding at once: with it the lift
-  // amplitude is saturated from t ~ 5.5 s (D/32 + D/64 core, cut cells: 405 N/m over [5, 6), 402 over [6, 7)).
+  // amplitude is saturated from t ~ 5 s (default grid: 430.26 N/m over [5, 6), 430.29 over [6, 7)).
   if (variant == 3) ts.kick_velocity = kick_velocity >= 0 ? kick_velocity : 2.0;
   ts.t_end = a.t_end > 0 ? a.t_end : variant == 2 ? (coarse ? 2.0 : 6.0) : (coarse ? 1.0 : 7.0);
   ts.window = variant == 3 ? std::min(1.0, 0.4 * ts.t_end) : 0.0;
