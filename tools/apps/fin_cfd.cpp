@@ -273,8 +273,9 @@ void add_channel_grid_options(CLI::App* sc, BodyCaseArgs& a, const std::string& 
   sc->add_option("--stretch-ratio", a.stretch_ratio, "grid: largest cell-width ratio outside the uniform box")
       ->check(CLI::Range(1.0, 1.5));
   sc->add_option("--wall-stretch-ratio", a.wall_stretch_ratio,
-                 "grid: the same between the box and the channel walls (default: --stretch-ratio; 1: the box's "
-                 "spacing out to the walls; below 1, with a core: cells shrinking towards the walls)")
+                 "grid: the same between the box and the channel walls (default: --stretch-ratio, but 0.97 on "
+                 "dfg_2d2's and 0.98 on turek_hron_cfd3's default grids; 1: the box's spacing out to the walls; "
+                 "below 1, with a core: cells shrinking towards the walls)")
       ->check(CLI::Range(0.8, 1.5));
   sc->add_option("--core-cells-per-diameter", a.core_cells_per_diameter,
                  "grid: a finer core of h = D / N around the body (boundary layers), joined to the box by "
