@@ -25,6 +25,15 @@ double widest(const Axis& a, double lo, double hi) {
   return w;
 }
 
+// DFG 2D-2 set up on a D/box box with a D/core core.
+DfgSetup dfg2d2(int box, int core) {
+  DfgSetup ds;
+  ds.variant = 2;
+  ds.cells_per_diameter = box;
+  ds.core_cells_per_diameter = core;
+  return ds;
+}
+
 // The Turek-Hron channel with its flag: box from 1 D before the cylinder to 2 D behind the tip.
 ChannelGridSpec turek_hron_like(double h, double h_core) {
   return {.length = 2.5, .height = 0.41, .box_x0 = 0.1, .box_x1 = 0.8, .box_y0 = 0.1, .box_y1 = 0.3, .h = h,
@@ -68,10 +77,7 @@ TEST(ChannelGrid, WithoutACoreTheBoxIsUniformAndAZeroWallRatioMeansTheOuterRatio
 }
 
 TEST(DfgGrid, WallStretchRatioOfOneKeepsTheBoxSpacingOutToTheWalls) {
-  DfgSetup ds;
-  ds.variant = 2;
-  ds.cells_per_diameter = 16;
-  ds.core_cells_per_diameter = 32;
+  DfgSetup ds = dfg2d2(16, 32);
   const double h = 0.1 / 16;
   const StretchedGrid stretched = dfg_grid(ds);
   ds.wall_stretch_ratio = 1.0;
@@ -93,10 +99,7 @@ TEST(DfgGrid, WallRatioBelowOneRefinesTheCellsTowardsTheWalls) {
   // 0.97 from a D/24 box: the cells shrink monotonically from the box edge to the walls, the
   // outermost is several times finer than the box (the walls' Stokes layers, about D/10 thick at
   // the shedding frequency), and the box and core keep their spacings.
-  DfgSetup ds;
-  ds.variant = 2;
-  ds.cells_per_diameter = 24;
-  ds.core_cells_per_diameter = 48;
+  DfgSetup ds = dfg2d2(24, 48);
   ds.wall_stretch_ratio = 0.97;
   const double h = 0.1 / 24;
   const Axis y = dfg_grid(ds).axis(1);
@@ -123,10 +126,7 @@ TEST(DfgGrid, WallRatioBelowOneRefinesTheCellsTowardsTheWalls) {
 TEST(DfgGrid, CoreWakeSetsHowFarTheCoreReachesBehindTheCylinder) {
   // Default: the core ends 0.75 D behind the cylinder's rear (x = 0.325); core_wake 2 carries its
   // spacing to x = 0.45, and the cells between are then no wider than the core's.
-  DfgSetup ds;
-  ds.variant = 2;
-  ds.cells_per_diameter = 16;
-  ds.core_cells_per_diameter = 32;
+  DfgSetup ds = dfg2d2(16, 32);
   const double hc = 0.1 / 32;
   const Axis x_default = dfg_grid(ds).axis(0);
   ds.core_wake = 2.0;
@@ -142,10 +142,7 @@ TEST(DfgGrid, CoreWakeSetsHowFarTheCoreReachesBehindTheCylinder) {
 }
 
 TEST(DfgGrid, BoxIsSymmetricAboutTheCylinder) {
-  DfgSetup ds;
-  ds.variant = 2;
-  ds.cells_per_diameter = 16;
-  ds.core_cells_per_diameter = 32;
+  DfgSetup ds = dfg2d2(16, 32);
   ds.wall_stretch_ratio = 1.0;
   const Axis y = dfg_grid(ds).axis(1);
   // Every face inside [0.1, 0.3] has its mirror image about y = 0.2.
