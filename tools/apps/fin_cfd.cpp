@@ -5,10 +5,12 @@
 //                                       parabolic inlet, convective outlet, no-slip walls: the
 //                                       developed profile and dp/dx = -8 nu Um / H^2
 //   fin-cfd dfg_2d1 | dfg_2d2 [--cells-per-diameter N] [--t-end T] [--staircase-balance]
+//                                       [--zero-wall-pressure-gradient]
 //                                       DFG cylinder benchmarks (Schaefer & Turek 1996) with the
 //                                       ghost-cell immersed boundary; forces.csv force history
 //   fin-cfd turek_hron_cfd2 | turek_hron_cfd3 [--cells-per-diameter N] [--core-cells-per-diameter M]
 //                                       [--t-end T] [--kick-velocity V (CFD3)] [--staircase-balance]
+//                                       [--zero-wall-pressure-gradient]
 //                                       Turek-Hron rigid-flag benchmarks (Turek & Hron 2006) with
 //                                       the ghost-cell immersed boundary; forces.csv force history
 //   fin-cfd ib_couette                  Couette flow between two immersed circles: observed order
@@ -265,6 +267,7 @@ struct BodyCaseArgs {
   double cfl = 0;              // DFG, Turek-Hron: target convective CFL number (0: the case's default)
   double wall_stretch_ratio = 0;  // DFG, Turek-Hron: ratio between the box and the channel walls (0: --stretch-ratio)
   bool staircase_balance = false;  // DFG, Turek-Hron: the staircase mass balance instead of the cut-cell one
+  bool zero_wall_pressure_gradient = false;  // DFG, Turek-Hron: dp/dn = 0 on the body instead of the wall's momentum balance
 };
 
 // Grid and time-step options of the channel benchmarks (DFG, Turek-Hron) on subcommand sc.
@@ -290,6 +293,9 @@ void add_channel_grid_options(CLI::App* sc, BodyCaseArgs& a, const std::string& 
   sc->add_flag("--staircase-balance", a.staircase_balance,
                "mass balance: close the faces of every non-fluid cell (the staircase balance) instead of the "
                "default cut-cell balance (Seo & Mittal 2011), to compare");
+  sc->add_flag("--zero-wall-pressure-gradient", a.zero_wall_pressure_gradient,
+               "pressure on the body: dp/dn = 0 (Mittal et al. 2008) instead of the default wall momentum "
+               "balance dp/dn = -nu d(omega)/ds, to compare");
 }
 
 // The options of BodyCaseArgs on subcommand sc; `t_unit` names the unit of --t-end.
@@ -309,7 +315,10 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   const std::string name = variant == 1 ? "dfg_2d1" : "dfg_2d2";
   DfgSetup ds;
   ds.variant = variant;
-  ds.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : (coarse ? 12 : variant == 1 ? 48 : 24);
+  // 2D-1 by default at D/64 with the wall momentum balance on the cylinder: CD +0.02 %, CL +0.29 %,
+  // dp -0.26 % of the bound midpoints (D/48: -0.23 %, -1.91 %, +0.25 %; D/48 with dp/dn = 0:
+  // +0.53 %, +0.06 %, +1.02 %). The lift, 1/500 of the drag, is the last to converge.
+  ds.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : (coarse ? 12 : variant == 1 ? 64 : 24);
   ds.t_end = a.t_end > 0 ? a.t_end : variant == 1 ? (coarse ? 4.0 : 8.0) : (coarse ? 2.0 : 10.0);
   ds.window = variant == 2 ? std::min(3.0, 0.4 * ds.t_end) : 0.0;
   if (a.wake_box > 0) ds.box_x1 = a.wake_box;
@@ -318,12 +327,15 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   if (a.wall_stretch_ratio > 0) ds.wall_stretch_ratio = a.wall_stretch_ratio;
   if (a.core_wake > 0) ds.core_wake = a.core_wake;
   ds.cut_cell_continuity = !a.staircase_balance;
+  ds.viscous_wall_pressure = !a.zero_wall_pressure_gradient;
   // 2D-2 by default: a D/48 core over the boundary layer in a D/24 box, the cells shrinking towards
   // the channel walls (ratio 0.97: the Stokes layers that the passing vortices drive there), and the
-  // cut-cell balance (measured: CD_max +0.23 %, St +0.80 % of the bound midpoints, CL_max -1.31 %;
-  // the former default, staircase balance, walls 1.05 and a D/64 core: -0.56 %, +0.88 %, -3.1 %).
-  // A D/96 core adds nothing to the lift (CD_max +0.40 %, CL_max -1.26 %, St +0.80 %; lift amplitude
-  // 1.0046 against 1.0040) at 4x the cost.
+  // cut-cell balance and the wall momentum balance (measured: CD_max -0.16 %, St +0.81 % of the
+  // bound midpoints, CL_max -1.59 %, lift between -1.0183 and 0.9841; with dp/dn = 0 on the
+  // cylinder +0.23 %, +0.80 %, -1.31 %; the former default, staircase balance, walls 1.05 and a D/64
+  // core: -0.56 %, +0.88 %, -3.1 %). With dp/dn = 0, a D/96 core added nothing to the lift (CD_max
+  // +0.40 %, CL_max -1.26 %, St +0.80 %; lift amplitude 1.0046 against 1.0040) at 4x the cost, nor
+  // did half the time step (--cfl 0.25: CD_max +0.29 %, CL_max -1.39 %, St +0.80 %).
   const bool default_grid = variant == 2 && !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
   ds.core_cells_per_diameter = default_grid ? 48 : a.core_cells_per_diameter;
   if (default_grid && a.wall_stretch_ratio == 0) ds.wall_stretch_ratio = 0.97;
@@ -394,7 +406,7 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
                     {"polygon_vertices", ds.polygon_vertices}, {"box_x1", ds.box_x1},
                     {"core_cells_per_diameter", ds.core_cells_per_diameter}, {"core_wake", ds.core_wake},
                     {"stretch_ratio", ds.stretch_ratio}, {"wall_stretch_ratio", ds.wall_stretch_ratio},
-                    {"cut_cell_continuity", ds.cut_cell_continuity},
+                    {"cut_cell_continuity", ds.cut_cell_continuity}, {"viscous_wall_pressure", ds.viscous_wall_pressure},
                     {"reference", a.reference}};
   log::info(name + ": " +
             (variant == 1 ? "CD " + fmt("%.5f", r.cd) + "  CL " + fmt("%.5f", r.cl) + "  dp " + fmt("%.5f", r.dp)
@@ -447,6 +459,7 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
   if (a.wall_stretch_ratio > 0) ts.wall_stretch_ratio = a.wall_stretch_ratio;
   if (a.core_wake > 0) ts.core_wake = a.core_wake;
   ts.cut_cell_continuity = !a.staircase_balance;
+  ts.viscous_wall_pressure = !a.zero_wall_pressure_gradient;
   // Once developed, the fastest flow past the body is about 1.8 Um: dt = cfl h / (1.8 Um).
   const double um = variant == 2 ? 1.5 : 3.0;
   const int finest = std::max(ts.cells_per_diameter, ts.core_cells_per_diameter);
@@ -521,7 +534,7 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
                     {"window", ts.window}, {"cfl", ts.cfl}, {"ramp_time", ts.ramp_time},
                     {"circle_vertices", ts.circle_vertices}, {"wake_box", ts.wake_box},
                     {"stretch_ratio", ts.stretch_ratio}, {"wall_stretch_ratio", ts.wall_stretch_ratio},
-                    {"cut_cell_continuity", ts.cut_cell_continuity},
+                    {"cut_cell_continuity", ts.cut_cell_continuity}, {"viscous_wall_pressure", ts.viscous_wall_pressure},
                     {"core_cells_per_diameter", ts.core_cells_per_diameter}, {"core_wake", ts.core_wake},
                     {"kick_velocity", ts.kick_velocity}, {"kick_start", ts.kick_start},
                     {"kick_duration", ts.kick_duration}, {"reference", a.reference}};

@@ -245,6 +245,11 @@ double Axis::max_stretch_ratio() const {
   return r;
 }
 
+double Axis::width_at(double x) const {
+  const auto it = std::upper_bound(faces_.begin(), faces_.end(), x);
+  return width(std::clamp(static_cast<int>(it - faces_.begin()) - 1, 0, size() - 1));
+}
+
 double Axis::min_width() const {
   double w = width(0);
   for (int i = 1; i < size(); ++i) w = std::min(w, width(i));

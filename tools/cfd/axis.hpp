@@ -61,6 +61,9 @@ class Axis {
   double face(int i) const { return faces_[static_cast<std::size_t>(i)]; }
   double centre(int i) const { return 0.5 * (face(i) + face(i + 1)); }
   double width(int i) const { return face(i + 1) - face(i); }
+  // Width of the cell containing coordinate x (clamped to the axis): the local grid spacing of a
+  // point on an immersed surface.
+  double width_at(double x) const;
   const std::vector<double>& faces() const { return faces_; }
 
   // Largest ratio of neighbouring cell widths (>= 1), a grid-quality measure.

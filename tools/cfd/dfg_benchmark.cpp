@@ -54,6 +54,7 @@ DfgResult run_dfg(const DfgSetup& ds) {
   FlowSolver solver;
   FlowOptions options = channel_benchmark_options(kNu, ds.cfl, hc, Um);
   options.cut_cell_continuity_fixed = ds.cut_cell_continuity;
+  options.viscous_wall_pressure = ds.viscous_wall_pressure;
   solver.setup(grid, channel_benchmark_boundary(Um, ds.ramp_time), options);
   const Polygon body = Polygon::circle(kXc, kYc, 0.5 * kD, ds.polygon_vertices);
   solver.immerse(body);

@@ -44,6 +44,9 @@ struct DfgSetup {
   // false: the staircase balance, to compare (the cut-cell balance's own effect on each number is
   // in the comment of that option).
   bool cut_cell_continuity = true;
+  // The pressure ghosts carry the wall's momentum balance dp/dn = -nu d(omega)/ds
+  // (FlowOptions::viscous_wall_pressure); false: dp/dn = 0, to compare.
+  bool viscous_wall_pressure = true;
   // Control volume [x0, x1] x [y0, y1] of the independent momentum-balance force
   // (control_volume_force.hpp); two cells clear of the body, so the default needs N >= 8.
   std::array<double, 4> control_volume{0.11, 0.45, 0.11, 0.29};

@@ -54,6 +54,7 @@ void FlowSolver::setup(const StretchedGrid& grid, const FlowBoundary& boundary, 
   dt_old_ = 0;
   step_ = 0;
   ib_.reset();
+  wall_dpdn_.reset();
   body_faces_.clear();
   moving_.reset();
   surface_.reset();
@@ -77,6 +78,8 @@ void FlowSolver::immerse(const std::vector<SolidRegion>& regions, const Velocity
   surface_motion_ = nullptr;
   fresh_.clear();
   ib_dpdn_.clear();
+  wall_dpdn_.reset();
+  if (opt_.viscous_wall_pressure && !wall_velocity) wall_dpdn_.emplace(grid_, *ib_, regions);
   for (auto& w : ib_wall_) w.clear();
   if (wall_velocity)
     for (const GhostCell& g : ib_->ghosts()) {

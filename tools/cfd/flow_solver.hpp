@@ -28,7 +28,9 @@
 // correction flux), the face velocity on a fluid/ghost face is the interpolation of the
 // ghost-extended u* (a second-order flux; their net over the body is removed, so no mass crosses
 // the body), and phi and p get ghost values by the Neumann condition dp/dn = 0 at the boundary
-// intercept, so the cell-centred pressure gradient next to the body is the sharp one. At a
+// intercept, so the cell-centred pressure gradient next to the body is the sharp one (with
+// viscous_wall_pressure, p's ghosts impose the wall's own momentum balance dp/dn = -nu d(omega)/ds
+// instead, wall_pressure_gradient.hpp; phi keeps dp/dn = 0). At a
 // steady state phi = 0 and the solution is the fixed point of the sharp discrete momentum and
 // continuity equations; the masked correction only shapes the path to it.
 // Moving rigid body (immerse(MovingBody), rigid_motion.hpp; Mittal et al. 2008 section 2.4): at the
@@ -97,6 +99,7 @@
 #include "cfd/flow_boundary.hpp"
 #include "cfd/ghost_cells.hpp"
 #include "cfd/immersed_momentum_solver.hpp"
+#include "cfd/wall_pressure_gradient.hpp"
 #include "cfd/grid.hpp"
 #include "cfd/helmholtz_solver.hpp"
 #include "cfd/poisson_solver.hpp"
@@ -152,6 +155,17 @@ struct FlowOptions {
   // +0.80%; Turek-Hron CFD2 drag -0.35% -> +0.33%, lift +1.40% -> +1.36%; CFD3 (D/24 box, D/48
   // core, t = 5 s) lift amplitude -18.5% -> -9.3%, drag mean -2.7% -> -1.0%.
   bool cut_cell_continuity_fixed = false;
+  // Fixed 2-D bodies at rest: the pressure ghosts impose the wall's momentum balance
+  // dp/dn = -nu d(omega)/ds (wall_pressure_gradient.hpp) instead of dp/dn = 0. Off here for the
+  // same reason as cut_cell_continuity_fixed; the channel benchmarks turn it on. Measured (errors
+  // from the bound midpoints or the reference), dp/dn = 0 -> momentum balance, cut cells:
+  // DFG 2D-1 at D/48: CD +0.53% -> -0.23%, CL +0.06% -> -1.91%, dp +1.02% -> +0.25%, and the
+  // surface-traction drag, 0.61% above the control-volume drag, now 0.15% below it; at D/64: CD
+  // +0.60% -> +0.02%, CL +1.42% -> +0.29%, dp +0.16% -> -0.26%. Turek-Hron CFD2: drag +0.33% ->
+  // -0.11%, lift +1.36% -> +1.24%. DFG 2D-2 (D/24 box, D/48 core, walls 0.97): CD_max +0.23% ->
+  // -0.16% (control volume 3.2253 -> 3.2242, the traction's now 3.2248), CL_max -1.31% -> -1.59%,
+  // St +0.80% -> +0.81%.
+  bool viscous_wall_pressure = false;
   // Body force per unit mass, evaluated at cell centres at t^{n+1/2}.
   VelocityFunction body_force;
 };
@@ -335,6 +349,7 @@ class FlowSolver {
   std::optional<GhostCellSet> ib_;
   std::array<std::vector<double>, 3> ib_wall_;  // per component, per ghost cell: u_B (empty: 0)
   ImmersedMomentumSolver ib_momentum_;
+  std::optional<WallPressureGradient> wall_dpdn_;  // viscous_wall_pressure on a fixed 2-D body
   std::vector<double> ib_dpdn_;  // per ghost cell: dp/dn at the intercept (empty: 0)
   std::optional<MovingBody> moving_;
   RigidState body_state_;

@@ -13,6 +13,7 @@ namespace finverse::cfd {
 void FlowSolver::immerse(const MovingBody& body) {
   if (dim() != 2) throw Error("flow solver: an immersed polygon needs a 2-D grid");
   if (!body.motion) throw Error("flow solver: the moving body has no motion");
+  wall_dpdn_.reset();
   moving_ = body;
   surface_.reset();
   surface_motion_ = nullptr;

@@ -21,6 +21,7 @@ double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a
 void FlowSolver::immerse(const TriangulatedSurface& body) {
   if (dim() != 3) throw Error("flow solver: an immersed triangulated body needs a 3-D grid");
   moving_.reset();
+  wall_dpdn_.reset();
   cut_.reset();
   surface_motion_ = nullptr;
   fresh_.clear();
@@ -38,6 +39,7 @@ void FlowSolver::immerse(const SurfaceMotion& motion) {
   if (dim() != 3) throw Error("flow solver: an immersed triangulated body needs a 3-D grid");
   if (!motion) throw Error("flow solver: the moving triangulated body has no motion");
   moving_.reset();
+  wall_dpdn_.reset();
   cut_.reset();
   surface_.reset();
   surface_motion_ = motion;

@@ -6,16 +6,6 @@
 
 namespace finverse::cfd {
 
-namespace {
-// Width of the cell containing coordinate x along axis a (clamped to the axis).
-double local_width(const Axis& a, double x) {
-  const auto& f = a.faces();
-  const auto it = std::upper_bound(f.begin(), f.end(), x);
-  const int c = std::clamp(static_cast<int>(it - f.begin()) - 1, 0, a.size() - 1);
-  return a.width(c);
-}
-}  // namespace
-
 SurfaceTraction::SurfaceTraction(const StretchedGrid& grid, const GhostCellSet& ghosts, const Polygon& body)
     : grid_(grid), ghosts_(&ghosts), body_(body) {
   const auto& v = body_.vertices();
@@ -24,7 +14,7 @@ SurfaceTraction::SurfaceTraction(const StretchedGrid& grid, const GhostCellSet& 
     const auto& b = v[(e + 1) % v.size()];
     const double ex = b[0] - a[0], ey = b[1] - a[1], len = std::hypot(ex, ey);
     const double mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
-    const double h = std::min(local_width(grid.axis(0), mx), local_width(grid.axis(1), my));
+    const double h = std::min(grid.axis(0).width_at(mx), grid.axis(1).width_at(my));
     const int m = std::max(1, static_cast<int>(std::ceil(len / (0.5 * h))));
     SurfacePoint s;
     s.normal = {ey / len, -ex / len};  // outward (counter-clockwise polygon)
@@ -41,7 +31,7 @@ SurfaceSample SurfaceTraction::sample(double x, double y, const SurfacePoint& s,
   o.point = {x, y};
   o.normal = s.normal;
   o.ds = ds;
-  o.probe = std::max(local_width(grid_.axis(0), x), local_width(grid_.axis(1), y));
+  o.probe = std::max(grid_.axis(0).width_at(x), grid_.axis(1).width_at(y));
   const std::array<double, 2> p1{x + o.probe * s.normal[0], y + o.probe * s.normal[1]};
   const std::array<double, 2> p2{x + 2 * o.probe * s.normal[0], y + 2 * o.probe * s.normal[1]};
   o.velocity1 = ghosts_->stencil(p1, s, BoundaryCondition::Dirichlet);

@@ -7,16 +7,6 @@
 
 namespace finverse::cfd {
 
-namespace {
-// Width of the cell containing coordinate x along axis a (clamped to the axis).
-double width_at(const Axis& a, double x) {
-  const auto& f = a.faces();
-  const auto it = std::upper_bound(f.begin(), f.end(), x);
-  const int c = std::clamp(static_cast<int>(it - f.begin()) - 1, 0, a.size() - 1);
-  return a.width(c);
-}
-}  // namespace
-
 std::vector<Vec3> clip_triangle_to_box(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& lo, const Vec3& hi) {
   std::vector<Vec3> poly{a, b, c}, next;
   for (std::size_t d = 0; d < 3; ++d)
@@ -118,7 +108,7 @@ SurfaceTraction3D::SurfaceTraction3D(const StretchedGrid& grid, const GhostCellS
       for (const auto& [p, q] : {std::pair{&q0, &q1}, std::pair{&q1, &q2}, std::pair{&q2, &q0}})
         longest = std::max(longest, std::hypot((*q)[0] - (*p)[0], (*q)[1] - (*p)[1], (*q)[2] - (*p)[2]));
       double hmin = 1e300;
-      for (int d = 0; d < 3; ++d) hmin = std::min(hmin, width_at(grid.axis(d), centroid[static_cast<std::size_t>(d)]));
+      for (int d = 0; d < 3; ++d) hmin = std::min(hmin, grid.axis(d).width_at(centroid[static_cast<std::size_t>(d)]));
       const int m = std::clamp(static_cast<int>(std::ceil(longest / (0.5 * hmin))), 1, 64);
       double piece_area = body.triangle_area(t);
       if (!whole) {
@@ -141,7 +131,7 @@ SurfaceTraction3D::SurfaceTraction3D(const StretchedGrid& grid, const GhostCellS
           o.barycentric = {1 - bs - br, bs, br};
         }
         o.probe = 0;
-        for (int d = 0; d < 3; ++d) o.probe = std::max(o.probe, width_at(grid.axis(d), o.point[static_cast<std::size_t>(d)]));
+        for (int d = 0; d < 3; ++d) o.probe = std::max(o.probe, grid.axis(d).width_at(o.point[static_cast<std::size_t>(d)]));
         Vec3 p1, p2, b1 = o.point, b2 = o.point;
         for (std::size_t d = 0; d < 3; ++d) {
           p1[d] = o.point[d] + o.probe * n[d];

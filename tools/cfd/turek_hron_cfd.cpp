@@ -92,6 +92,7 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
   if (ts.kick_velocity != 0 && !(ts.kick_duration > 0)) throw Error("turek_hron: kick_duration must be > 0");
   FlowOptions options = channel_benchmark_options(kNu, ts.cfl, hc, Um);
   options.cut_cell_continuity_fixed = ts.cut_cell_continuity;
+  options.viscous_wall_pressure = ts.viscous_wall_pressure;
   if (ts.kick_velocity != 0)
     options.body_force = [&ts, g](double x, double y, double, double t) -> std::array<double, 3> {
       return {0, turek_hron_kick(ts, g, x, y, t), 0};

@@ -62,6 +62,9 @@ struct TurekHronSetup {
   // [4.5, 5] s, lift amplitude 357 N/m (staircase) -> 397 N/m (cut cells), drag mean 427.6 -> 435.0
   // N/m (reference 437.8, 439.45), and the traction and control-volume drags agree to 0.25 %.
   bool cut_cell_continuity = true;
+  // The pressure ghosts carry the wall's momentum balance dp/dn = -nu d(omega)/ds
+  // (FlowOptions::viscous_wall_pressure; 0 near the flag's corners); false: dp/dn = 0, to compare.
+  bool viscous_wall_pressure = true;
   // Control volume [x0, x1] x [y0, y1] of the independent momentum-balance force
   // (control_volume_force.hpp); two cells clear of the body, so the default needs N >= 8.
   std::array<double, 4> control_volume{0.11, 0.66, 0.11, 0.29};

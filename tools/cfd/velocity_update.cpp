@@ -55,6 +55,7 @@ void FlowSolver::update_velocity(double dt) {
   for_each_cell(grid_, [&](int i, int j, int k) { p_(i, j, k) += phi_(i, j, k); });
   if (ib_) {
     impose_body_velocity();
+    if (wall_dpdn_) ib_dpdn_ = wall_dpdn_->evaluate(u_[0], u_[1], opt_.nu);
     ib_->impose_neumann(p_, ib_dpdn_);
   }
 }

@@ -24,6 +24,16 @@ TEST(Axis, UniformGeometry) {
   EXPECT_NEAR(a.max_stretch_ratio(), 1.0, 1e-12);
 }
 
+TEST(Axis, WidthAtIsTheContainingCellsWidthClampedToTheAxis) {
+  const Axis a({0.0, 1.0, 3.0, 7.0});
+  EXPECT_DOUBLE_EQ(a.width_at(0.5), 1.0);
+  EXPECT_DOUBLE_EQ(a.width_at(1.0), 2.0);  // a face belongs to the cell above it
+  EXPECT_DOUBLE_EQ(a.width_at(6.9), 4.0);
+  EXPECT_DOUBLE_EQ(a.width_at(-5.0), 1.0);
+  EXPECT_DOUBLE_EQ(a.width_at(7.0), 4.0);
+  EXPECT_DOUBLE_EQ(a.width_at(99.0), 4.0);
+}
+
 TEST(Axis, RejectsNonIncreasingFaces) {
   EXPECT_THROW(Axis({0.0, 1.0, 1.0}), std::invalid_argument);
   EXPECT_THROW(Axis({0.0}), std::invalid_argument);
