@@ -430,12 +430,15 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
   const std::string name = variant == 2 ? "turek_hron_cfd2" : "turek_hron_cfd3";
   TurekHronSetup ts;
   ts.variant = variant;
-  // Default grids (measured against the reference, cut-cell balance):
-  //   CFD2: D/24 box + D/48 core: drag +0.33 %, lift +1.36 % (staircase: -0.35 %, +1.4 %; uniform
-  //         D/32: -2.8 %, +0.7 %); steady to 0.003 N/m per second by t = 6 s.
+  // Default grids (measured against the reference, cut-cell balance and the wall momentum balance;
+  // in brackets the older variants, all with dp/dn = 0 on the body):
+  //   CFD2: D/24 box + D/48 core: drag -0.11 %, lift +1.24 % (dp/dn = 0: +0.33 %, +1.36 %;
+  //         staircase: -0.35 %, +1.4 %; uniform D/32: -2.8 %, +0.7 %); steady to 0.003 N/m per
+  //         second by t = 6 s.
   //   CFD3: D/32 box reaching 2 D behind the tip + D/64 core, cells shrinking towards the walls
-  //         (0.98, below): drag mean -1.27 %, drag amplitude +1.33 %, lift amplitude -1.72 %,
-  //         frequency +1.10 % (walls 1.05: -1.4 %, -3.6 %, -8.1 %, +1.1 %; and the staircase
+  //         (0.98, below): drag mean -1.55 %, drag amplitude +1.31 %, lift amplitude -1.71 %,
+  //         frequency +1.09 %; control-volume drag mean -0.35 % (dp/dn = 0: -1.27 %, +1.33 %,
+  //         -1.72 %, +1.10 %; walls 1.05: -1.4 %, -3.6 %, -8.1 %, +1.1 %; and the staircase
   //         balance: -2.3 %, -9.5 %, -12.5 %, +0.9 %; uniform D/32: -7.4 %, -49 %, -42 %, 0.0 %).
   const bool default_grid = !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
   ts.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : coarse ? 12 : variant == 2 ? 24 : 32;

@@ -162,7 +162,9 @@ struct FlowOptions {
   // DFG 2D-1 at D/48: CD +0.53% -> -0.23%, CL +0.06% -> -1.91%, dp +1.02% -> +0.25%, and the
   // surface-traction drag, 0.61% above the control-volume drag, now 0.15% below it; at D/64: CD
   // +0.60% -> +0.02%, CL +1.42% -> +0.29%, dp +0.16% -> -0.26%. Turek-Hron CFD2: drag +0.33% ->
-  // -0.11%, lift +1.36% -> +1.24%. DFG 2D-2 (D/24 box, D/48 core, walls 0.97): CD_max +0.23% ->
+  // -0.11%, lift +1.36% -> +1.24%; CFD3 drag mean -1.27% -> -1.55% (control volume -0.35% in
+  // both), drag amplitude +1.33% -> +1.31%, lift amplitude -1.72% -> -1.71%, frequency +1.10% ->
+  // +1.09%. DFG 2D-2 (D/24 box, D/48 core, walls 0.97): CD_max +0.23% ->
   // -0.16% (control volume 3.2253 -> 3.2242, the traction's now 3.2248), CL_max -1.31% -> -1.59%,
   // St +0.80% -> +0.81%.
   bool viscous_wall_pressure = false;
