@@ -26,8 +26,9 @@ SurfacePoint closest(const std::vector<SolidRegion>& regions, double x, double y
 
 WallPressureGradient::WallPressureGradient(const StretchedGrid& grid, const GhostCellSet& ghosts,
                                            const std::vector<SolidRegion>& regions) {
-  // cos 25 degrees: two surface points one cell apart on a smooth body of at least ~5 cells radius
-  // differ by less; across a corner of the body by more.
+  // cos 25 degrees: the farthest points (K D = 6 cells away) of a circle of 14 cells radius or more
+  // differ from B's normal by less, across a corner by more. A body resolved more coarsely (the
+  // coarse CI variants: the DFG cylinder 6 cells in radius) keeps dp/dn = 0 everywhere.
   constexpr double kSmooth = 0.906;
   const auto wall_point = [&](const SurfacePoint& s) {
     WallPoint w;
