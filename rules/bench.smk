@@ -51,6 +51,9 @@ def dfg_grid_flags(name):
 
 DFG_BENCH_OPENFOAM = config["bench"]["dfg2d2_openfoam"] or [24, 32, 48]
 
+# The 2-D run waits actively: it runs alone (above), and its loops are too short for sleeping
+# threads (measured, fin-cfd dfg_2d2 --t-end 1.5 on 2 idle cores: 1 thread 81 s; 2 threads 133 s
+# passive, 54 s active).
 if have("fin-cfd"):
     rule bench_dfg2d2_finverse:
         input:
@@ -68,7 +71,7 @@ if have("fin-cfd"):
         params:
             grid=lambda wildcards: dfg_grid_flags(wildcards.n),
         shell:
-            "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} --out-dir results/bench/dfg2d2/finverse_N{wildcards.n}"
+            "OMP_WAIT_POLICY=ACTIVE {input.exe} --threads {threads} --out-dir results/bench/dfg2d2/finverse_N{wildcards.n}"
             " dfg_2d2 {params.grid} --reference {input.reference} > {log} 2>&1 || [ $? -eq 1 ]"
 
 rule bench_dfg2d2_openfoam:
