@@ -6,24 +6,17 @@
 #include <filesystem>
 #include <string>
 
-#include <unistd.h>
-
 #include "cfd/io/fin_input.hpp"
 #include "cfd/io/loads_record.hpp"
 #include "cfd/io/thin_plate_case.hpp"
 #include "core/error.hpp"
 #include "core/stage_files.hpp"
+#include "../scratch_dir.hpp"
 
 namespace finverse::cfd::io {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("finverse_cfd_fin_files_" + std::to_string(::getpid())) / name;
-  fs::create_directories(d);
-  return d;
-}
 
 // The error message of f(), or "" when it does not throw.
 template <class F> std::string error_of(F&& f) {
@@ -37,7 +30,8 @@ template <class F> std::string error_of(F&& f) {
 
 TEST(FinFiles, PlateFilesPassTheContractsAndReadBack) {
   const auto f = make_thin_plate({});
-  const fs::path d = scratch("plate");
+  const test::ScratchDir scratch;
+  const fs::path& d = scratch.path();
   Provenance prov{"test", {}, {}};
   auto mesh = f.mesh;
   auto motion = f.motion;
@@ -145,7 +139,8 @@ TEST(FinFiles, LoadsRoundTripThroughTheContract) {
   EXPECT_DOUBLE_EQ(l.thrust(2), -l.force_total(2, 0) / q);
   EXPECT_DOUBLE_EQ(l.lateral(3), l.force_total(3, 1) / q);
   EXPECT_DOUBLE_EQ(l.vertical(1), l.force_total(1, 2) / q);
-  const fs::path d = scratch("loads");
+  const test::ScratchDir scratch;
+  const fs::path& d = scratch.path();
   stage::write(d / "loads.h5", l, Provenance{"test", {}, {}});
   EXPECT_FALSE(fs::exists(d / "loads.h5.tmp"));
   const auto r = stage::read<stage::Loads>(d / "loads.h5");

@@ -1,4 +1,4 @@
-// Helpers shared by the core unit tests: a scratch directory per test and sample stage data
+// Helpers shared by the core unit tests: a scratch directory per test (scratch_dir.hpp) and sample stage data
 // with consistent dimensions.
 #pragma once
 
@@ -13,28 +13,9 @@
 
 #include "core/nd_array.hpp"
 #include "core/stage_files.hpp"
+#include "../scratch_dir.hpp"
 
 namespace finverse::test {
-
-// A fresh directory for the running test, removed when the test passes.
-class ScratchDir {
- public:
-  ScratchDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = std::filesystem::temp_directory_path() /
-            ("finverse_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(getpid()));
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDir() {
-    if (!::testing::Test::HasFailure()) std::filesystem::remove_all(path_);
-  }
-  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 inline std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);

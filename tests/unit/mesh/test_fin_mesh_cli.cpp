@@ -9,8 +9,10 @@
 #include <string>
 
 #include "mesh/fin_template.hpp"
+#include "../scratch_dir.hpp"
 
 using namespace finverse::mesh;
+namespace test = finverse::test;
 namespace fs = std::filesystem;
 
 namespace {
@@ -30,16 +32,11 @@ Result run(const std::string& args) {
   return {WEXITSTATUS(status), out};
 }
 
-fs::path scratch(const std::string& name) {
-  const auto d = fs::temp_directory_path() / ("fin_mesh_cli_" + std::to_string(::getpid())) / name;
-  fs::create_directories(d);
-  return d;
-}
-
 }  // namespace
 
 TEST(FinMeshCli, TemplateWithoutRays) {
-  const auto d = scratch("norays");
+  const test::ScratchDir scratch;
+  const fs::path& d = scratch.path();
   auto j = to_json(make_caudal_fin({}));
   j["rays"] = nlohmann::json::array();
   std::ofstream(d / "fin.json") << j.dump();
@@ -51,7 +48,8 @@ TEST(FinMeshCli, TemplateWithoutRays) {
 }
 
 TEST(FinMeshCli, SelfIntersectingPlanform) {
-  const auto d = scratch("crossing");
+  const test::ScratchDir scratch;
+  const fs::path& d = scratch.path();
   auto t = make_caudal_fin({});
   std::swap(t.rays[3].points.back(), t.rays[15].points.back());
   std::ofstream(d / "fin.json") << to_json(t).dump();
@@ -63,7 +61,8 @@ TEST(FinMeshCli, SelfIntersectingPlanform) {
 }
 
 TEST(FinMeshCli, WritesValidMeshFiles) {
-  const auto d = scratch("ok");
+  const test::ScratchDir scratch;
+  const fs::path& d = scratch.path();
   const auto r = run("--mesh " + (d / "mesh.h5").string() + " --vtu " + (d / "mesh.vtu").string());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(d / "mesh.h5"));
