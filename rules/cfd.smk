@@ -16,7 +16,12 @@
 # (`|| [ $? -eq 1 ]`); only real errors (exit 2) fail a rule. validation.coarse selects the CI
 # variants (coarser grids, fewer time steps). OpenMP threads wait passively: on a shared, busy
 # machine spinning threads steal the cores that do the work (measured: 128^2 Taylor-Green, 2
-# threads at load 12, 7.0 s wall spinning vs 1.1 s passive).
+# threads at load 12, 7.0 s wall spinning vs 1.1 s passive). The 2-D cases run on one thread each
+# (THREADS_2D), so that snakemake runs them side by side: their loops are too short for threads
+# that sleep between them (fin-cfd dfg_2d2 --t-end 1.5, 51200 cells, on 2 idle cores: 81 s on one
+# thread, 133 s on two waiting passively, 54 s on two spinning).
+
+THREADS_2D = 1
 
 if have("fin-cfd"):
     register_validation("taylor_green", "2-D Taylor-Green vortex: observed order of accuracy in space and time")
@@ -29,7 +34,7 @@ if have("fin-cfd"):
             "results/validation/taylor_green/summary.json",
         log:
             "results/logs/validation/taylor_green.log",
-        threads: THREADS
+        threads: THREADS_2D
         resources:
             mem_mb=300,
         params:
@@ -47,7 +52,7 @@ if have("fin-cfd"):
             pvd="results/validation/channel/flow.pvd",
         log:
             "results/logs/validation/channel.log",
-        threads: THREADS
+        threads: THREADS_2D
         resources:
             mem_mb=300,
         params:
@@ -72,7 +77,7 @@ if have("fin-cfd"):
             forces="results/validation/dfg_2d1/forces.csv",
         log:
             "results/logs/validation/dfg_2d1.log",
-        threads: THREADS
+        threads: THREADS_2D
         resources:
             mem_mb=500,
         params:
@@ -90,7 +95,7 @@ if have("fin-cfd"):
             forces="results/validation/dfg_2d2/forces.csv",
         log:
             "results/logs/validation/dfg_2d2.log",
-        threads: THREADS
+        threads: THREADS_2D
         resources:
             mem_mb=500,
         params:
@@ -113,7 +118,7 @@ if have("fin-cfd"):
             forces="results/validation/{case}/forces.csv",
         log:
             "results/logs/validation/{case}.log",
-        threads: THREADS
+        threads: THREADS_2D
         resources:
             mem_mb=500,
         params:
@@ -131,7 +136,7 @@ if have("fin-cfd"):
             "results/validation/ib_couette/summary.json",
         log:
             "results/logs/validation/ib_couette.log",
-        threads: THREADS
+        threads: THREADS_2D
         resources:
             mem_mb=300,
         params:
@@ -153,7 +158,7 @@ if have("fin-cfd"):
             "results/logs/validation/{case}.log",
         wildcard_constraints:
             case="cylinder_towed|cylinder_oscillating",
-        threads: THREADS
+        threads: THREADS_2D
         resources:
             mem_mb=300,
         params:
