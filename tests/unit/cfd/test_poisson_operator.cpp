@@ -6,6 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
+#include <utility>
+#include <vector>
 
 #include "cfd/poisson_operator.hpp"
 #include "cfd/poisson_solver.hpp"
@@ -65,6 +68,83 @@ TEST(PoissonOperator, ConstantsSpanTheNullSpaceOfAllNeumannProblems) {
   op.zero_inactive(one);
   op.apply(one, out);
   EXPECT_LT(max_abs(out), 1e-13);
+}
+
+// The components of the union-find labelling against a plain flood fill written here: the same id
+// for every cell (ids in scan order of each component's first active cell) and the same singular
+// flags, on masks of scattered solid cells (many small pockets, pockets touching a Dirichlet side,
+// components joined only through a periodic side), for each combination of side conditions.
+TEST(PoissonOperator, ComponentsMatchAFloodFill) {
+  const StretchedGrid g = stretched_3d(16);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<char> solid(g.cells());
+  for (auto& c : solid) c = u(rng) < 0.55 ? 1 : 0;  // near the site-percolation threshold: many pockets
+  const auto at = [&](int i, int j, int k) {
+    return static_cast<std::size_t>(i) + static_cast<std::size_t>(g.nx()) * (j + static_cast<std::size_t>(g.ny()) * k);
+  };
+  int checked = 0;
+  for (int variant = 0; variant < 4; ++variant) {
+    FaceCoefficients beta(g, 1.0);
+    beta.mask_cells([&](int i, int j, int k) { return solid[at(i, j, k)] != 0; });
+    BoundaryConditions bc;
+    if (variant & 1) bc[Side::XLo] = BcType::Dirichlet;
+    if (variant & 2) bc[Side::YLo] = bc[Side::YHi] = BcType::Periodic;
+    PoissonOperator op;
+    op.setup(g, beta, bc);
+    // Reference: depth-first flood fill over faces with nonzero transmissibility.
+    const int n[3] = {g.nx(), g.ny(), g.nz()};
+    std::vector<int> comp(g.cells(), -1);
+    std::vector<char> singular;
+    for (int k0 = 0; k0 < n[2]; ++k0)
+      for (int j0 = 0; j0 < n[1]; ++j0)
+        for (int i0 = 0; i0 < n[0]; ++i0) {
+          if (!op.active(i0, j0, k0) || comp[at(i0, j0, k0)] >= 0) continue;
+          const int id = static_cast<int>(singular.size());
+          bool pinned = false;
+          std::vector<std::array<int, 3>> stack{{i0, j0, k0}};
+          comp[at(i0, j0, k0)] = id;
+          while (!stack.empty()) {
+            const auto c = stack.back();
+            stack.pop_back();
+            for (int d = 0; d < 3; ++d)
+              for (int side = 0; side < 2; ++side) {
+                std::array<int, 3> f = c, nb = c;
+                f[static_cast<std::size_t>(d)] += side;
+                const auto& t = op.transmissibility(d);
+                const auto [fx, fy] = std::pair<std::size_t, std::size_t>(n[0] + (d == 0), n[1] + (d == 1));
+                if (!(t[static_cast<std::size_t>(f[0]) + fx * (f[1] + fy * static_cast<std::size_t>(f[2]))] > 0)) continue;
+                int& m = nb[static_cast<std::size_t>(d)];
+                m += side ? 1 : -1;
+                if (m < 0 || m >= n[d]) {
+                  if (!bc.periodic(d)) {
+                    pinned = true;
+                    continue;
+                  }
+                  m = (m + n[d]) % n[d];
+                }
+                if (comp[at(nb[0], nb[1], nb[2])] < 0) {
+                  comp[at(nb[0], nb[1], nb[2])] = id;
+                  stack.push_back(nb);
+                }
+              }
+          }
+          singular.push_back(pinned ? 0 : 1);
+        }
+    ASSERT_EQ(op.components(), static_cast<int>(singular.size())) << "variant " << variant;
+    EXPECT_GT(op.components(), 8) << "variant " << variant;  // the mask really makes many pockets
+    for (std::size_t c = 0; c < comp.size(); ++c) ASSERT_EQ(op.component()[c], comp[c]) << "variant " << variant << ", cell " << c;
+    int pinned = 0;
+    for (int c = 0; c < op.components(); ++c) {
+      ASSERT_EQ(op.singular(c), singular[static_cast<std::size_t>(c)] != 0) << "variant " << variant << ", component " << c;
+      pinned += !op.singular(c);
+    }
+    if (variant & 1) {
+      EXPECT_GT(pinned, 0);
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4);
 }
 
 // For a linear p the face difference quotients and the half-cell Dirichlet quotient are exact on
