@@ -256,12 +256,12 @@ if have("fin-cfd"):
     # The fin's loads (DESIGN.md section 1: mesh.h5 + motion.h5 -> fin-cfd -> loads.h5) on the case's
     # fin, at the case's chord Reynolds number (U = Re nu / c, water): two periods, the last one
     # written, on the default grid (h = min(c/16, ibm_thickness/2): c/40 for fin-mesh's default
-    # 0.05 c body, about 1.3 million cells, 1.2 GB; measured 5 s per step on 2 busy cores, so about
-    # 2-3 hours for the ~1700 steps). Targeted explicitly (snakemake -c2 results/<case>/loads.h5),
+    # 0.05 c body, 152 x 112 x 128 = 2.2 million cells, 1.9 GB peak; measured 1.31 s per step on 2 idle
+    # cores over the first 100 of the 2000 steps, so about 45 min). Targeted explicitly (snakemake -c2 results/<case>/loads.h5),
     # not part of the default target yet: the tiny workflow-test case could not afford it, and the
     # body must stay at least two cells thick, so no coarse grid stands in for it.
-    # A checkpoint every 100 steps (about 8 minutes; results/<case>/loads.checkpoint.h5, replaced
-    # atomically; about 130 bytes per cell, some 170 MB here) keeps an interrupted or failed run resumable: rerun the
+    # A checkpoint every 100 steps (about 2 minutes; results/<case>/loads.checkpoint.h5, replaced
+    # atomically; about 130 bytes per cell, some 280 MB here) keeps an interrupted or failed run resumable: rerun the
     # shell command with --restart results/<case>/loads.checkpoint.h5 (same inputs and options) and
     # the loads.h5 datasets come out bit for bit as from an uninterrupted run.
     _CFD_CASE_OUT = f"results/{config['case']}"
