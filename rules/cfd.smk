@@ -256,8 +256,8 @@ if have("fin-cfd"):
     # The fin's loads (DESIGN.md section 1: mesh.h5 + motion.h5 -> fin-cfd -> loads.h5) on the case's
     # fin, at the case's chord Reynolds number (U = Re nu / c, water): two periods, the last one
     # written, on the default grid (h = min(c/16, ibm_thickness/2): c/40 for fin-mesh's default
-    # 0.05 c body, 152 x 112 x 128 = 2.2 million cells, 1.9 GB peak; measured 1.31 s per step on 2 idle
-    # cores over the first 100 of the 2000 steps, so about 45 min). Targeted explicitly (snakemake -c2 results/<case>/loads.h5),
+    # 0.05 c body, 152 x 112 x 128 = 2.2 million cells, 2.2 GB peak; the cut-cell balance's 2000 steps
+    # measured 2896 s on 2 idle cores). Targeted explicitly (snakemake -c2 results/<case>/loads.h5),
     # not part of the default target yet: the tiny workflow-test case could not afford it, and the
     # body must stay at least two cells thick, so no coarse grid stands in for it.
     # A checkpoint every 100 steps (about 2 minutes; results/<case>/loads.checkpoint.h5, replaced

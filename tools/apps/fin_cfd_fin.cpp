@@ -223,9 +223,9 @@ FinCommands* add_fin_commands(CLI::App& app) {
   f->add_option("--output-interval", o.output_interval, "time between outputs [s]; 0: the motion's frame spacing")
       ->capture_default_str();
   f->add_option("--poisson-rtol", o.poisson_rtol, "pressure Poisson relative tolerance")->capture_default_str();
-  f->add_flag("--cut-cells", o.cut_cells,
-              "the cut-cell mass balance (Seo & Mittal 2011) instead of the staircase one (experimental: on the "
-              "default fin it halves the noise of the lateral force and leaves the thrust's about as it is)");
+  f->add_flag("--staircase-balance{false}", o.cut_cells,
+              "mass balance: close the faces of every non-fluid cell (the staircase balance) instead of the "
+              "cut-cell one (Seo & Mittal 2011); on the default fin it blows up at step 229");
   f->add_option("--checkpoint-every", c.checkpoint_every, "write a checkpoint every N steps (0: never)")
       ->capture_default_str();
   f->add_option("--checkpoint", c.checkpoint, "checkpoint file (default: <out stem>.checkpoint.h5 next to --out)");

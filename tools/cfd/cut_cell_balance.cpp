@@ -27,7 +27,8 @@ std::array<double, 6> polygon_box(const Polygon& p) {
 
 void FlowSolver::place_cut_cells(CutFaces faces, const std::array<double, 6>& box,
                                  const std::vector<std::pair<std::array<int, 3>, double>>& piece_flux,
-                                 const std::function<double(int, const Vec3&)>& wall_velocity) {
+                                 const std::function<double(int, const Vec3&)>& wall_velocity,
+                                 const std::vector<std::array<int, 3>>* split) {
   cut_ = std::move(faces);
   cut_cells_.clear();
   cut_flux_.clear();
@@ -80,23 +81,33 @@ void FlowSolver::place_cut_cells(CutFaces faces, const std::array<double, 6>& bo
         if (g != 0) flux.push_back({flat(i, j, 0), g});
       }
   for (const auto& [cell, g] : piece_flux) flux.push_back({flat(cell[0], cell[1], cell[2]), g});
-  // A body cell with fluid cells on two opposite sides (a body about two cells thick, or its rim)
-  // holds fluid on both sides of the body, which its single balance would join through the body;
-  // it stays closed, as in the staircase balance. The fluid parts of its faces then count as wall:
-  // their flux alpha A u_B moves into the neighbours' balances, which keeps each of them consistent
-  // with the body's motion and the fluxes' sum unchanged (the closed cell's own flux is dropped).
+  // A body cell that holds fluid on both sides of the body would join the two through the body in
+  // its single balance; it stays closed, as in the staircase balance. The fluid parts of its faces
+  // then count as wall: their flux alpha A u_B moves into the neighbours' balances, which keeps
+  // each of them consistent with the body's motion and the fluxes' sum unchanged (the closed cell's
+  // own flux is dropped). A triangulated surface says which cells it splits (two sheets in the
+  // cell: a plate thinner than the cell); a rim cell, whose fluid wraps around the edge, stays open.
+  // Without that (a polygon), a body cell with fluid cells on two opposite sides (a body about two
+  // cells thick, or its rim) is taken as split.
   std::vector<unsigned char> closed(grid_.cells(), 0);
+  std::vector<unsigned char> splits;
+  if (split) {
+    splits.assign(grid_.cells(), 0);
+    for (const auto& c : *split) splits[flat(c[0], c[1], c[2])] = 1;
+  }
   for (int k = rz[0]; k <= rz[1]; ++k)
     for (int j = ry[0]; j <= ry[1]; ++j)
       for (int i = rx[0]; i <= rx[1]; ++i) {
         if (fluid(i, j, k)) continue;
         bool two_sided = false;
-        for (int d = 0; d < dim() && !two_sided; ++d) {
-          int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-          --lo[d];
-          ++hi[d];
-          two_sided = lo[d] >= 0 && hi[d] < grid_.n(d) && fluid(lo[0], lo[1], lo[2]) && fluid(hi[0], hi[1], hi[2]);
-        }
+        if (split) two_sided = splits[flat(i, j, k)] != 0;
+        else
+          for (int d = 0; d < dim() && !two_sided; ++d) {
+            int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+            --lo[d];
+            ++hi[d];
+            two_sided = lo[d] >= 0 && hi[d] < grid_.n(d) && fluid(lo[0], lo[1], lo[2]) && fluid(hi[0], hi[1], hi[2]);
+          }
         if (!two_sided) continue;
         closed[flat(i, j, k)] = 1;
         for (int d = 0; d < dim(); ++d)

@@ -49,8 +49,20 @@ struct SurfacePiece {
   std::array<int, 3> cell{};
   int triangle = -1;
   Vec3 area_vector{}, centroid{};
+  // Bit e set: the piece runs along its triangle's edge e (from vertex e to vertex e + 1 mod 3)
+  // for a positive length; the pieces of two triangles meet inside a cell where both run along
+  // their shared edge.
+  unsigned char edges = 0;
 };
 CutFaces cut_faces(const StretchedGrid& grid, const SurfaceGeometry& body);
 std::vector<SurfacePiece> surface_pieces(const StretchedGrid& grid, const SurfaceGeometry& body);
+
+// The cells that the surface splits (split_cells.cpp): those in which its pieces form two or more
+// sheets, joined where they meet along a mesh edge inside the cell. A closed surface crossing a
+// cell in one sheet leaves it one fluid part (at the rim of a thin plate the fluid wraps around
+// the edge inside the cell); two sheets, the two faces of a plate thinner than the cell, leave
+// fluid on both sides, which one mass balance for the cell would join through the body. Sorted.
+std::vector<std::array<int, 3>> split_cells(const std::vector<SurfacePiece>& pieces,
+                                            const std::vector<std::array<int, 3>>& triangles);
 
 }  // namespace finverse::cfd

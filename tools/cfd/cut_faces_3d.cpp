@@ -15,7 +15,8 @@
 // inside length comes from the outline's crossings with that grid line.
 //
 // Pieces: every triangle is split by the grid planes it spans, x then y then z, into convex
-// polygons, each within one cell; a piece carries its area vector and centroid.
+// polygons, each within one cell; a piece carries its area vector, its centroid and the edges of
+// its triangle it runs along (tracked through the splits: a split's new edge lies in the plane).
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
@@ -50,20 +51,29 @@ int cell_of(const Axis& ax, double x) {
   return std::clamp(i, 0, ax.size() - 1);
 }
 
-// Splits a convex polygon by x_d = c into its parts below (x_d <= c) and above.
-void split(const Poly& p, int d, double c, Poly& below, Poly& above) {
+// Splits a convex polygon by x_d = c into its parts below (x_d <= c) and above. Each vertex
+// carries the label of the edge that starts at it (the triangle edge it runs along, or -1 for a
+// cut by an earlier plane); the new edge along the plane is a cut.
+void split(const Poly& p, const std::vector<int>& label, int d, double c, Poly& below, std::vector<int>& below_label,
+           Poly& above, std::vector<int>& above_label) {
   below.clear();
   above.clear();
+  below_label.clear();
+  above_label.clear();
   const auto D = static_cast<std::size_t>(d);
   for (std::size_t k = 0; k < p.size(); ++k) {
     const Vec3& a = p[k];
     const Vec3& b = p[(k + 1) % p.size()];
     const bool a_up = a[D] > c, b_up = b[D] > c;
     (a_up ? above : below).push_back(a);
+    (a_up ? above_label : below_label).push_back(label[k]);
     if (a_up != b_up) {
       const Vec3 q = on_plane(a, b, d, c);
-      below.push_back(q);
-      above.push_back(q);
+      // On a's side the edge from q runs along the plane; on b's side it continues towards b.
+      (a_up ? above : below).push_back(q);
+      (a_up ? above_label : below_label).push_back(-1);
+      (a_up ? below : above).push_back(q);
+      (a_up ? below_label : above_label).push_back(label[k]);
     }
   }
 }
@@ -186,13 +196,16 @@ std::vector<SurfacePiece> surface_pieces(const StretchedGrid& g, const SurfaceGe
   // the cell below it).
   struct Part {
     Poly p;
+    std::vector<int> label;  // label[k]: the triangle edge that p[k] -> p[k + 1] runs along, or -1
     std::array<int, 3> cell{};
   };
   std::vector<Part> cur, next;
   Poly below, above;
+  std::vector<int> below_label, above_label;
   for (std::size_t t = 0; t < tris.size(); ++t) {
     cur.assign(1, Part{Poly{pts[static_cast<std::size_t>(tris[t][0])], pts[static_cast<std::size_t>(tris[t][1])],
                             pts[static_cast<std::size_t>(tris[t][2])]},
+                       {0, 1, 2},
                        {}});
     for (int d = 0; d < 3; ++d) {
       const auto D = static_cast<std::size_t>(d);
@@ -206,20 +219,29 @@ std::vector<SurfacePiece> surface_pieces(const StretchedGrid& g, const SurfaceGe
         }
         // Interior planes between the cells of the lowest and the highest point.
         const int c0 = cell_of(ax, mn), c1 = cell_of(ax, mx);
-        Part rest{std::move(part.p), part.cell};
+        Part rest{std::move(part.p), std::move(part.label), part.cell};
         for (int c = c0; c < c1; ++c) {
-          split(rest.p, d, ax.face(c + 1), below, above);
+          split(rest.p, rest.label, d, ax.face(c + 1), below, below_label, above, above_label);
           if (below.size() >= 3) {
-            next.push_back(Part{below, rest.cell});
+            next.push_back(Part{below, below_label, rest.cell});
             next.back().cell[D] = c;
           }
           rest.p = above;
+          rest.label = above_label;
         }
         rest.cell[D] = c1;
         if (rest.p.size() >= 3) next.push_back(std::move(rest));
       }
       std::swap(cur, next);
     }
+    // An edge shorter than this is a point where a vertex lay on a plane (round-off of the split).
+    double longest = 0;
+    for (int e = 0; e < 3; ++e) {
+      const Vec3 a = sub(pts[static_cast<std::size_t>(tris[t][static_cast<std::size_t>((e + 1) % 3)])],
+                         pts[static_cast<std::size_t>(tris[t][static_cast<std::size_t>(e)])]);
+      longest = std::max(longest, std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
+    }
+    const double tiny = 1e-9 * longest;
     for (const Part& part : cur) {
       const Poly& p = part.p;
       // Area vector and centroid by a fan from the first vertex.
@@ -236,7 +258,14 @@ std::vector<SurfacePiece> surface_pieces(const StretchedGrid& g, const SurfaceGe
       }
       if (!(wsum > 0)) continue;
       for (double& x : cen) x /= wsum;
-      out.push_back(SurfacePiece{part.cell, static_cast<int>(t), av, cen});
+      unsigned char edges = 0;
+      for (std::size_t k = 0; k < p.size(); ++k) {
+        if (part.label[k] < 0) continue;
+        const Vec3 e = sub(p[(k + 1) % p.size()], p[k]);
+        if (std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) > tiny)
+          edges = static_cast<unsigned char>(edges | (1u << part.label[k]));
+      }
+      out.push_back(SurfacePiece{part.cell, static_cast<int>(t), av, cen, edges});
     }
   }
   return out;

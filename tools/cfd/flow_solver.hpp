@@ -136,19 +136,26 @@ struct FlowOptions {
   // pressure correction (see the header comment); false: the staircase mass balance of the fixed
   // bodies (only to measure the spurious force oscillations that it removes).
   bool cut_cell_continuity = true;
-  // The same for a moving triangulated body (immerse(SurfaceMotion)); experimental, off by default.
-  // Measured: a heaving sphere 9.6 cells across, largest second difference of the force 4x smaller;
-  // a rigid plate two (four) cells thick pitching and heaving in a stream (fin-cfd thin_plate),
-  // energy of C_Y above a quarter of the Nyquist frequency 95% -> 13% (18% -> 14%) after the
-  // start-up. Closing every body cell with fluid cells on opposite sides (cut_cell_balance.cpp) is
-  // what keeps the fin from blowing up (it did within 18 steps without), but it also closes rim
-  // cells whose fluid is connected around the rim: without it the plates gave 5.4% (5.2%). The body
-  // faces keep the fluid cell's velocity on their fluid part (cut_body_face_velocity); with the
-  // ghost cell's in it the default fin blew up at step 25. Noise of the force coefficients (rms of
-  // their second difference over steps 11-100 / sqrt 6, i.e. the standard deviation of white
-  // noise), staircase -> cut cells: default fin (2.2 M cells, Re 1000) lateral 1.02 -> 0.47, thrust
-  // 0.20 -> 0.24; the plate two cells thick (Re 100, 20 cells per chord) lateral 30.0 -> 1.79,
-  // thrust 1.80 -> 0.81; the tiny case's fin, max CFL 1.71 (3.43 before; staircase 1.43).
+  // The same for a moving triangulated body (immerse(SurfaceMotion)). Off here, so the solver's own
+  // tests keep the balance they were written for; fin-cfd fin turns it on (FinFlowOptions).
+  // Measured: a heaving sphere 9.6 cells across, largest second difference of the force 4x smaller.
+  // Body cells that the surface splits into two fluid parts (split_cells: a plate thinner than the
+  // cell) stay closed, so that no balance joins the fluid on the two sides of the plate. Rim cells,
+  // whose fluid wraps around the edge, stay open (they were closed too before, as every body cell
+  // with fluid cells on opposite sides). The body faces keep the fluid cell's velocity on their fluid part
+  // (cut_body_face_velocity); with the ghost cell's in it the default fin blew up at step 25. Noise
+  // of the force coefficients (rms of their second difference over steps 11-100 / sqrt 6, i.e. the
+  // standard deviation of white noise), staircase / rims closed / rims open: default fin (2.2 M
+  // cells, Re 1000) lateral 1.02 / 0.47 / 0.29, thrust 0.20 / 0.24 / 0.11; a rigid plate 0.1 c
+  // thick pitching and heaving (fin-cfd thin_plate, Re 100, 20 cells per chord: two cells thick)
+  // lateral 30.0 / 1.79 / 0.92, thrust 1.80 / 0.81 / 0.34. The plate's mean force coefficients
+  // over its first half period at 20 / 30 / 40 cells per chord, lateral: staircase 6.007 / 6.161 /
+  // 5.900, rims closed 5.771 / 6.055, rims open 5.725 / 5.830 / 5.831; thrust: staircase -1.390 /
+  // -1.096 / -1.147, rims closed -1.302 / -1.117, rims open -1.244 / -1.203 / -1.110: with open
+  // rims the lateral force has converged at 30 cells per chord and the thrust converges
+  // monotonically, while the staircase's wanders. The staircase balance blows up on the default
+  // fin at step 229 (CFL 2.4: a fluid cell with ghost cells on three sides whose velocity flips
+  // sign every step).
   bool cut_cell_continuity_3d = false;
   // The same for fixed 2-D bodies (immerse(Polygon), immerse(regions)). Off here, so the solver's
   // own tests and the immersed-Couette order study keep the balance they were validated with; the
@@ -308,10 +315,13 @@ class FlowSolver {
   // Cut-cell balance (cut_cell_balance.cpp): the apertures of the current geometry, the cut cells
   // among those of the body's bounding box {x0, x1, y0, y1, z0, z1} and their body fluxes G_c (a
   // moving polygon's from the rigid motion, plus piece_flux, the fluxes of a triangulated body's
-  // pieces by cell); wall_velocity(d, x): component d of the wall's velocity near x (empty: at rest).
+  // pieces by cell); wall_velocity(d, x): component d of the wall's velocity near x (empty: at rest);
+  // split: the cells the surface splits (split_cells), whose body cells stay closed; without it
+  // (a polygon) every body cell with fluid cells on two opposite sides stays closed.
   void place_cut_cells(CutFaces faces, const std::array<double, 6>& box,
                        const std::vector<std::pair<std::array<int, 3>, double>>& piece_flux = {},
-                       const std::function<double(int, const Vec3&)>& wall_velocity = {});
+                       const std::function<double(int, const Vec3&)>& wall_velocity = {},
+                       const std::vector<std::array<int, 3>>* split = nullptr);
   bool cut_cell(int i, int j, int k) const;
   // The pressure operator of the current geometry: faces weighted by their apertures with the
   // cut-cell balance, else every face of a non-fluid cell closed (the multigrid is rebuilt).

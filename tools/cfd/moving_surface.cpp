@@ -110,11 +110,12 @@ void FlowSolver::place_surface(double t) {
   setup_pressure_operator();
 }
 
-// The cut-cell balance of the placed surface: apertures, and the body's flux G_c through its
-// pieces in each cell, with u_B interpolated linearly over the piece's triangle at the piece's
-// centroid (exact for the linear vertex interpolation). A body whose volume changes (a thin body
-// bending, to second order) would make the pressure equation incompatible; as with the staircase
-// balance (body_face_velocities) the net flux is removed, spread over the pieces by area.
+// The cut-cell balance of the placed surface: apertures, the cells it splits (split_cells), and the
+// body's flux G_c through its pieces in each cell, with u_B interpolated linearly over the piece's
+// triangle at the piece's centroid (exact for the linear vertex interpolation). A body whose
+// volume changes (a thin body bending, to second order) would make the pressure equation
+// incompatible; as with the staircase balance (body_face_velocities) the net flux is removed,
+// spread over the pieces by area.
 void FlowSolver::place_surface_cut_cells() {
   const std::vector<SurfacePiece> pieces = surface_pieces(grid_, *surface_);
   const auto& pts = surface_->surface().points;
@@ -155,10 +156,11 @@ void FlowSolver::place_surface_cut_cells() {
   if (total > 0)
     for (std::size_t n = 0; n < flux.size(); ++n) flux[n].second -= net * area[n] / total;
   const Vec3 lo = surface_->lower(), hi = surface_->upper();
-  place_cut_cells(cut_faces(grid_, *surface_), {lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]}, flux,
-                  [&](int d, const Vec3& x) {
-                    return surface_->interpolate(vel, surface_->closest(x))[static_cast<std::size_t>(d)];
-                  });
+  const std::vector<std::array<int, 3>> split = split_cells(pieces, tris);
+  place_cut_cells(
+      cut_faces(grid_, *surface_), {lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]}, flux,
+      [&](int d, const Vec3& x) { return surface_->interpolate(vel, surface_->closest(x))[static_cast<std::size_t>(d)]; },
+      &split);
 }
 
 void FlowSolver::move_surface(double t) {

@@ -1,12 +1,13 @@
 // Tests of the 3-D cut-cell geometry (cut_faces.hpp, cut_faces_3d.cpp): exact apertures of a box,
 // the closure of every cell's fluid part (the apertures' area vectors equal the surface pieces'
 // in each cell, for a sphere on a stretched grid and for a box whose faces lie in grid planes),
-// and the pieces tiling the surface.
+// and the pieces tiling the surface; the cells a thin body splits into two fluid parts (split_cells).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "cfd/cut_faces.hpp"
 #include "cfd/surface_shapes.hpp"
@@ -108,6 +109,36 @@ TEST(CutFaces3D, SpherePiecesTileTheSurfaceAndCloseEveryCell) {
   int cells = 0;
   EXPECT_LT(worst_closure(g, cut_faces(g, sphere), pieces, cells), 1e-12);
   EXPECT_GT(cells, 100);
+}
+
+// A plate thinner than the cells it crosses: the cells its two faces cross away from the rim hold
+// fluid above and below it (two sheets: split); at the rim the fluid wraps around the edge inside
+// the cell (one sheet, the faces joined by the side walls' triangles). Each face of box_surface is
+// two triangles, so the sheets join pieces across the diagonals too.
+TEST(CutFaces3D, SplitCellsAreThoseAPlateCrossesAwayFromItsRim) {
+  const StretchedGrid g(Axis::uniform(0, 1, 10), Axis::uniform(0, 1, 10), Axis::uniform(0, 1, 10));
+  const SurfaceGeometry plate(box_surface({0.23, 0.31, 0.42}, {0.77, 0.69, 0.47}));
+  const std::vector<SurfacePiece> pieces = surface_pieces(g, plate);
+  const std::vector<std::array<int, 3>> split = split_cells(pieces, plate.surface().triangles);
+  std::vector<std::array<int, 3>> expected;
+  for (int i = 3; i <= 6; ++i)
+    for (int j = 4; j <= 5; ++j) expected.push_back({i, j, 4});
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(split, expected);
+  // The same plate on a grid whose planes cut it through the thickness: no cell holds both faces.
+  const StretchedGrid fine(Axis::uniform(0, 1, 10), Axis::uniform(0, 1, 10), Axis::uniform(0, 1, 40));
+  EXPECT_TRUE(split_cells(surface_pieces(fine, plate), plate.surface().triangles).empty());
+}
+
+// A body many cells across is crossed by one sheet in every cell, however its triangles fall.
+TEST(CutFaces3D, ASphereSplitsNoCell) {
+  const StretchedGrid g(Axis::stretched(0, 1, 0.3, 0.7, 0.05, 1.1), Axis::uniform(0, 1, 20), Axis::uniform(0, 1, 16));
+  const SurfaceGeometry sphere(icosphere({0.47, 0.52, 0.49}, 0.19, 3));
+  const std::vector<SurfacePiece> pieces = surface_pieces(g, sphere);
+  std::set<std::array<int, 3>> cells;
+  for (const SurfacePiece& p : pieces) cells.insert(p.cell);
+  ASSERT_GT(cells.size(), 100u);
+  EXPECT_TRUE(split_cells(pieces, sphere.surface().triangles).empty());
 }
 
 }  // namespace

@@ -173,20 +173,26 @@ TEST_P(SphereCarriedByAUniformStream, LeavesItUntouched) {
 
 INSTANTIATE_TEST_SUITE_P(ImmersedFlow3D, SphereCarriedByAUniformStream, ::testing::Values(false, true));
 
-TEST(ImmersedFlow3D, ThinPlateCarriedByAUniformStreamLeavesItUntouchedWithCutCells) {
-  // A plate two cells thick, tilted: body cells with fluid cells on both sides stay closed, and the
-  // wall flux of their faces' fluid parts moves to the neighbours exactly (a uniform stream carried
-  // with the body stays uniform to round-off).
-  TriangulatedSurface ref = box_surface({0.3, 0.45, 0.25}, {0.7, 0.55, 0.75});
-  for (auto& p : ref.points) {  // tilt by 0.3 rad about z through the centre
+// Plates tilted by 0.3 rad about z, two cells thick and thinner than a cell: the body cells their
+// two faces both cross stay closed (split_cells), the rim cells stay open, and the wall flux of the
+// closed cells' faces' fluid parts moves to the neighbours exactly (a uniform stream carried with
+// the body stays uniform to round-off).
+class ThinPlateCarriedByAUniformStream : public ::testing::TestWithParam<double> {};
+
+TEST_P(ThinPlateCarriedByAUniformStream, LeavesItUntouchedWithCutCells) {
+  const double half = 0.5 * GetParam();
+  TriangulatedSurface ref = box_surface({0.3, 0.5 - half, 0.25}, {0.7, 0.5 + half, 0.75});
+  for (auto& p : ref.points) {
     const double x = p[0] - 0.5, y = p[1] - 0.5, c = std::cos(0.3), sn = std::sin(0.3);
     p = {0.5 + c * x - sn * y, 0.5 + sn * x + c * y, p[2]};
   }
   FlowSolver s;
   std::size_t cleared = 0;
   EXPECT_LT(carried_by_a_uniform_stream(ref, {0.4, 0.3, 0.1}, true, s, cleared), 1e-9);
-  EXPECT_GT(cleared, 20u);
+  EXPECT_GT(cleared, 0u);
 }
+
+INSTANTIATE_TEST_SUITE_P(ImmersedFlow3D, ThinPlateCarriedByAUniformStream, ::testing::Values(0.1, 0.03));
 
 TEST(ImmersedFlow3D, CutCellBalanceSmoothsTheForceOfAHeavingSphere) {
   // A sphere 7.2 cells across heaving in fluid at rest (closed box, Re about 20 on the heave

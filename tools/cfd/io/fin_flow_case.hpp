@@ -49,9 +49,9 @@ struct FinFlowOptions {
   double output_periods = 1;     // periodic motion: last periods written; 0: all
   double output_interval = 0;    // [s]; 0: the motion's smallest frame spacing
   double poisson_rtol = 1e-7;
-  // The cut-cell mass balance instead of the staircase one (FlowOptions::cut_cell_continuity_3d;
-  // experimental).
-  bool cut_cells = false;
+  // The cut-cell mass balance (FlowOptions::cut_cell_continuity_3d, where the measurements are);
+  // false: the staircase one, which blows up on fin-mesh's default fin at step 229.
+  bool cut_cells = true;
   double chord = 0;              // [m]; 0: mesh.h5 attribute chord, else the rest mesh's x extent
 };
 

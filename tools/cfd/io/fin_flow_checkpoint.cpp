@@ -71,7 +71,7 @@ nlohmann::json fin_flow_config(const FinFlowOptions& o, const FinInput& in) {
                         {"--output-periods", o.output_periods},
                         {"--output-interval", o.output_interval},
                         {"--poisson-rtol", o.poisson_rtol},
-                        {"--cut-cells", o.cut_cells}};
+                        {"--staircase-balance", !o.cut_cells}};
   return {{"case", "fin"}, {"options", opt}, {"input", fin_input_fingerprint(in)}};
 }
 
