@@ -122,31 +122,34 @@ PoissonOperator coarsen_operator(const PoissonOperator& fine, const Coarsening& 
   FaceCoefficients cb(cg, 0.0);
   for (int d = 0; d < g.dim(); ++d) {
     const int e[3] = {cg.nx() + (d == 0), cg.ny() + (d == 1), cg.nz() + (d == 2)};
-    for (int K = 0; K < e[2]; ++K)
-      for (int J = 0; J < e[1]; ++J)
-        for (int I = 0; I < e[0]; ++I) {
-          // Fine faces covering coarse face (I,J,K): along d the coinciding fine face, tangentially
-          // the children of the coarse cell.
-          const int C[3] = {I, J, K};
-          int lo[3], hi[3];
-          for (int a = 0; a < 3; ++a) {
-            const auto& m = c[static_cast<std::size_t>(a)];
-            const auto ca = static_cast<std::size_t>(C[a]);
-            if (a == d)
-              lo[a] = hi[a] = m.first[ca];
-            else
-              lo[a] = m.first[ca], hi[a] = m.first[ca + 1] - 1;
-          }
-          double num = 0, den = 0;
-          for (int k = lo[2]; k <= hi[2]; ++k)
-            for (int j = lo[1]; j <= hi[1]; ++j)
-              for (int i = lo[0]; i <= hi[0]; ++i) {
-                const double a = face_area(g, d, i, j, k);
-                num += a * beta(d, i, j, k);
-                den += a;
-              }
-          cb(d, I, J, K) = num / den;
+    // Each coarse face is written once, so its lines run in parallel (every step of a moving body).
+#pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
+    for (int L = 0; L < e[1] * e[2]; ++L) {
+      const int J = L % e[1], K = L / e[1];
+      for (int I = 0; I < e[0]; ++I) {
+        // Fine faces covering coarse face (I,J,K): along d the coinciding fine face, tangentially
+        // the children of the coarse cell.
+        const int C[3] = {I, J, K};
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+          const auto& m = c[static_cast<std::size_t>(a)];
+          const auto ca = static_cast<std::size_t>(C[a]);
+          if (a == d)
+            lo[a] = hi[a] = m.first[ca];
+          else
+            lo[a] = m.first[ca], hi[a] = m.first[ca + 1] - 1;
         }
+        double num = 0, den = 0;
+        for (int k = lo[2]; k <= hi[2]; ++k)
+          for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int i = lo[0]; i <= hi[0]; ++i) {
+              const double a = face_area(g, d, i, j, k);
+              num += a * beta(d, i, j, k);
+              den += a;
+            }
+        cb(d, I, J, K) = num / den;
+      }
+    }
   }
   PoissonOperator coarse;
   coarse.setup(cg, cb, fine.bc());

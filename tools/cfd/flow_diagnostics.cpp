@@ -41,16 +41,19 @@ double FlowSolver::momentum(int c) const {
 }
 
 double FlowSolver::cfl(double dt) const {
-  double m = 0;
-  for (int k = 0; k < grid_.nz(); ++k)
-    for (int j = 0; j < grid_.ny(); ++j)
-      for (int i = 0; i < grid_.nx(); ++i) {
-        if (!fluid(i, j, k)) continue;  // ghost values are reflections, not velocities
-        double s = 0;
-        for (int d = 0; d < dim(); ++d)
-          s += std::abs(u_[static_cast<std::size_t>(d)](i, j, k)) / grid_.axis(d).width(d == 0 ? i : d == 1 ? j : k);
-        m = std::max(m, s);
-      }
+  double m = 0;  // a maximum: the same in any order, so for any number of threads
+  const int nx = grid_.nx(), ny = grid_.ny(), nz = grid_.nz();
+#pragma omp parallel for schedule(static) reduction(max : m) if (static_cast<long>(grid_.cells()) >= parallel_min_cells)
+  for (int l = 0; l < ny * nz; ++l) {
+    const int j = l % ny, k = l / ny;
+    for (int i = 0; i < nx; ++i) {
+      if (!fluid(i, j, k)) continue;  // ghost values are reflections, not velocities
+      double s = 0;
+      for (int d = 0; d < dim(); ++d)
+        s += std::abs(u_[static_cast<std::size_t>(d)](i, j, k)) / grid_.axis(d).width(d == 0 ? i : d == 1 ? j : k);
+      m = std::max(m, s);
+    }
+  }
   return dt * m;
 }
 

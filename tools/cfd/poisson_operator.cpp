@@ -67,10 +67,19 @@ void PoissonOperator::setup(const StretchedGrid& grid, const FaceCoefficients& b
     if (beta.faces(d) != static_cast<std::size_t>(n[0] + (d == 0)) * static_cast<std::size_t>(n[1] + (d == 1)) *
                              static_cast<std::size_t>(n[2] + (d == 2)))
       throw std::invalid_argument("PoissonOperator: face coefficients do not match the grid");
-    for (double v : beta.values(d))
-      if (!(v >= 0) || !std::isfinite(v))
-        throw std::invalid_argument("PoissonOperator: beta must be finite and >= 0");
+    const std::vector<double>& v = beta.values(d);
+    const long count = static_cast<long>(v.size());
+    bool bad = false;
+#pragma omp parallel for schedule(static) reduction(|| : bad) if (count >= parallel_min_cells)
+    for (long q = 0; q < count; ++q) {
+      const double b = v[static_cast<std::size_t>(q)];
+      bad = bad || !(b >= 0) || !std::isfinite(b);
+    }
+    if (bad) throw std::invalid_argument("PoissonOperator: beta must be finite and >= 0");
   }
+  // The set-up runs on every multigrid level at every step of a moving body: its loops over faces
+  // and cells run in parallel over lines (each writes only its own face or cell).
+  const bool parallel = static_cast<long>(grid.cells()) >= parallel_min_cells;
 
   for (int d = 0; d < 3; ++d) {
     auto& t = t_[static_cast<std::size_t>(d)];
@@ -80,40 +89,45 @@ void PoissonOperator::setup(const StretchedGrid& grid, const FaceCoefficients& b
     const int nd = ax.size();
     const BcType lo = bc[static_cast<Side>(2 * d)], hi = bc[static_cast<Side>(2 * d + 1)];
     const int e[3] = {n[0] + (d == 0), n[1] + (d == 1), n[2] + (d == 2)};
-    for (int k = 0; k < e[2]; ++k)
-      for (int j = 0; j < e[1]; ++j)
-        for (int i = 0; i < e[0]; ++i) {
-          const int f = d == 0 ? i : d == 1 ? j : k;  // face position along d
-          double dist;
-          int bf = f;  // face whose beta applies (a periodic last face takes face 0's)
-          if (f > 0 && f < nd) dist = ax.centre(f) - ax.centre(f - 1);
-          else if (lo == BcType::Periodic) {
-            dist = 0.5 * (ax.width(0) + ax.width(nd - 1));
-            bf = 0;
-          } else if ((f == 0 ? lo : hi) == BcType::Dirichlet) dist = 0.5 * ax.width(f == 0 ? 0 : nd - 1);
-          else continue;  // Neumann: the flux is data, it goes to the right-hand side
-          int bi = i, bj = j, bk = k;
-          (d == 0 ? bi : d == 1 ? bj : bk) = bf;
-          t[beta.index(d, i, j, k)] = beta(d, bi, bj, bk) * face_area(grid, d, i, j, k) / dist;
-        }
+#pragma omp parallel for schedule(static) if (parallel)
+    for (int l = 0; l < e[1] * e[2]; ++l) {
+      const int j = l % e[1], k = l / e[1];
+      for (int i = 0; i < e[0]; ++i) {
+        const int f = d == 0 ? i : d == 1 ? j : k;  // face position along d
+        double dist;
+        int bf = f;  // face whose beta applies (a periodic last face takes face 0's)
+        if (f > 0 && f < nd) dist = ax.centre(f) - ax.centre(f - 1);
+        else if (lo == BcType::Periodic) {
+          dist = 0.5 * (ax.width(0) + ax.width(nd - 1));
+          bf = 0;
+        } else if ((f == 0 ? lo : hi) == BcType::Dirichlet) dist = 0.5 * ax.width(f == 0 ? 0 : nd - 1);
+        else continue;  // Neumann: the flux is data, it goes to the right-hand side
+        int bi = i, bj = j, bk = k;
+        (d == 0 ? bi : d == 1 ? bj : bk) = bf;
+        t[beta.index(d, i, j, k)] = beta(d, bi, bj, bk) * face_area(grid, d, i, j, k) / dist;
+      }
+    }
   }
 
   diag_.assign(grid.cells(), 0.0);
   inv_diag_.assign(grid.cells(), 0.0);
-  active_cells_ = 0;
-  for (int k = 0; k < n[2]; ++k)
-    for (int j = 0; j < n[1]; ++j)
-      for (int i = 0; i < n[0]; ++i) {
-        double s = t_[0][beta.index(0, i, j, k)] + t_[0][beta.index(0, i + 1, j, k)] +
-                   t_[1][beta.index(1, i, j, k)] + t_[1][beta.index(1, i, j + 1, k)];
-        if (dim == 3) s += t_[2][beta.index(2, i, j, k)] + t_[2][beta.index(2, i, j, k + 1)];
-        const std::size_t c = cell_index(i, j, k);
-        diag_[c] = s;
-        if (s > 0) {
-          inv_diag_[c] = 1 / s;
-          ++active_cells_;
-        }
+  std::size_t active = 0;
+#pragma omp parallel for schedule(static) reduction(+ : active) if (parallel)
+  for (int l = 0; l < n[1] * n[2]; ++l) {
+    const int j = l % n[1], k = l / n[1];
+    for (int i = 0; i < n[0]; ++i) {
+      double s = t_[0][beta.index(0, i, j, k)] + t_[0][beta.index(0, i + 1, j, k)] +
+                 t_[1][beta.index(1, i, j, k)] + t_[1][beta.index(1, i, j + 1, k)];
+      if (dim == 3) s += t_[2][beta.index(2, i, j, k)] + t_[2][beta.index(2, i, j, k + 1)];
+      const std::size_t c = cell_index(i, j, k);
+      diag_[c] = s;
+      if (s > 0) {
+        inv_diag_[c] = 1 / s;
+        ++active;
       }
+    }
+  }
+  active_cells_ = active;
   build_connectivity();
 }
 
@@ -147,10 +161,12 @@ void PoissonOperator::residual(const Field& b, Field& x, Field& r) const {
 
 void PoissonOperator::assemble_rhs(const Field& f, const BoundaryValues& values, Field& b) const {
   const StretchedGrid& g = grid_;
-  for (int k = 0; k < g.nz(); ++k)
-    for (int j = 0; j < g.ny(); ++j)
-      for (int i = 0; i < g.nx(); ++i)
-        b(i, j, k) = active(i, j, k) ? -f(i, j, k) * g.volume(i, j, k) : 0.0;
+  const int nx = g.nx(), ny = g.ny(), nz = g.nz();
+#pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
+  for (int l = 0; l < ny * nz; ++l) {
+    const int j = l % ny, k = l / ny;
+    for (int i = 0; i < nx; ++i) b(i, j, k) = active(i, j, k) ? -f(i, j, k) * g.volume(i, j, k) : 0.0;
+  }
 
   for (int s = 0; s < 2 * dim(); ++s) {
     const Side side = static_cast<Side>(s);

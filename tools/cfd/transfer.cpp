@@ -75,22 +75,24 @@ void GridTransfer::setup(const PoissonOperator& fine, const PoissonOperator& coa
     if (c >= 0 && c < n) return c;
     return fine.bc().periodic(d) ? (c + n) % n : -1;  // -1: the wall value, always "present"
   };
-  for (int k = 0; k < fg.nz(); ++k)
-    for (int j = 0; j < fg.ny(); ++j)
-      for (int i = 0; i < fg.nx(); ++i) {
-        if (!fine.active(i, j, k)) continue;
-        double lost = 0;
-        for (const Entry& ez : prol_[2][static_cast<std::size_t>(k)])
-          for (const Entry& ey : prol_[1][static_cast<std::size_t>(j)])
-            for (const Entry& ex : prol_[0][static_cast<std::size_t>(i)]) {
-              const double w = ex.w * ey.w * ez.w;
-              if (w == 0.0) continue;
-              const int cx = wrap(ex.c, 0), cy = wrap(ey.c, 1), cz = wrap(ez.c, 2);
-              if (cx < 0 || cy < 0 || cz < 0) continue;
-              if (!coarse.active(cx, cy, cz)) lost += w;
-            }
-        scale_[fine.cell_index(i, j, k)] = lost < 1 - 1e-12 ? 1 / (1 - lost) : 0.0;
-      }
+#pragma omp parallel for schedule(static) if (static_cast<long>(fg.cells()) >= parallel_min_cells)
+  for (int l = 0; l < fg.ny() * fg.nz(); ++l) {
+    const int j = l % fg.ny(), k = l / fg.ny();
+    for (int i = 0; i < fg.nx(); ++i) {
+      if (!fine.active(i, j, k)) continue;
+      double lost = 0;
+      for (const Entry& ez : prol_[2][static_cast<std::size_t>(k)])
+        for (const Entry& ey : prol_[1][static_cast<std::size_t>(j)])
+          for (const Entry& ex : prol_[0][static_cast<std::size_t>(i)]) {
+            const double w = ex.w * ey.w * ez.w;
+            if (w == 0.0) continue;
+            const int cx = wrap(ex.c, 0), cy = wrap(ey.c, 1), cz = wrap(ez.c, 2);
+            if (cx < 0 || cy < 0 || cz < 0) continue;
+            if (!coarse.active(cx, cy, cz)) lost += w;
+          }
+      scale_[fine.cell_index(i, j, k)] = lost < 1 - 1e-12 ? 1 / (1 - lost) : 0.0;
+    }
+  }
 }
 
 void GridTransfer::prolongate_add(Field& ce, Field& fx) const {
