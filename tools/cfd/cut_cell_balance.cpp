@@ -99,16 +99,16 @@ void FlowSolver::place_cut_cells(CutFaces faces, const std::array<double, 6>& bo
     for (int j = ry[0]; j <= ry[1]; ++j)
       for (int i = rx[0]; i <= rx[1]; ++i) {
         if (fluid(i, j, k)) continue;
-        bool two_sided = false;
-        if (split) two_sided = splits[flat(i, j, k)] != 0;
+        bool both_sides = false;  // fluid on both sides of the body in this cell
+        if (split) both_sides = splits[flat(i, j, k)] != 0;
         else
-          for (int d = 0; d < dim() && !two_sided; ++d) {
+          for (int d = 0; d < dim() && !both_sides; ++d) {
             int lo[3] = {i, j, k}, hi[3] = {i, j, k};
             --lo[d];
             ++hi[d];
-            two_sided = lo[d] >= 0 && hi[d] < grid_.n(d) && fluid(lo[0], lo[1], lo[2]) && fluid(hi[0], hi[1], hi[2]);
+            both_sides = lo[d] >= 0 && hi[d] < grid_.n(d) && fluid(lo[0], lo[1], lo[2]) && fluid(hi[0], hi[1], hi[2]);
           }
-        if (!two_sided) continue;
+        if (!both_sides) continue;
         closed[flat(i, j, k)] = 1;
         for (int d = 0; d < dim(); ++d)
           for (int side = 0; side < 2; ++side) {

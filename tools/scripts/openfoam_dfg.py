@@ -6,7 +6,8 @@ channel at Re = 100, periodic vortex shedding.
 Writes a structured 12-block mesh (an O-grid around the cylinder inside a square, and the
 channel around it), the parabolic inflow profile on the exact inlet face centres, runs
 blockMesh + pimpleFoam (second order in space and time) on the given cores, and reports CD_max,
-CL_max, St and the wall time as JSON:
+CL_max, CL_min, St, the lift amplitude of the pressure and the viscous force (to compare with the
+split of fin-cfd's forces.csv) and the wall time as JSON:
 
     openfoam_dfg.py --cells 32 --out results/bench/openfoam_dfg2.json [--ranks 2] [--t-end 10] [--window 3]
 
@@ -126,6 +127,11 @@ functions
         liftDir (0 1 0); dragDir (1 0 0); pitchAxis (0 0 1);
         magUInf {UBAR}; lRef {D}; Aref {D * DZ};
     }}
+    forces
+    {{
+        type forces; libs ("libforces.so"); writeControl timeStep; writeInterval 1;
+        patches (cylinder); rho rhoInf; rhoInf 1; CofR ({XC} {YC} 0);
+    }}
 }}
 """)
     foam(f"{case}/system/fvSchemes", "dictionary", "fvSchemes", """ddtSchemes { default backward; }
@@ -239,8 +245,35 @@ def analyse(case, t_from):
     period = (up[-1] - up[0]) / (len(up) - 1) if len(up) >= 3 else float("nan")
     # CL_min too: the lift's mean over a period (its asymmetry, the cylinder sits 0.005 below the
     # channel's centre line) decides how much of the amplitude CL_max shows.
-    return {"CD_max": max(cd[i] for i in sel), "CL_max": max(cl[i] for i in sel), "CL_min": min(cl[i] for i in sel),
-            "St": D / (UBAR * period) if period == period else float("nan"), "periods_used": max(0, len(up) - 1)}
+    out = {"CD_max": max(cd[i] for i in sel), "CL_max": max(cl[i] for i in sel), "CL_min": min(cl[i] for i in sel),
+           "St": D / (UBAR * period) if period == period else float("nan"), "periods_used": max(0, len(up) - 1)}
+    out.update(lift_parts(case, t_from))
+    return out
+
+
+def lift_parts(case, t_from):
+    # The lift amplitude ((max - min) / 2 over the window) of the pressure and the viscous force
+    # (the forces function object's force.dat: time, (total), (pressure), (viscous)), to compare
+    # with fin-cfd's pressure/viscous split of the surface traction.
+    files = []
+    for root, _, names in os.walk(os.path.join(case, "postProcessing", "forces")):
+        files += [os.path.join(root, n) for n in names if n.startswith("force")]
+    if not files:
+        return {}
+    scale = 2 / (UBAR * UBAR * D * DZ)
+    parts = {"total": [], "pressure": [], "viscous": []}
+    with open(sorted(files)[0]) as fh:
+        for line in fh:
+            if line.startswith("#"):
+                continue
+            v = line.replace("(", " ").replace(")", " ").split()
+            if len(v) < 10 or float(v[0]) < t_from:
+                continue
+            for n, key in enumerate(("total", "pressure", "viscous")):
+                parts[key].append(scale * float(v[2 + 3 * n]))
+    if not parts["total"]:
+        return {}
+    return {f"CL_{k}_amplitude": (max(x) - min(x)) / 2 for k, x in parts.items()}
 
 
 def main():
