@@ -62,7 +62,6 @@ std::vector<SurfacePiece> surface_pieces(const StretchedGrid& grid, const Surfac
 // cell in one sheet leaves it one fluid part (at the rim of a thin plate the fluid wraps around
 // the edge inside the cell); two sheets, the two faces of a plate thinner than the cell, leave
 // fluid on both sides, which one mass balance for the cell would join through the body. Sorted.
-std::vector<std::array<int, 3>> split_cells(const std::vector<SurfacePiece>& pieces,
-                                            const std::vector<std::array<int, 3>>& triangles);
+std::vector<std::array<int, 3>> split_cells(const std::vector<SurfacePiece>& pieces, const SurfaceGeometry& body);
 
 }  // namespace finverse::cfd

@@ -156,7 +156,7 @@ void FlowSolver::place_surface_cut_cells() {
   if (total > 0)
     for (std::size_t n = 0; n < flux.size(); ++n) flux[n].second -= net * area[n] / total;
   const Vec3 lo = surface_->lower(), hi = surface_->upper();
-  const std::vector<std::array<int, 3>> split = split_cells(pieces, tris);
+  const std::vector<std::array<int, 3>> split = split_cells(pieces, *surface_);
   place_cut_cells(
       cut_faces(grid_, *surface_), {lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]}, flux,
       [&](int d, const Vec3& x) { return surface_->interpolate(vel, surface_->closest(x))[static_cast<std::size_t>(d)]; },

@@ -14,18 +14,13 @@
 
 namespace finverse::cfd {
 
-std::vector<std::array<int, 3>> split_cells(const std::vector<SurfacePiece>& pieces,
-                                            const std::vector<std::array<int, 3>>& triangles) {
-  // Mesh edges by their sorted vertex pair.
-  std::unordered_map<long long, int> edge_id;
-  std::vector<std::array<int, 3>> tri_edge(triangles.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int e = 0; e < 3; ++e) {
-      const long long a = triangles[t][static_cast<std::size_t>(e)], b = triangles[t][static_cast<std::size_t>((e + 1) % 3)];
-      const long long key = std::min(a, b) * (1LL << 31) + std::max(a, b);
-      const auto [it, added] = edge_id.try_emplace(key, static_cast<int>(edge_id.size()));
-      tri_edge[t][static_cast<std::size_t>(e)] = it->second;
-    }
+std::vector<std::array<int, 3>> split_cells(const std::vector<SurfacePiece>& pieces, const SurfaceGeometry& body) {
+  // A mesh edge is named by the two triangles that share it (the surface's own adjacency).
+  const long long triangles = body.triangles();
+  const auto edge_key = [&](int t, int e) {
+    const long long a = t, b = body.neighbour(t, e);
+    return std::min(a, b) * triangles + std::max(a, b);
+  };
   // Pieces in cell order, so that each cell's are contiguous.
   std::vector<std::size_t> order(pieces.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
@@ -37,7 +32,8 @@ std::vector<std::array<int, 3>> split_cells(const std::vector<SurfacePiece>& pie
     return x;
   };
   std::vector<std::array<int, 3>> out;
-  std::unordered_map<int, std::size_t> along;  // mesh edge -> a piece of this cell running along it
+  std::unordered_map<long long, std::size_t> along;  // mesh edge -> a piece of this cell running along it
+  std::vector<bool> counts;
   for (std::size_t first = 0; first < order.size();) {
     std::size_t last = first;
     const auto& cell = pieces[order[first]].cell;
@@ -50,14 +46,14 @@ std::vector<std::array<int, 3>> split_cells(const std::vector<SurfacePiece>& pie
     };
     double largest = 0;
     for (std::size_t n = first; n < last; ++n) largest = std::max(largest, size(n));
-    std::vector<bool> counts(last - first);
+    counts.assign(last - first, false);
     for (std::size_t n = first; n < last; ++n) counts[n - first] = size(n) > 1e-9 * largest;
     for (std::size_t n = first; n < last; ++n) {
       if (!counts[n - first]) continue;
       const SurfacePiece& p = pieces[order[n]];
       for (int e = 0; e < 3; ++e) {
         if (!(p.edges & (1u << e))) continue;
-        const auto [it, added] = along.try_emplace(tri_edge[static_cast<std::size_t>(p.triangle)][static_cast<std::size_t>(e)], order[n]);
+        const auto [it, added] = along.try_emplace(edge_key(p.triangle, e), order[n]);
         if (!added) parent[root(order[n])] = root(it->second);
       }
     }

@@ -58,6 +58,10 @@ class SurfaceGeometry {
   int triangles() const { return static_cast<int>(s_.triangles.size()); }
   const Vec3& triangle_normal(int t) const { return face_normal_[static_cast<std::size_t>(t)]; }
   double triangle_area(int t) const { return face_area_[static_cast<std::size_t>(t)]; }
+  // The triangle across edge e (from vertex e to vertex e + 1 mod 3) of triangle t.
+  int neighbour(int t, int e) const {
+    return edge_triangle_[static_cast<std::size_t>(t)][static_cast<std::size_t>(e)];
+  }
   Vec3 lower() const { return nodes_.empty() ? Vec3{} : nodes_[0].lo; }
   Vec3 upper() const { return nodes_.empty() ? Vec3{} : nodes_[0].hi; }
   double volume() const;  // enclosed volume (divergence theorem)

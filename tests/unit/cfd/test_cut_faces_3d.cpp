@@ -119,7 +119,7 @@ TEST(CutFaces3D, SplitCellsAreThoseAPlateCrossesAwayFromItsRim) {
   const StretchedGrid g(Axis::uniform(0, 1, 10), Axis::uniform(0, 1, 10), Axis::uniform(0, 1, 10));
   const SurfaceGeometry plate(box_surface({0.23, 0.31, 0.42}, {0.77, 0.69, 0.47}));
   const std::vector<SurfacePiece> pieces = surface_pieces(g, plate);
-  const std::vector<std::array<int, 3>> split = split_cells(pieces, plate.surface().triangles);
+  const std::vector<std::array<int, 3>> split = split_cells(pieces, plate);
   std::vector<std::array<int, 3>> expected;
   for (int i = 3; i <= 6; ++i)
     for (int j = 4; j <= 5; ++j) expected.push_back({i, j, 4});
@@ -127,7 +127,7 @@ TEST(CutFaces3D, SplitCellsAreThoseAPlateCrossesAwayFromItsRim) {
   EXPECT_EQ(split, expected);
   // The same plate on a grid whose planes cut it through the thickness: no cell holds both faces.
   const StretchedGrid fine(Axis::uniform(0, 1, 10), Axis::uniform(0, 1, 10), Axis::uniform(0, 1, 40));
-  EXPECT_TRUE(split_cells(surface_pieces(fine, plate), plate.surface().triangles).empty());
+  EXPECT_TRUE(split_cells(surface_pieces(fine, plate), plate).empty());
 }
 
 // A body many cells across is crossed by one sheet in every cell, however its triangles fall.
@@ -138,7 +138,7 @@ TEST(CutFaces3D, ASphereSplitsNoCell) {
   std::set<std::array<int, 3>> cells;
   for (const SurfacePiece& p : pieces) cells.insert(p.cell);
   ASSERT_GT(cells.size(), 100u);
-  EXPECT_TRUE(split_cells(pieces, sphere.surface().triangles).empty());
+  EXPECT_TRUE(split_cells(pieces, sphere).empty());
 }
 
 }  // namespace
