@@ -340,6 +340,13 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   // core: -0.56 %, +0.88 %, -3.1 %). With dp/dn = 0, a D/96 core added nothing to the lift (CD_max
   // +0.40 %, CL_max -1.26 %, St +0.80 %; lift amplitude 1.0046 against 1.0040) at 4x the cost, nor
   // did half the time step (--cfl 0.25: CD_max +0.29 %, CL_max -1.39 %, St +0.80 %).
+  // With today's default (--t-end 7, lift amplitude / CL_max over [6, 7) s, one thread each): this
+  // grid 1.0001 / 0.9831; a D/96 core 1.0026 / 0.9854 (1661 s); the core 3 D into the wake
+  // 0.9986 / 0.9817; a D/32 box with its spacing out to the walls 0.9983 / 0.9814; walls 1
+  // 0.9977 / 0.9807, 0.965 1.0002 / 0.9832; no stretching at all outside the core 0.9982 / 0.9812;
+  // a fixed step of 3.6e-4 s 1.0001 / 0.9831. CL_max converges to about 0.987-0.989, -1.1 to -1.3 %
+  // of the bound midpoint, with the grid and the step; on this same grid DFG 2D-3 (dfg_2d3) meets
+  // the high-precision CL_max of John (2004) within +0.38 % and its time within 0.001 s.
   // 2D-3 on the same grid as 2D-2 (the same Reynolds number at the sine's peak).
   const bool default_grid = variant >= 2 && !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
   ds.core_cells_per_diameter = default_grid ? 48 : a.core_cells_per_diameter;
