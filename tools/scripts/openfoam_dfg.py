@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """OpenFOAM (Debian package openfoam, pimpleFoam) peer for the DFG benchmark 2D-2
 (Schaefer & Turek 1996; ../shared/reference/schaefer_turek.json): flow past a cylinder in a
-channel at Re = 100, periodic vortex shedding.
+channel at Re = 100, periodic vortex shedding; with --benchmark 2d3 the same channel under the
+inflow 1.5 sin(pi t/8) over t in [0, 8] (2D-3), whose largest drag and lift and their times have
+high-precision reference values (John 2004) to measure the peer's own accuracy against.
 
 Writes a structured 12-block mesh (an O-grid around the cylinder inside a square, and the
 channel around it), the parabolic inflow profile on the exact inlet face centres, runs
@@ -10,6 +12,7 @@ CL_max, CL_min, St, the lift amplitude of the pressure and the viscous force (to
 split of fin-cfd's forces.csv) and the wall time as JSON:
 
     openfoam_dfg.py --cells 32 --out results/bench/openfoam_dfg2.json [--ranks 2] [--t-end 10] [--window 3]
+    openfoam_dfg.py --benchmark 2d3 --cells 48 --out F     (CD_max, CL_max and their times; t_end 8)
 
 --cells is the number of cells on each quarter of the cylinder; the others follow from it. The
 benchmark runs a sequence of meshes and takes the cheapest that is within 1% of the bounds'
@@ -177,16 +180,42 @@ def inlet_face_centres(case):
     return ys
 
 
-def write_fields(case):
+def write_sine_inflow(case, ys, t_end, every=0.02):
+    # 2D-3's inlet: the parabola at the face centres times sin(pi t / 8), sampled every `every`
+    # seconds for timeVaryingMappedFixedValue (linear in time between samples: 1e-5 of the peak).
+    # The points repeat at both faces of the one-cell-thick 2-D mesh so that they span a plane.
+    # Raw lists, without the FoamFile header (v1912 reads them with operator>>).
+    root = f"{case}/constant/boundaryData/inlet"
+    pts = [(0.0, y, z) for z in (0.0, DZ) for y in ys]
+
+    def raw(path, rows):
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "w") as fh:
+            fh.write(f"{len(rows)}\n(\n" + "".join(rows) + ")\n")
+
+    raw(f"{root}/points", [f"({x:.12g} {y:.12g} {z:.12g})\n" for x, y, z in pts])
+    steps = int(round(t_end / every))
+    for m in range(steps + 1):
+        t = m * every
+        amp = math.sin(math.pi * t / 8)
+        raw(f"{root}/{t:.6g}/U", [f"({amp * 4 * UM * y * (H - y) / H ** 2:.12g} 0 0)\n" for _, y, _ in pts])
+
+
+def write_fields(case, sine_t_end=None):
     ys = inlet_face_centres(case)
     prof = "".join(f"({4 * UM * y * (H - y) / H ** 2:.12g} 0 0)\n" for y in ys)
+    if sine_t_end:
+        write_sine_inflow(case, ys, sine_t_end)
+        inlet = f"inlet {{ type timeVaryingMappedFixedValue; offset (0 0 0); setAverage false; value uniform (0 0 0); }}"
+    else:
+        inlet = f"""inlet {{ type fixedValue; value nonuniform List<vector> {len(ys)}
+(
+{prof}); }}"""
     foam(f"{case}/0/U", "volVectorField", "U", f"""dimensions [0 1 -1 0 0 0 0];
 internalField uniform (0 0 0);
 boundaryField
 {{
-    inlet {{ type fixedValue; value nonuniform List<vector> {len(ys)}
-(
-{prof}); }}
+    {inlet}
     outlet {{ type zeroGradient; }}
     walls {{ type noSlip; }}
     cylinder {{ type noSlip; }}
@@ -219,7 +248,7 @@ def run(cmd, case, log):
         raise SystemExit(f"openfoam_dfg: {' '.join(cmd)} failed:\n" + "\n".join(tail))
 
 
-def analyse(case, t_from):
+def coefficients(case):
     files = []
     for root, _, names in os.walk(os.path.join(case, "postProcessing", "forceCoeffs")):
         files += [os.path.join(root, n) for n in names if n.startswith("coefficient") or n.startswith("forceCoeffs")]
@@ -239,6 +268,18 @@ def analyse(case, t_from):
                 continue
             row = dict(zip(header, map(float, v)))
             t.append(row["Time"]); cd.append(row["Cd"]); cl.append(row["Cl"])
+    return t, cd, cl
+
+
+def analyse_2d3(case):
+    t, cd, cl = coefficients(case)
+    i = max(range(len(cd)), key=lambda m: cd[m])
+    j = max(range(len(cl)), key=lambda m: cl[m])
+    return {"CD_max": cd[i], "t_CD_max": t[i], "CL_max": cl[j], "t_CL_max": t[j]}
+
+
+def analyse(case, t_from):
+    t, cd, cl = coefficients(case)
     sel = [i for i, ti in enumerate(t) if ti >= t_from]
     up = [t[i - 1] + (t[i] - t[i - 1]) * (-cl[i - 1]) / (cl[i] - cl[i - 1])
           for i in sel[1:] if cl[i - 1] < 0 <= cl[i]]
@@ -286,20 +327,28 @@ def main():
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--out", required=True)
     ap.add_argument("--keep", help="keep the OpenFOAM cases below this directory")
+    ap.add_argument("--benchmark", choices=["2d2", "2d3"], default="2d2")
     args = ap.parse_args()
     if not shutil.which("pimpleFoam"):
         raise SystemExit("openfoam_dfg: pimpleFoam not found (tools/scripts/install-deps.sh --peers)")
-    ref = {"CD_max": (3.22, 3.24), "CL_max": (0.99, 1.01), "St": (0.295, 0.305)}
-    out = {"peer": "OpenFOAM v1912 pimpleFoam (Debian)", "case": "DFG 2D-2", "runs": []}
+    sine = args.benchmark == "2d3"
+    if sine:
+        args.t_end = 8.0
+    # 2D-2: the 1996 bounds (their midpoints); 2D-3: John (2004)'s values.
+    ref = ({"CD_max": 2.950921575, "CL_max": 0.47795} if sine else
+           {"CD_max": (3.22, 3.24), "CL_max": (0.99, 1.01), "St": (0.295, 0.305)})
+    out = {"peer": "OpenFOAM v1912 pimpleFoam (Debian)", "case": "DFG 2D-3" if sine else "DFG 2D-2", "runs": []}
     for n in args.cells or [16, 24, 32]:
         root = args.keep or tempfile.mkdtemp(prefix="finverse_of_")
-        case = os.path.join(root, f"dfg2_{n}")
+        case = os.path.join(root, f"dfg{args.benchmark[-1]}_{n}")
         shutil.rmtree(case, ignore_errors=True)
         dt = args.dt or 0.5 * (2 * math.pi * R / (4 * n)) / (1.5 * UM)
+        if sine:
+            dt = args.t_end / math.ceil(args.t_end / dt)  # lands on t = 8
         write_case(case, n, args.t_end, dt, args.ranks)
         t0 = time.perf_counter()
         run(["blockMesh"], case, "log.blockMesh")
-        write_fields(case)
+        write_fields(case, args.t_end if sine else None)
         if args.ranks > 1:
             run(["decomposePar", "-force"], case, "log.decomposePar")
             mpi = ["mpirun", "--oversubscribe", "-np", str(args.ranks)] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
@@ -308,8 +357,9 @@ def main():
             run(["pimpleFoam"], case, "log.pimpleFoam")
         wall = time.perf_counter() - t0
         cells = sum(nx * ny for _, (nx, ny), _ in block_mesh(n)[1])
-        res = analyse(case, args.t_end - args.window)
-        err = {k: abs(res[k] - sum(b) / 2) / (sum(b) / 2) for k, b in ref.items()}
+        res = analyse_2d3(case) if sine else analyse(case, args.t_end - args.window)
+        mid = {k: v if sine else sum(v) / 2 for k, v in ref.items()}
+        err = {k: abs(res[k] - m) / m for k, m in mid.items()}
         r = {"cells_per_quarter": n, "cells": cells, "dt": dt, "ranks": args.ranks, "t_end": args.t_end, "wall_s": wall, **res,
              "rel_error_to_midpoint": err, "within_1pct": all(e <= 0.01 for e in err.values())}
         print(json.dumps(r), file=sys.stderr)
