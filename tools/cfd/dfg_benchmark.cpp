@@ -57,7 +57,6 @@ DfgResult run_dfg(const DfgSetup& ds) {
   options.cut_cell_continuity_fixed = ds.cut_cell_continuity;
   options.viscous_wall_pressure = ds.viscous_wall_pressure;
   FlowBoundary boundary = channel_benchmark_boundary(Um, ds.ramp_time);
-  const double t_end = ds.t_end;
   if (ds.variant == 3) {
     // The sine inflow, and a fixed step that lands on t_end (8: where dp is compared): the adaptive
     // step's target CFL for the peak inflow, with the 1.8 Um that the flow reaches beside the
@@ -68,7 +67,7 @@ DfgResult run_dfg(const DfgSetup& ds) {
     in.function = [Um](double, double y, double, double t) {
       return std::array<double, 3>{4 * Um * std::sin(std::numbers::pi * t / 8) * y * (kHeight - y) / (kHeight * kHeight), 0.0, 0.0};
     };
-    options.dt = t_end / std::ceil(t_end / (ds.cfl * hc / (1.8 * Um)));
+    options.dt = ds.t_end / std::ceil(ds.t_end / (ds.cfl * hc / (1.8 * Um)));
   }
   solver.setup(grid, boundary, options);
   const Polygon body = Polygon::circle(kXc, kYc, 0.5 * kD, ds.polygon_vertices);
@@ -84,7 +83,7 @@ DfgResult run_dfg(const DfgSetup& ds) {
   r.ghost_cells = static_cast<long>(solver.immersed()->ghosts().size());
   const double scale = 2 / (Ubar * Ubar * kD);
   long poisson = 0, momentum = 0;
-  while (solver.time() < t_end - 1e-9) {
+  while (solver.time() < ds.t_end - 1e-9) {
     const StepStats st = solver.step();
     poisson += st.poisson_iterations;
     momentum += st.helmholtz_iterations;
