@@ -224,8 +224,9 @@ FinCommands* add_fin_commands(CLI::App& app) {
       ->capture_default_str();
   f->add_option("--poisson-rtol", o.poisson_rtol, "pressure Poisson relative tolerance")->capture_default_str();
   f->add_flag("--staircase-balance{false}", o.cut_cells,
-              "mass balance: close the faces of every non-fluid cell (the staircase balance) instead of the "
-              "cut-cell one (Seo & Mittal 2011); on the default fin it blows up at step 229");
+              "mass balance: close the faces of every non-fluid cell, moving with the wall (the staircase "
+              "balance), instead of the cut-cell one (Seo & Mittal 2011; on the default fin 2.3x less noise in "
+              "the lateral force)");
   f->add_option("--checkpoint-every", c.checkpoint_every, "write a checkpoint every N steps (0: never)")
       ->capture_default_str();
   f->add_option("--checkpoint", c.checkpoint, "checkpoint file (default: <out stem>.checkpoint.h5 next to --out)");

@@ -202,7 +202,18 @@ void FlowSolver::body_face_velocities(FaceField& U, const std::array<Field, 3>& 
       U(d, i, j, k) = cut_body_face_velocity(b, u[static_cast<std::size_t>(d)]);
       continue;  // the cut-cell balance carries the body's flux: no net flux to remove
     }
-    U(d, i, j, k) = face_value(u[static_cast<std::size_t>(d)], d, d, i, j, k, bv_new_);
+    if (surface_motion_) {
+      // The staircase of a moving triangulated body: the closed face moves with the wall, the
+      // velocity of the ghost cell's closest surface point. Its interpolation with the ghost cell,
+      // a reflection of the fluid at the image point, let the ghost values into the continuity
+      // constraint as with the cut cells (cut_body_face_velocity): on fin-mesh's default fin a fluid
+      // cell with ghost cells on three sides flipped sign every step and blew up at step 229.
+      int g[3] = {i, j, k};
+      if (b.side < 0) --g[d];  // the ghost cell: below the face when the fluid is above it
+      U(d, i, j, k) = body_velocity_[static_cast<std::size_t>(d)](g[0], g[1], g[2]);
+    } else {
+      U(d, i, j, k) = face_value(u[static_cast<std::size_t>(d)], d, d, i, j, k, bv_new_);
+    }
     const double A = face_area(d, i, j, k);
     net += b.side * U(d, i, j, k) * A;  // out of the fluid, into the body
     area += A;

@@ -146,16 +146,18 @@ struct FlowOptions {
   // (cut_body_face_velocity); with the ghost cell's in it the default fin blew up at step 25. Noise
   // of the force coefficients (rms of their second difference over steps 11-100 / sqrt 6, i.e. the
   // standard deviation of white noise), staircase / rims closed / rims open: default fin (2.2 M
-  // cells, Re 1000) lateral 1.02 / 0.47 / 0.29, thrust 0.20 / 0.24 / 0.11; a rigid plate 0.1 c
+  // cells, Re 1000) lateral 0.65 / 0.47 / 0.29, thrust 0.26 / 0.24 / 0.11; a rigid plate 0.1 c
   // thick pitching and heaving (fin-cfd thin_plate, Re 100, 20 cells per chord: two cells thick)
-  // lateral 30.0 / 1.79 / 0.92, thrust 1.80 / 0.81 / 0.34. The plate's mean force coefficients
-  // over its first half period at 20 / 30 / 40 cells per chord, lateral: staircase 6.007 / 6.161 /
-  // 5.900, rims closed 5.771 / 6.055, rims open 5.725 / 5.830 / 5.831; thrust: staircase -1.390 /
-  // -1.096 / -1.147, rims closed -1.302 / -1.117, rims open -1.244 / -1.203 / -1.110: with open
-  // rims the lateral force has converged at 30 cells per chord and the thrust converges
-  // monotonically, while the staircase's wanders. The staircase balance blows up on the default
-  // fin at step 229 (CFL 2.4: a fluid cell with ghost cells on three sides whose velocity flips
-  // sign every step).
+  // lateral 1.85 / 1.79 / 0.92, thrust 0.78 / 0.81 / 0.34. The staircase's closed faces move with
+  // the wall (body_face_velocities); while they took the interpolation with the ghost cell, the
+  // staircase blew up on the default fin at step 229 (CFL 2.4: a fluid cell with ghost cells on
+  // three sides whose velocity flipped sign every step) and its noise was fin 1.02 / 0.20, plate
+  // 30.0 / 1.80. The plate's mean force coefficients over its first half period at 20 / 30 / 40
+  // cells per chord, lateral: rims closed 5.771 / 6.055, rims open 5.725 / 5.830 / 5.831 (the
+  // former staircase 6.007 / 6.161 / 5.900, today's 5.889 at 20); thrust: rims closed -1.302 /
+  // -1.117, rims open -1.244 / -1.203 / -1.110 (former staircase -1.390 / -1.096 / -1.147, today's
+  // -1.396 at 20): with open rims the lateral force has converged at 30 cells per chord and the
+  // thrust converges monotonically.
   bool cut_cell_continuity_3d = false;
   // The same for fixed 2-D bodies (immerse(Polygon), immerse(regions)). Off here, so the solver's
   // own tests and the immersed-Couette order study keep the balance they were validated with; the
