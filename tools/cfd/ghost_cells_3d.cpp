@@ -41,6 +41,113 @@ std::array<int, 2> centre_range(const Axis& a, double lo, double hi) {
   while (last >= 0 && a.centre(last) > hi) --last;
   return {first, last};
 }
+
+// First centre index in [first, last] at or above x (last + 1 when none); centres increase.
+int first_centre_from(const Axis& a, int first, int last, double x) {
+  int lo = first, hi = last + 1;
+  while (lo < hi) {
+    const int mid = (lo + hi) / 2;
+    if (a.centre(mid) < x) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
+// Marks Solid the centres of box r (inclusive index ranges along x, y, z) that lie inside the
+// surface (negative signed distance). Only centres near a triangle get their own closest-point
+// query; "near" is inside the triangle's bounding box grown by m, the largest spacing of
+// neighbouring centres in the box. Two neighbouring centres that are both far from every
+// triangle cannot have the surface between them (a crossing point would lie within m of both,
+// so inside some triangle's grown box), so each connected region of far centres is wholly
+// inside or wholly outside and one query decides it. For the fin's thin body this cuts the
+// queries from every centre of its bounding box to a band a few cells thick. The result is
+// that of querying every centre, whatever the thread count.
+void mark_solid(const StretchedGrid& grid, const SurfaceGeometry& body, const std::array<std::array<int, 2>, 3>& r,
+                std::vector<CellKind>& kind) {
+  int n[3];
+  for (int d = 0; d < 3; ++d) {
+    n[d] = r[static_cast<std::size_t>(d)][1] - r[static_cast<std::size_t>(d)][0] + 1;
+    if (n[d] <= 0) return;
+  }
+  double m = 0;
+  for (int d = 0; d < 3; ++d)
+    for (int c = r[static_cast<std::size_t>(d)][0]; c < r[static_cast<std::size_t>(d)][1]; ++c)
+      m = std::max(m, grid.axis(d).centre(c + 1) - grid.axis(d).centre(c));
+  m *= 1 + 1e-9;  // the box test must not lose a centre at distance m to rounding
+  const auto box = [&](int a, int b, int c) {
+    return static_cast<std::size_t>(a) +
+           static_cast<std::size_t>(n[0]) * (static_cast<std::size_t>(b) + static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(c));
+  };
+  const std::size_t total = box(0, 0, n[2]);
+  std::vector<unsigned char> done(total, 0);  // near, or already assigned to a far region
+  const auto& pts = body.surface().points;
+  for (const auto& t : body.surface().triangles) {
+    int from[3], to[3];
+    bool empty = false;
+    for (int d = 0; d < 3; ++d) {
+      const auto D = static_cast<std::size_t>(d);
+      const double lo = std::min({pts[static_cast<std::size_t>(t[0])][D], pts[static_cast<std::size_t>(t[1])][D],
+                                  pts[static_cast<std::size_t>(t[2])][D]}) - m;
+      const double hi = std::max({pts[static_cast<std::size_t>(t[0])][D], pts[static_cast<std::size_t>(t[1])][D],
+                                  pts[static_cast<std::size_t>(t[2])][D]}) + m;
+      const Axis& a = grid.axis(d);
+      from[d] = first_centre_from(a, r[D][0], r[D][1], lo) - r[D][0];
+      to[d] = first_centre_from(a, r[D][0], r[D][1], std::nextafter(hi, hi + 1)) - 1 - r[D][0];
+      empty = empty || from[d] > to[d];
+    }
+    if (empty) continue;
+    for (int c = from[2]; c <= to[2]; ++c)
+      for (int b = from[1]; b <= to[1]; ++b)
+        for (int a = from[0]; a <= to[0]; ++a) done[box(a, b, c)] = 1;
+  }
+  const auto global = [&](std::size_t q, int& i, int& j, int& k) {
+    i = r[0][0] + static_cast<int>(q % static_cast<std::size_t>(n[0]));
+    j = r[1][0] + static_cast<int>(q / static_cast<std::size_t>(n[0]) % static_cast<std::size_t>(n[1]));
+    k = r[2][0] + static_cast<int>(q / (static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1])));
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(grid.nx()) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(grid.ny()) * static_cast<std::size_t>(k));
+  };
+  const auto inside = [&](int i, int j, int k) { return body.closest({grid.xc(i), grid.yc(j), grid.zc(k)}).distance < 0; };
+  std::vector<std::size_t> near;
+  for (std::size_t q = 0; q < total; ++q)
+    if (done[q]) near.push_back(q);
+  const long nn = static_cast<long>(near.size());
+#pragma omp parallel for schedule(dynamic, 64)
+  for (long p = 0; p < nn; ++p) {
+    int i, j, k;
+    const std::size_t c = global(near[static_cast<std::size_t>(p)], i, j, k);
+    if (inside(i, j, k)) kind[c] = CellKind::Solid;
+  }
+  // The far regions, each by a flood fill from its first centre.
+  std::vector<std::size_t> stack;
+  for (std::size_t seed = 0; seed < total; ++seed) {
+    if (done[seed]) continue;
+    int i, j, k;
+    global(seed, i, j, k);
+    const bool solid = inside(i, j, k);
+    done[seed] = 1;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const std::size_t q = stack.back();
+      stack.pop_back();
+      const std::size_t c = global(q, i, j, k);
+      if (solid) kind[c] = CellKind::Solid;
+      const int a = i - r[0][0], b = j - r[1][0], e = k - r[2][0];
+      const auto visit = [&](bool ok, std::size_t nb) {
+        if (ok && !done[nb]) {
+          done[nb] = 1;
+          stack.push_back(nb);
+        }
+      };
+      visit(a > 0, q - 1);
+      visit(a + 1 < n[0], q + 1);
+      visit(b > 0, q - static_cast<std::size_t>(n[0]));
+      visit(b + 1 < n[1], q + static_cast<std::size_t>(n[0]));
+      visit(e > 0, q - static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]));
+      visit(e + 1 < n[2], q + static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]));
+    }
+  }
+}
 }  // namespace
 
 GhostCellSet::GhostCellSet(const StretchedGrid& grid, const SurfaceGeometry& body) : grid_(grid) {
@@ -54,13 +161,8 @@ GhostCellSet::GhostCellSet(const StretchedGrid& grid, const SurfaceGeometry& bod
   const auto index = [&](int i, int j, int k) {
     return static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(k));
   };
-  // Only centres inside the surface's bounding box can be inside it; each cell is written by one
-  // thread, so the classification does not depend on the thread count.
-#pragma omp parallel for schedule(dynamic)
-  for (int k = r[2][0]; k <= r[2][1]; ++k)
-    for (int j = r[1][0]; j <= r[1][1]; ++j)
-      for (int i = r[0][0]; i <= r[0][1]; ++i)
-        if (body.closest({grid.xc(i), grid.yc(j), grid.zc(k)}).distance < 0) kind_[index(i, j, k)] = CellKind::Solid;
+  // Only centres inside the surface's bounding box can be inside it.
+  mark_solid(grid, body, r, kind_);
   const auto fluid = [&](int i, int j, int k) {
     return i >= 0 && j >= 0 && k >= 0 && i < nx && j < ny && k < nz && kind_[index(i, j, k)] == CellKind::Fluid;
   };

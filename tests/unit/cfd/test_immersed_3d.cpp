@@ -5,6 +5,8 @@
 // invariance of the moving triangulated boundary, with cells cleared on the way).
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -52,6 +54,44 @@ TEST(GhostCells3D, LinearFieldsAreImposedExactly) {
     EXPECT_NEAR(q(gc.i, gc.j, gc.k), exact, 1e-10);
     EXPECT_NEAR(p(gc.i, gc.j, gc.k), exact, 1e-10);
   }
+}
+
+// The classification queries only the centres near a triangle and floods the rest region by
+// region (ghost_cells_3d.cpp); it must agree with every centre's own inside test. A hollow sphere
+// (the inner surface turned inwards) has far regions in the cavity, in the wall and outside; the
+// facing sides of two boxes, half-way between centres inside the pair's bounding box, are missed
+// unless "near" reaches the full spacing. One and two threads.
+TEST(GhostCells3D, ClassificationMatchesEveryCentresOwnQuery) {
+  TriangulatedSurface shell = icosphere({0.5, 0.48, 0.52}, 0.42, 3);
+  const TriangulatedSurface inner = icosphere({0.5, 0.48, 0.52}, 0.2, 2);
+  const int offset = static_cast<int>(shell.points.size());
+  shell.points.insert(shell.points.end(), inner.points.begin(), inner.points.end());
+  for (const auto& t : inner.triangles) shell.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
+  const StretchedGrid g(Axis::uniform(0, 1, 44), Axis::stretched(0, 1, 0.3, 0.7, 0.02, 1.1), Axis::uniform(0, 1, 40));
+  const double h = 1.0 / 44;
+  TriangulatedSurface boxes = box_surface({10 * h, 0.2311, 0.2125}, {20 * h, 0.7713, 0.7875});
+  const TriangulatedSurface second = box_surface({24 * h, 0.2311, 0.2125}, {33 * h, 0.7713, 0.7875});
+  const int shift = static_cast<int>(boxes.points.size());
+  boxes.points.insert(boxes.points.end(), second.points.begin(), second.points.end());
+  for (const auto& t : second.triangles) boxes.triangles.push_back({t[0] + shift, t[1] + shift, t[2] + shift});
+  const SurfaceGeometry bodies[2] = {SurfaceGeometry(shell), SurfaceGeometry(boxes)};
+  const int saved = omp_get_max_threads();
+  for (const SurfaceGeometry& body : bodies)
+    for (int threads : {1, 2}) {
+      omp_set_num_threads(threads);
+      const GhostCellSet ib(g, body);
+      int wrong = 0, solid = 0;
+      for (int k = 0; k < g.nz(); ++k)
+        for (int j = 0; j < g.ny(); ++j)
+          for (int i = 0; i < g.nx(); ++i) {
+            const bool inside = body.inside({g.xc(i), g.yc(j), g.zc(k)});
+            wrong += (ib.kind(i, j, k) != CellKind::Fluid) != inside;
+            solid += inside;
+          }
+      EXPECT_EQ(wrong, 0) << body.triangles() << " triangles, " << threads << " threads";
+      EXPECT_GT(solid, 5000);
+    }
+  omp_set_num_threads(saved);
 }
 
 TEST(GhostCells3D, BodyTooCloseToTheBoundaryIsAnError) {
