@@ -19,10 +19,10 @@
 //   fin-cfd ib_couette                  Couette flow between two immersed circles: observed order
 //   fin-cfd cylinder_towed              towed cylinder vs fixed cylinder in a stream (moving body)
 //   fin-cfd cylinder_oscillating        in-line oscillating cylinder: force spikes from cleared cells
-//   fin-cfd sphere_re100 [--cells-per-diameter N] [--t-end T]
+//   fin-cfd sphere_re100 [--cells-per-diameter N] [--t-end T] [--wall-momentum-balance]
 //                                       sphere at Re 100 with the 3-D triangulated ghost-cell
 //                                       boundary: drag vs Johnson & Patel 1999; forces.csv history
-//   fin-cfd dfg_3d1z [--cells-per-diameter N] [--t-end T]
+//   fin-cfd dfg_3d1z [--cells-per-diameter N] [--t-end T] [--wall-momentum-balance]
 //                                       DFG 3D-1Z (Schaefer & Turek 1996): wall-to-wall cylinder in a
 //                                       square channel, triangulated body crossing the z walls
 //   fin-cfd fin --mesh mesh.h5 --motion motion.h5 --out loads.h5 ...   and   fin-cfd thin_plate ...
@@ -271,6 +271,7 @@ struct BodyCaseArgs {
   double wall_stretch_ratio = 0;  // DFG, Turek-Hron: ratio between the box and the channel walls (0: --stretch-ratio)
   bool staircase_balance = false;  // DFG, Turek-Hron: the staircase mass balance instead of the cut-cell one
   bool zero_wall_pressure_gradient = false;  // DFG, Turek-Hron: dp/dn = 0 on the body instead of the wall's momentum balance
+  bool wall_momentum_balance = false;  // sphere, DFG 3D-1Z: the wall's momentum balance instead of dp/dn = 0
 };
 
 // Grid and time-step options of the channel benchmarks (DFG, Turek-Hron) on subcommand sc.
@@ -755,6 +756,7 @@ int sphere_re100(bool coarse, const BodyCaseArgs& a, const std::filesystem::path
   }
   if (a.cells_per_diameter > 0) ss.cells_per_diameter = a.cells_per_diameter;
   if (a.t_end > 0) ss.t_end = a.t_end;
+  ss.viscous_wall_pressure = a.wall_momentum_balance;
   log::Progress progress("sphere_re100 step",
                          // dt ~ cfl h / (|u| + |v| + |w|), about cfl h / 1.6 near the sphere
                          static_cast<std::size_t>(std::ceil(1.6 * ss.t_end / (ss.cfl / ss.cells_per_diameter))));
@@ -776,7 +778,8 @@ int sphere_re100(bool coarse, const BodyCaseArgs& a, const std::filesystem::path
   write_text_atomic(dir / "forces.csv", csv.str());
   log::info("sphere_re100 D/h=" + std::to_string(ss.cells_per_diameter) + " (" + std::to_string(r.cells[0]) + "x" +
             std::to_string(r.cells[1]) + "x" + std::to_string(r.cells[2]) + " cells): CD " + fmt("%.5f", r.cd) +
-            " (pressure " + fmt("%.5f", r.cd_pressure) + ", viscous " + fmt("%.5f", r.cd_viscous) + "), drift over 5 D/U " +
+            " (pressure " + fmt("%.5f", r.cd_pressure) + ", viscous " + fmt("%.5f", r.cd_viscous) + "; control volume " +
+            fmt("%.5f", r.cd_control_volume) + "), drift over 5 D/U " +
             fmt("%.2e", r.cd_drift) + ", " + std::to_string(r.steps) + " steps, " + fmt("%.1f s", r.cpu_seconds));
   Summary s("validation", "sphere_re100",
             "steady flow past a sphere at Re 100 (3-D ghost-cell immersed boundary on a closed triangulated surface): "
@@ -786,6 +789,7 @@ int sphere_re100(bool coarse, const BodyCaseArgs& a, const std::filesystem::path
   else s.relative("CD", r.cd, cd_ref, 0.02, src);
   s.info("CD_pressure", r.cd_pressure);
   s.info("CD_viscous", r.cd_viscous);
+  s.info("CD_control_volume", r.cd_control_volume);
   s.info("CL_lateral", r.cl);
   s.info("CD_drift_last_5", r.cd_drift);
   solver_statistics_3d(s, r);
@@ -793,7 +797,8 @@ int sphere_re100(bool coarse, const BodyCaseArgs& a, const std::filesystem::path
                     {"t_end", ss.t_end}, {"cfl", ss.cfl}, {"box_x", ss.box_x}, {"box_half_width", ss.box_half_width},
                     {"core_x", ss.core_x}, {"core_half_width", ss.core_half_width},
                     {"stretch_ratio", ss.stretch_ratio}, {"icosphere_subdivisions", ss.subdivisions},
-                    {"triangles", r.triangles}, {"grid", r.cells}, {"reference", a.reference}};
+                    {"triangles", r.triangles}, {"grid", r.cells}, {"reference", a.reference},
+                    {"viscous_wall_pressure", ss.viscous_wall_pressure}, {"control_volume", ss.control_volume}};
   wall_out = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return finish(s, dir, wall_out);
 }
@@ -817,6 +822,7 @@ int dfg_3d1z(bool coarse, const BodyCaseArgs& a, int span_cells, const std::file
   if (a.cells_per_diameter > 0) ds.cells_per_diameter = a.cells_per_diameter;
   if (a.t_end > 0) ds.t_end = a.t_end;
   if (span_cells > 0) ds.span_cells = span_cells;
+  ds.viscous_wall_pressure = a.wall_momentum_balance;
   log::Progress progress("dfg_3d1z step",
                          // dt ~ cfl h / 0.6 (the fastest flow, beside the cylinder) at most
                          static_cast<std::size_t>(std::ceil(0.6 * ds.t_end / (ds.cfl * 0.1 / ds.cells_per_diameter))));
@@ -867,7 +873,8 @@ int dfg_3d1z(bool coarse, const BodyCaseArgs& a, int span_cells, const std::file
                     {"grid", r.cells}, {"span_cells", r.cells[2]}, {"segments", ds.segments}, {"triangles", r.triangles},
                     {"overhang", ds.overhang}, {"stretch_ratio", ds.stretch_ratio}, {"cfl", ds.cfl},
                     {"t_end", ds.t_end}, {"t_min", ds.t_min}, {"steady_window", ds.steady_window},
-                    {"steady_tolerance", ds.steady_tolerance}, {"reference", a.reference}};
+                    {"steady_tolerance", ds.steady_tolerance}, {"reference", a.reference},
+                    {"viscous_wall_pressure", ds.viscous_wall_pressure}};
   wall_out = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return finish(s, dir, wall_out);
 }
@@ -918,9 +925,17 @@ int main(int argc, char** argv) {
   BodyCaseArgs sphere_args{0, 0, "data/reference/sphere.json", 0, 0};
   auto* sphere = app.add_subcommand("sphere_re100", "sphere at Re 100 (3-D triangulated immersed boundary): drag");
   add_body_case_options(sphere, sphere_args, "D/U");
+  sphere->add_flag("--wall-momentum-balance", sphere_args.wall_momentum_balance,
+                   "pressure on the body: the wall momentum balance dp/dn = -nu n . curl(omega) instead of the "
+                   "default dp/dn = 0, to compare (on bodies of about 28 cells per diameter or more; the default "
+                   "D/20 keeps dp/dn = 0; at D/32 CD 1.0748 against 1.0919, control volume 1.0830 against 1.0878)");
   BodyCaseArgs dfg3_args{0, 0, "data/reference/schaefer_turek.json"};
   auto* dfg3 = app.add_subcommand("dfg_3d1z", "DFG 3D-1Z cylinder benchmark (Re 20, steady, 3-D), immersed boundary");
   add_body_case_options(dfg3, dfg3_args, "s");
+  dfg3->add_flag("--wall-momentum-balance", dfg3_args.wall_momentum_balance,
+                 "pressure on the body: the wall momentum balance dp/dn = -nu n . curl(omega) instead of the "
+                 "default dp/dn = 0, to compare (on bodies of about 28 cells per diameter or more; the default "
+                 "D/12 keeps dp/dn = 0)");
   int dfg3_span_cells = 0;
   dfg3->add_option("--span-cells", dfg3_span_cells, "cells along z (0: mid-span width about h; a multiple of 8)")
       ->check(CLI::Range(0, 4096));

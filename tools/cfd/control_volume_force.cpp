@@ -25,86 +25,116 @@ double to_face(double a, double wa, double b, double wb) { return (wb * a + wa *
 
 ControlVolumeForce::ControlVolumeForce(const StretchedGrid& grid, const GhostCellSet& ghosts, double x0, double x1,
                                        double y0, double y1)
+    : ControlVolumeForce(grid, ghosts, {x0, x1, y0, y1, 0, 0}) {}
+
+ControlVolumeForce::ControlVolumeForce(const StretchedGrid& grid, const GhostCellSet& ghosts,
+                                       const std::array<double, 6>& box)
     : grid_(grid), ghosts_(&ghosts) {
-  if (grid.dim() != 2) throw Error("control volume: 2-D grids only");
-  i0_ = nearest_face(grid.axis(0), x0);
-  i1_ = nearest_face(grid.axis(0), x1);
-  j0_ = nearest_face(grid.axis(1), y0);
-  j1_ = nearest_face(grid.axis(1), y1);
-  // Faces strictly inside the domain (both neighbours exist) and at least 4 cells across.
-  if (i0_ < 1 || j0_ < 1 || i1_ > grid.nx() - 1 || j1_ > grid.ny() - 1 || i1_ - i0_ < 4 || j1_ - j0_ < 4)
-    throw Error("control volume: rectangle [" + std::to_string(x0) + ", " + std::to_string(x1) + "] x [" +
-                std::to_string(y0) + ", " + std::to_string(y1) + "] must lie inside the domain and span 4 cells");
+  const int dim = grid.dim();
+  if (ghosts.dim() != dim) throw Error("control volume: the ghost cells belong to a grid of another dimension");
+  bool ok = true;
+  for (int a = 0; a < 3; ++a) {
+    const auto A = static_cast<std::size_t>(a);
+    if (a >= dim) {
+      lo_[A] = 0;
+      hi_[A] = 1;
+      continue;
+    }
+    lo_[A] = nearest_face(grid.axis(a), box[2 * A]);
+    hi_[A] = nearest_face(grid.axis(a), box[2 * A + 1]);
+    // Faces strictly inside the domain (both neighbours exist) and at least 4 cells across.
+    ok = ok && lo_[A] >= 1 && hi_[A] <= grid.axis(a).size() - 1 && hi_[A] - lo_[A] >= 4;
+  }
+  if (!ok) {
+    std::string b;
+    for (int a = 0; a < dim; ++a)
+      b += (a ? " x [" : "[") + std::to_string(box[static_cast<std::size_t>(2 * a)]) + ", " +
+           std::to_string(box[static_cast<std::size_t>(2 * a + 1)]) + "]";
+    throw Error("control volume: " + b + " must lie inside the domain and span 4 cells along every axis");
+  }
   // The two layers of cells inside every side and the layer outside must be fluid: the faces'
   // interpolation and differences then use fluid values only.
-  const auto check = [&](int i, int j) {
-    if (ghosts.solid(i, j))
-      throw Error("control volume: the body reaches within two cells of the rectangle's boundary (cell " +
-                  std::to_string(i) + ", " + std::to_string(j) + ")");
+  const auto near_side = [&](int a, int c) {
+    const auto A = static_cast<std::size_t>(a);
+    return a < dim && (c <= lo_[A] + 1 || c >= hi_[A] - 2);
   };
-  for (int i = i0_ - 1; i <= i1_; ++i)
-    for (int j : {j0_ - 1, j0_, j0_ + 1, j1_ - 2, j1_ - 1, j1_}) check(i, j);
-  for (int j = j0_ - 1; j <= j1_; ++j)
-    for (int i : {i0_ - 1, i0_, i0_ + 1, i1_ - 2, i1_ - 1, i1_}) check(i, j);
+  const int k0 = dim == 3 ? lo_[2] - 1 : 0, k1 = dim == 3 ? hi_[2] : 0;
+  for (int k = k0; k <= k1; ++k)
+    for (int j = lo_[1] - 1; j <= hi_[1]; ++j)
+      for (int i = lo_[0] - 1; i <= hi_[0]; ++i) {
+        if (!(near_side(0, i) || near_side(1, j) || near_side(2, k))) continue;
+        if (dim == 3 ? ghosts.solid(i, j, k) : ghosts.solid(i, j))
+          throw Error("control volume: the body reaches within two cells of the box's boundary (cell " +
+                      std::to_string(i) + ", " + std::to_string(j) + (dim == 3 ? ", " + std::to_string(k) : "") + ")");
+      }
 }
 
 ControlVolumeSample ControlVolumeForce::evaluate(double t, const Field& u, const Field& v, const FaceField& U,
                                                  const Field& p, double nu) const {
+  if (grid_.dim() != 2) throw Error("control volume: a 3-D box needs the w velocity");
+  return integrate(t, {&u, &v, nullptr}, U, p, nu);
+}
+
+ControlVolumeSample ControlVolumeForce::evaluate(double t, const Field& u, const Field& v, const Field& w,
+                                                 const FaceField& U, const Field& p, double nu) const {
+  return integrate(t, {&u, &v, grid_.dim() == 3 ? &w : nullptr}, U, p, nu);
+}
+
+ControlVolumeSample ControlVolumeForce::integrate(double t, const std::array<const Field*, 3>& q, const FaceField& U,
+                                                  const Field& p, double nu) const {
+  const int dim = grid_.dim();
   ControlVolumeSample s;
   s.t = t;
   // Fluid momentum, in a fixed order (bitwise reproducible).
-  for (int j = j0_; j < j1_; ++j)
-    for (int i = i0_; i < i1_; ++i)
-      if (ghosts_->kind(i, j) == CellKind::Fluid) {
-        const double V = grid_.volume(i, j, 0);
-        s.momentum[0] += V * u(i, j, 0);
-        s.momentum[1] += V * v(i, j, 0);
-      }
-  const Field* q[2] = {&u, &v};
-  // x faces at i0 (n = -x) and i1 (n = +x): cells (f-1, j) | (f, j).
-  for (const int f : {i0_, i1_}) {
-    const double sign = f == i0_ ? -1.0 : 1.0;
-    const double wa = grid_.dx(f - 1), wb = grid_.dx(f), dist = grid_.xc(f) - grid_.xc(f - 1);
-    for (int j = j0_; j < j1_; ++j) {
-      const double A = grid_.dy(j);
-      const double un = sign * U(0, f, j, 0);
-      const double pf = to_face(p(f - 1, j, 0), wa, p(f, j, 0), wb);
-      for (int c = 0; c < 2; ++c) {
-        const Field& w = *q[c];
-        const double wf = to_face(w(f - 1, j, 0), wa, w(f, j, 0), wb);
-        const double dwdn = sign * (w(f, j, 0) - w(f - 1, j, 0)) / dist;
-        s.flux[static_cast<std::size_t>(c)] += A * (wf * un + (c == 0 ? sign * pf : 0.0) - nu * dwdn);
-      }
-    }
-  }
-  // y faces at j0 (n = -y) and j1 (n = +y): cells (i, f-1) | (i, f).
-  for (const int f : {j0_, j1_}) {
-    const double sign = f == j0_ ? -1.0 : 1.0;
-    const double wa = grid_.dy(f - 1), wb = grid_.dy(f), dist = grid_.yc(f) - grid_.yc(f - 1);
-    for (int i = i0_; i < i1_; ++i) {
-      const double A = grid_.dx(i);
-      const double un = sign * U(1, i, f, 0);
-      const double pf = to_face(p(i, f - 1, 0), wa, p(i, f, 0), wb);
-      for (int c = 0; c < 2; ++c) {
-        const Field& w = *q[c];
-        const double wf = to_face(w(i, f - 1, 0), wa, w(i, f, 0), wb);
-        const double dwdn = sign * (w(i, f, 0) - w(i, f - 1, 0)) / dist;
-        s.flux[static_cast<std::size_t>(c)] += A * (wf * un + (c == 1 ? sign * pf : 0.0) - nu * dwdn);
-      }
+  for (int k = lo_[2]; k < hi_[2]; ++k)
+    for (int j = lo_[1]; j < hi_[1]; ++j)
+      for (int i = lo_[0]; i < hi_[0]; ++i)
+        if (ghosts_->kind(i, j, k) == CellKind::Fluid) {
+          const double V = grid_.volume(i, j, k);
+          for (int c = 0; c < dim; ++c) s.momentum[static_cast<std::size_t>(c)] += V * (*q[static_cast<std::size_t>(c)])(i, j, k);
+        }
+  // The faces normal to axis a at lo (n = -e_a) and hi (n = +e_a), each between the cells below
+  // and above it along a; t1 < t2 the tangential axes (2-D: t2 = z, one layer).
+  for (int a = 0; a < dim; ++a) {
+    const auto A = static_cast<std::size_t>(a);
+    const int t1 = a == 0 ? 1 : 0, t2 = a == 2 ? 1 : 2;
+    const auto T1 = static_cast<std::size_t>(t1), T2 = static_cast<std::size_t>(t2);
+    const Axis& ax = grid_.axis(a);
+    for (const int f : {lo_[A], hi_[A]}) {
+      const double sign = f == lo_[A] ? -1.0 : 1.0;
+      const double wa = ax.width(f - 1), wb = ax.width(f), dist = ax.centre(f) - ax.centre(f - 1);
+      for (int m2 = lo_[T2]; m2 < hi_[T2]; ++m2)
+        for (int m1 = lo_[T1]; m1 < hi_[T1]; ++m1) {
+          int below[3], above[3];
+          below[a] = f - 1;
+          above[a] = f;
+          below[t1] = above[t1] = m1;
+          below[t2] = above[t2] = m2;
+          const double A_f = grid_.axis(t1).width(m1) * (t2 < dim ? grid_.axis(t2).width(m2) : 1.0);
+          const double un = sign * U(a, above[0], above[1], above[2]);
+          const double pf = to_face(p(below[0], below[1], below[2]), wa, p(above[0], above[1], above[2]), wb);
+          for (int c = 0; c < dim; ++c) {
+            const Field& w = *q[static_cast<std::size_t>(c)];
+            const double lo = w(below[0], below[1], below[2]), hi = w(above[0], above[1], above[2]);
+            const double wf = to_face(lo, wa, hi, wb);
+            const double dwdn = sign * (hi - lo) / dist;
+            s.flux[static_cast<std::size_t>(c)] += A_f * (wf * un + (c == a ? sign * pf : 0.0) - nu * dwdn);
+          }
+        }
     }
   }
   return s;
 }
 
-std::vector<std::array<double, 2>> control_volume_forces(const std::vector<ControlVolumeSample>& s, double rho) {
+std::vector<std::array<double, 3>> control_volume_forces(const std::vector<ControlVolumeSample>& s, double rho) {
   const std::size_t n = s.size();
   if (n < 2) throw Error("control volume: need at least two samples for the time derivative");
-  std::vector<std::array<double, 2>> F(n);
+  std::vector<std::array<double, 3>> F(n);
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t a = k == 0 ? 0 : k - 1, b = k + 1 == n ? k : k + 1;
     const double dt = s[b].t - s[a].t;
     if (!(dt > 0)) throw Error("control volume: sample times must increase");
-    for (std::size_t c = 0; c < 2; ++c)
+    for (std::size_t c = 0; c < 3; ++c)
       F[k][c] = -rho * ((s[b].momentum[c] - s[a].momentum[c]) / dt + s[k].flux[c]);
   }
   return F;

@@ -72,6 +72,7 @@ Dfg3dResult run_dfg_3d1z(const Dfg3dSetup& ds) {
   // As the sphere (sphere_flow.cpp): tolerances far below the 2% goal at a 3-D cost.
   opt.helmholtz_rtol = 1e-8;
   opt.poisson.rtol = 1e-7;
+  opt.viscous_wall_pressure = ds.viscous_wall_pressure;
   FlowSolver solver;
   solver.setup(grid, bc, opt);
   // Rings about every h along the span (short triangles keep the traction's sub-sampling coarse).

@@ -51,6 +51,9 @@ struct Dfg3dSetup {
   double steady_window = 1.0;  // [s]
   double steady_tolerance = 1e-4;  // relative cD change per second
   int force_every = 5;         // steps between force evaluations
+  // The pressure ghosts impose the wall's momentum balance (FlowOptions::viscous_wall_pressure;
+  // left at dp/dn = 0 where the fit's window crosses the channel walls).
+  bool viscous_wall_pressure = false;
   std::function<void(const StepStats&, double cd)> progress;
 };
 

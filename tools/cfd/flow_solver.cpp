@@ -55,6 +55,7 @@ void FlowSolver::setup(const StretchedGrid& grid, const FlowBoundary& boundary, 
   step_ = 0;
   ib_.reset();
   wall_dpdn_.reset();
+  wall_dpdn_3d_.reset();
   body_faces_.clear();
   moving_.reset();
   surface_.reset();
@@ -79,6 +80,7 @@ void FlowSolver::immerse(const std::vector<SolidRegion>& regions, const Velocity
   fresh_.clear();
   ib_dpdn_.clear();
   wall_dpdn_.reset();
+  wall_dpdn_3d_.reset();
   if (opt_.viscous_wall_pressure && !wall_velocity) wall_dpdn_.emplace(grid_, *ib_, regions);
   for (auto& w : ib_wall_) w.clear();
   if (wall_velocity)

@@ -30,7 +30,8 @@
 // the body), and phi and p get ghost values by the Neumann condition dp/dn = 0 at the boundary
 // intercept, so the cell-centred pressure gradient next to the body is the sharp one (with
 // viscous_wall_pressure, p's ghosts impose the wall's own momentum balance dp/dn = -nu d(omega)/ds
-// instead, wall_pressure_gradient.hpp; phi keeps dp/dn = 0). At a
+// instead, wall_pressure_gradient.hpp, in 3-D -nu n . curl(omega), wall_pressure_gradient_3d.hpp;
+// phi keeps dp/dn = 0). At a
 // steady state phi = 0 and the solution is the fixed point of the sharp discrete momentum and
 // continuity equations; the masked correction only shapes the path to it.
 // Moving rigid body (immerse(MovingBody), rigid_motion.hpp; Mittal et al. 2008 section 2.4): at the
@@ -100,6 +101,7 @@
 #include "cfd/ghost_cells.hpp"
 #include "cfd/immersed_momentum_solver.hpp"
 #include "cfd/wall_pressure_gradient.hpp"
+#include "cfd/wall_pressure_gradient_3d.hpp"
 #include "cfd/grid.hpp"
 #include "cfd/helmholtz_solver.hpp"
 #include "cfd/poisson_solver.hpp"
@@ -370,6 +372,7 @@ class FlowSolver {
   std::array<std::vector<double>, 3> ib_wall_;  // per component, per ghost cell: u_B (empty: 0)
   ImmersedMomentumSolver ib_momentum_;
   std::optional<WallPressureGradient> wall_dpdn_;  // viscous_wall_pressure on a fixed 2-D body
+  std::optional<WallPressureGradient3D> wall_dpdn_3d_;  // ... on a fixed triangulated body
   std::vector<double> ib_dpdn_;  // per ghost cell: dp/dn at the intercept (empty: 0)
   std::optional<MovingBody> moving_;
   RigidState body_state_;

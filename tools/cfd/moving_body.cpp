@@ -14,6 +14,7 @@ void FlowSolver::immerse(const MovingBody& body) {
   if (dim() != 2) throw Error("flow solver: an immersed polygon needs a 2-D grid");
   if (!body.motion) throw Error("flow solver: the moving body has no motion");
   wall_dpdn_.reset();
+  wall_dpdn_3d_.reset();
   moving_ = body;
   surface_.reset();
   surface_motion_ = nullptr;

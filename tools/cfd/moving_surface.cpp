@@ -22,6 +22,7 @@ void FlowSolver::immerse(const TriangulatedSurface& body) {
   if (dim() != 3) throw Error("flow solver: an immersed triangulated body needs a 3-D grid");
   moving_.reset();
   wall_dpdn_.reset();
+  wall_dpdn_3d_.reset();
   cut_.reset();
   surface_motion_ = nullptr;
   fresh_.clear();
@@ -30,6 +31,7 @@ void FlowSolver::immerse(const TriangulatedSurface& body) {
   ib_.emplace(grid_, *surface_);
   index_body_faces();
   ib_dpdn_.clear();
+  if (opt_.viscous_wall_pressure) wall_dpdn_3d_.emplace(grid_, *ib_, *surface_);
   for (auto& w : ib_wall_) w.clear();
   setup_pressure_operator();
   ib_momentum_.setup(grid_);
@@ -40,6 +42,7 @@ void FlowSolver::immerse(const SurfaceMotion& motion) {
   if (!motion) throw Error("flow solver: the moving triangulated body has no motion");
   moving_.reset();
   wall_dpdn_.reset();
+  wall_dpdn_3d_.reset();
   cut_.reset();
   surface_.reset();
   surface_motion_ = motion;

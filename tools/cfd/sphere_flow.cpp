@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "cfd/control_volume_force.hpp"
 #include "cfd/surface_shapes.hpp"
 #include "cfd/surface_traction_3d.hpp"
 #include "core/error.hpp"
@@ -41,12 +42,16 @@ SphereFlowResult run_sphere_flow(const SphereFlowSetup& ss) {
   opt.dt_max = ss.cfl * h / U;
   opt.helmholtz_rtol = 1e-8;
   opt.poisson.rtol = 1e-7;
+  opt.viscous_wall_pressure = ss.viscous_wall_pressure;
   FlowSolver solver;
   solver.setup(grid, b, opt);
   const TriangulatedSurface sphere = icosphere({0, 0, 0}, 0.5 * D, ss.subdivisions, true);
   solver.immerse(sphere);
   solver.initialise([U](double, double, double, double) { return std::array<double, 3>{U, 0, 0}; });
   const SurfaceTraction3D traction(grid, *solver.immersed(), *solver.body_surface());
+  const auto& cvb = ss.control_volume;
+  const ControlVolumeForce control_volume(grid, *solver.immersed(), {cvb[0], cvb[1], -cvb[2], cvb[2], -cvb[2], cvb[2]});
+  std::vector<ControlVolumeSample> cv;
 
   SphereFlowResult r;
   r.h = h;
@@ -67,6 +72,8 @@ SphereFlowResult run_sphere_flow(const SphereFlowSetup& ss) {
     if (r.steps % std::max(1, ss.force_every) == 0 || last) {
       const SurfaceForces F = traction.evaluate(solver.u(0), solver.u(1), solver.u(2), solver.p(), opt.nu, 1.0);
       cd = scale * F.total[0];
+      cv.push_back(control_volume.evaluate(st.time, solver.u(0), solver.u(1), solver.u(2), solver.face_velocity(),
+                                           solver.p(), opt.nu));
       r.time.push_back(st.time);
       r.cd_history.push_back(cd);
       if (last) {
@@ -78,6 +85,7 @@ SphereFlowResult run_sphere_flow(const SphereFlowSetup& ss) {
     }
     if (ss.progress) ss.progress(st, cd);
   }
+  if (cv.size() >= 2) r.cd_control_volume = scale * control_volume_forces(cv, 1.0).back()[0];
   for (std::size_t n = 0; n < r.time.size(); ++n)
     if (r.time[n] <= r.time.back() - 5.0) r.cd_drift = std::abs(r.cd - r.cd_history[n]);
   r.mean_poisson_iterations = static_cast<double>(poisson) / static_cast<double>(r.steps);

@@ -28,12 +28,19 @@ struct SphereFlowSetup {
   double stretch_ratio = 1.12;
   int subdivisions = 5;     // icosphere: 20 * 4^s triangles
   int force_every = 10;     // steps between force evaluations
+  // The pressure ghosts impose the wall's momentum balance dp/dn = -nu n . curl(omega)
+  // (wall_pressure_gradient_3d.hpp) instead of dp/dn = 0 (FlowOptions::viscous_wall_pressure).
+  bool viscous_wall_pressure = false;
+  // Control volume for the independent drag (control_volume_force.hpp): x from, x to, half width.
+  // Measured (traction / control volume): D/20 1.08023 / 1.07828, D/32 (t = 15) 1.09194 / 1.08779.
+  std::array<double, 3> control_volume{-1.0, 2.0, 1.0};
   std::function<void(const StepStats&, double cd)> progress;
 };
 
 struct SphereFlowResult {
   double cd = 0, cd_pressure = 0, cd_viscous = 0, cl = 0;  // at t_end (cl: |lateral| coefficient)
   double cd_drift = 0;  // |CD(t_end) - CD(t_end - 5)| (steadiness)
+  double cd_control_volume = 0;  // at t_end, from the momentum balance of the control volume
   std::vector<double> time, cd_history;
   std::array<int, 3> cells{};
   long ghost_cells = 0, surface_samples = 0, triangles = 0, steps = 0;

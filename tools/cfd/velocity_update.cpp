@@ -56,6 +56,7 @@ void FlowSolver::update_velocity(double dt) {
   if (ib_) {
     impose_body_velocity();
     if (wall_dpdn_) ib_dpdn_ = wall_dpdn_->evaluate(u_[0], u_[1], opt_.nu);
+    if (wall_dpdn_3d_) ib_dpdn_ = wall_dpdn_3d_->evaluate(u_[0], u_[1], u_[2], opt_.nu);
     ib_->impose_neumann(p_, ib_dpdn_);
   }
 }

@@ -1,12 +1,13 @@
 // The control-volume momentum balance (control_volume_force.hpp) on fields whose surface integrals
 // are known in closed form: convective flux, pressure and viscous terms each exact on a uniform
 // grid for the chosen polynomials; the momentum sum skips the body's cells; the time derivative of
-// a linearly growing momentum; bad rectangles are refused.
+// a linearly growing momentum; bad rectangles are refused; the same in a 3-D box around a sphere.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "cfd/control_volume_force.hpp"
+#include "cfd/surface_shapes.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {
@@ -57,6 +58,51 @@ TEST(ControlVolumeForce, SurfaceIntegralsOfPolynomialFieldsAreExact) {
   EXPECT_LT(fluid, 24 * 20 - 40);  // the circle of radius 4 cells covers ~50 cells
   EXPECT_NEAR(q.momentum[0], mx, 1e-14);
   EXPECT_NEAR(q.momentum[1], v0 * 0.025 * 0.025 * fluid, 1e-14);
+}
+
+// The 3-D box: u = 1 + c y^2, v = v0, w = w0, p = a x + b y + e z around a sphere. Only the
+// convection of u through the y faces, the pressure and the viscous term of u on the y faces
+// survive; each is exact on the uniform grid. Extents differ per axis, so a mixed-up axis shows.
+TEST(ControlVolumeForce, BoxIntegralsOfPolynomialFieldsAreExactIn3D) {
+  const int n = 24;
+  const StretchedGrid g(Axis::uniform(0, 1, n), Axis::uniform(0, 1, n), Axis::uniform(0, 1, n));
+  const SurfaceGeometry body(icosphere({0.5, 0.5, 0.47}, 0.12, 2));
+  const GhostCellSet ghosts(g, body);
+  const double c = 0.7, a = 2.0, b = -3.0, e = 0.4, nu = 0.01, v0 = 0.5, w0 = -0.3;
+  const auto uf = [&](double y) { return 1 + c * y * y; };
+  Field u(g), v(g), w(g), p(g);
+  FaceField U(g);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        U(0, i, j, k) = uf(g.yc(j));
+        U(1, j, i, k) = v0;  // (j, i, k): i runs over the faces along y
+        U(2, j, k, i) = w0;
+        if (i == n) continue;
+        u(i, j, k) = uf(g.yc(j));
+        v(i, j, k) = v0;
+        w(i, j, k) = w0;
+        p(i, j, k) = a * g.xc(i) + b * g.yc(j) + e * g.zc(k);
+      }
+  const double x0 = 6.0 / n, x1 = 18.0 / n, y0 = 5.0 / n, y1 = 19.0 / n, z0 = 6.0 / n, z1 = 17.0 / n;
+  const double L = x1 - x0, H = y1 - y0, Z = z1 - z0;
+  const ControlVolumeForce cv(g, ghosts, {x0, x1, y0, y1, z0, z1});
+  EXPECT_EQ(cv.cells()[2], 5);
+  EXPECT_EQ(cv.cells_z()[1], 17);
+  const ControlVolumeSample q = cv.evaluate(0.0, u, v, w, U, p, nu);
+  const double fx = (v0 * c * (y1 * y1 - y0 * y0) * L + a * L * H - nu * 2 * c * (y1 - y0) * L) * Z;
+  EXPECT_NEAR(q.flux[0], fx, 1e-12);
+  EXPECT_NEAR(q.flux[1], b * L * H * Z, 1e-12);
+  EXPECT_NEAR(q.flux[2], e * L * H * Z, 1e-12);
+  int fluid = 0;
+  for (int k = 6; k < 17; ++k)
+    for (int j = 5; j < 19; ++j)
+      for (int i = 6; i < 18; ++i) fluid += ghosts.kind(i, j, k) == CellKind::Fluid;
+  EXPECT_LT(fluid, 12 * 14 * 11 - 20);  // the sphere's cells are left out
+  EXPECT_NEAR(q.momentum[2], w0 * fluid / (n * n * n * 1.0), 1e-14);
+  // The 2-D evaluate refuses a 3-D box; a box cutting the sphere is refused.
+  EXPECT_THROW(cv.evaluate(0.0, u, v, U, p, nu), Error);
+  EXPECT_THROW(ControlVolumeForce(g, ghosts, {x0, x1, y0, y1, 0.45, z1}), Error);
 }
 
 TEST(ControlVolumeForce, ForceIsMinusRhoTimesMomentumRatePlusFlux) {
