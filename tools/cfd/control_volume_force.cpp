@@ -91,7 +91,8 @@ ControlVolumeSample ControlVolumeForce::integrate(double t, const std::array<con
       for (int i = lo_[0]; i < hi_[0]; ++i)
         if (ghosts_->kind(i, j, k) == CellKind::Fluid) {
           const double V = grid_.volume(i, j, k);
-          for (int c = 0; c < dim; ++c) s.momentum[static_cast<std::size_t>(c)] += V * (*q[static_cast<std::size_t>(c)])(i, j, k);
+          for (int c = 0; c < dim; ++c)
+            s.momentum[static_cast<std::size_t>(c)] += V * (*q[static_cast<std::size_t>(c)])(i, j, k);
         }
   // The faces normal to axis a at lo (n = -e_a) and hi (n = +e_a), each between the cells below
   // and above it along a; t1 < t2 the tangential axes (2-D: t2 = z, one layer).

@@ -5,8 +5,8 @@
 //
 //     F = -rho [ d/dt int_V u dV + oint_S ( u (u . n) + p n - nu du/dn ) dS ],
 //
-// S the rectangle's (box's) outer boundary with outward normal n, p kinematic. The transposed part of the
-// viscous stress, nu (grad u)^T n, is left out on S because it is left out on the body as well:
+// S the rectangle's (box's) outer boundary with outward normal n, p kinematic. The transposed
+// part of the viscous stress, nu (grad u)^T n, is left out on S because it is left out on the body:
 // its integral over the closed fluid boundary is that of grad(div u) = 0, and on a resting no-slip
 // wall it vanishes pointwise (tangential derivatives of u are zero, n . du/dn = 0 by continuity).
 // The rectangle is snapped to cell faces; on them u (u . n) uses the solver's face-normal

@@ -76,7 +76,8 @@ void mark_solid(const StretchedGrid& grid, const SurfaceGeometry& body, const st
   m *= 1 + 1e-9;  // the box test must not lose a centre at distance m to rounding
   const auto box = [&](int a, int b, int c) {
     return static_cast<std::size_t>(a) +
-           static_cast<std::size_t>(n[0]) * (static_cast<std::size_t>(b) + static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(c));
+           static_cast<std::size_t>(n[0]) *
+               (static_cast<std::size_t>(b) + static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(c));
   };
   const std::size_t total = box(0, 0, n[2]);
   std::vector<unsigned char> done(total, 0);  // near, or already assigned to a far region
@@ -86,10 +87,9 @@ void mark_solid(const StretchedGrid& grid, const SurfaceGeometry& body, const st
     bool empty = false;
     for (int d = 0; d < 3; ++d) {
       const auto D = static_cast<std::size_t>(d);
-      const double lo = std::min({pts[static_cast<std::size_t>(t[0])][D], pts[static_cast<std::size_t>(t[1])][D],
-                                  pts[static_cast<std::size_t>(t[2])][D]}) - m;
-      const double hi = std::max({pts[static_cast<std::size_t>(t[0])][D], pts[static_cast<std::size_t>(t[1])][D],
-                                  pts[static_cast<std::size_t>(t[2])][D]}) + m;
+      const double c0 = pts[static_cast<std::size_t>(t[0])][D], c1 = pts[static_cast<std::size_t>(t[1])][D],
+                   c2 = pts[static_cast<std::size_t>(t[2])][D];
+      const double lo = std::min({c0, c1, c2}) - m, hi = std::max({c0, c1, c2}) + m;
       const Axis& a = grid.axis(d);
       from[d] = first_centre_from(a, r[D][0], r[D][1], lo) - r[D][0];
       to[d] = first_centre_from(a, r[D][0], r[D][1], std::nextafter(hi, hi + 1)) - 1 - r[D][0];
@@ -105,9 +105,12 @@ void mark_solid(const StretchedGrid& grid, const SurfaceGeometry& body, const st
     j = r[1][0] + static_cast<int>(q / static_cast<std::size_t>(n[0]) % static_cast<std::size_t>(n[1]));
     k = r[2][0] + static_cast<int>(q / (static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1])));
     return static_cast<std::size_t>(i) +
-           static_cast<std::size_t>(grid.nx()) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(grid.ny()) * static_cast<std::size_t>(k));
+           static_cast<std::size_t>(grid.nx()) *
+               (static_cast<std::size_t>(j) + static_cast<std::size_t>(grid.ny()) * static_cast<std::size_t>(k));
   };
-  const auto inside = [&](int i, int j, int k) { return body.closest({grid.xc(i), grid.yc(j), grid.zc(k)}).distance < 0; };
+  const auto inside = [&](int i, int j, int k) {
+    return body.closest({grid.xc(i), grid.yc(j), grid.zc(k)}).distance < 0;
+  };
   std::vector<std::size_t> near;
   for (std::size_t q = 0; q < total; ++q)
     if (done[q]) near.push_back(q);
@@ -157,9 +160,12 @@ GhostCellSet::GhostCellSet(const StretchedGrid& grid, const SurfaceGeometry& bod
   const Vec3 lo = body.lower(), hi = body.upper();
   std::array<std::array<int, 2>, 3> r;
   for (int d = 0; d < 3; ++d)
-    r[static_cast<std::size_t>(d)] = centre_range(grid.axis(d), lo[static_cast<std::size_t>(d)], hi[static_cast<std::size_t>(d)]);
+    r[static_cast<std::size_t>(d)] =
+        centre_range(grid.axis(d), lo[static_cast<std::size_t>(d)], hi[static_cast<std::size_t>(d)]);
   const auto index = [&](int i, int j, int k) {
-    return static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(k));
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(nx) *
+               (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(k));
   };
   // Only centres inside the surface's bounding box can be inside it.
   mark_solid(grid, body, r, kind_);

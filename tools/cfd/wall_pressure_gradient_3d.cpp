@@ -112,7 +112,8 @@ WallPressureGradient3D::WallPressureGradient3D(const StretchedGrid& grid, const 
 }
 
 std::size_t WallPressureGradient3D::active() const {
-  return static_cast<std::size_t>(std::count_if(entries_.begin(), entries_.end(), [](const Entry& e) { return !e.points.empty(); }));
+  return static_cast<std::size_t>(
+      std::count_if(entries_.begin(), entries_.end(), [](const Entry& e) { return !e.points.empty(); }));
 }
 
 // omega = n x du/dn with the one-sided second-order derivative of the no-slip wall.
