@@ -302,14 +302,6 @@ StepStats FlowSolver::step() {
 
 // ---- shared discrete operators -------------------------------------------------------------
 
-double FlowSolver::face_area(int d, int i, int j, int k) const {
-  switch (d) {
-    case 0: return grid_.dy(j) * grid_.dz(k);
-    case 1: return grid_.dx(i) * grid_.dz(k);
-    default: return grid_.dx(i) * grid_.dy(j);
-  }
-}
-
 std::size_t FlowSolver::side_index(Side s, int i, int j, int k) const {
   const auto z = [](int v) { return static_cast<std::size_t>(v); };
   switch (side_axis(s)) {
@@ -319,19 +311,17 @@ std::size_t FlowSolver::side_index(Side s, int i, int j, int k) const {
   }
 }
 
-// Linear interpolation to the face between the centres of its two cells (second order on smooth
-// stretched grids: the weight accounts for the face not being midway between the centres). On a
-// non-periodic boundary: the Dirichlet value, or the cell value for a zero normal derivative.
-double FlowSolver::face_value(const Field& q, int c, int d, int i, int j, int k,
-                              const std::array<BoundaryValues, 3>& bv) const {
+// face_value on the box's boundary (the interior case is inline in flow_solver.hpp): across a
+// periodic pair, the interpolation between the last and the first cell; on a non-periodic side, the
+// Dirichlet value, or the cell value for a zero normal derivative.
+double FlowSolver::boundary_face_value(const Field& q, int c, int d, int i, int j, int k,
+                                       const std::array<BoundaryValues, 3>& bv) const {
   const Axis& ax = grid_.axis(d);
   const int n = ax.size();
   int idx[3] = {i, j, k};
   const int f = idx[d];
   int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-  if (f > 0 && f < n) {
-    lo[d] = f - 1;
-  } else if (bnd_.periodic(d)) {
+  if (bnd_.periodic(d)) {
     lo[d] = n - 1;
     hi[d] = 0;
   } else {
@@ -346,24 +336,17 @@ double FlowSolver::face_value(const Field& q, int c, int d, int i, int j, int k,
   return wl * q(lo[0], lo[1], lo[2]) + (1 - wl) * q(hi[0], hi[1], hi[2]);
 }
 
-// Compact gradient across the face; zero on non-periodic boundaries, where the pressure
-// correction satisfies a homogeneous Neumann condition (the boundary fluxes are prescribed).
-double FlowSolver::face_gradient(const Field& q, int d, int i, int j, int k) const {
+// face_gradient on the box's boundary: across a periodic pair, between the last and the first
+// cell; zero on non-periodic sides, where the pressure correction satisfies a homogeneous Neumann
+// condition (the boundary fluxes are prescribed).
+double FlowSolver::boundary_face_gradient(const Field& q, int d, int i, int j, int k) const {
+  if (!bnd_.periodic(d)) return 0.0;
   const Axis& ax = grid_.axis(d);
   const int n = ax.size();
-  const int f = d == 0 ? i : d == 1 ? j : k;
   int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-  double dist;
-  if (f > 0 && f < n) {
-    lo[d] = f - 1;
-    dist = ax.centre(f) - ax.centre(f - 1);
-  } else if (bnd_.periodic(d)) {
-    lo[d] = n - 1;
-    hi[d] = 0;
-    dist = 0.5 * (ax.width(0) + ax.width(n - 1));
-  } else {
-    return 0.0;
-  }
+  lo[d] = n - 1;
+  hi[d] = 0;
+  const double dist = 0.5 * (ax.width(0) + ax.width(n - 1));
   return (q(hi[0], hi[1], hi[2]) - q(lo[0], lo[1], lo[2])) / dist;
 }
 

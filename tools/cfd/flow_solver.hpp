@@ -298,10 +298,15 @@ class FlowSolver {
   PoissonSolveStats solve_pressure_correction(double dt);
   // velocity_update.cpp
   void update_velocity(double dt);
-  // Shared kernels (flow_solver.cpp).
+  // Shared kernels (flow_solver.cpp). The face kernels run several times per cell and step in the
+  // convective, viscous and projection loops: their interior case is inline (below the class), the
+  // boundary faces go to the out-of-line part.
   double face_area(int d, int i, int j, int k) const;
   double face_value(const Field& q, int c, int d, int i, int j, int k, const std::array<BoundaryValues, 3>& bv) const;
+  double boundary_face_value(const Field& q, int c, int d, int i, int j, int k,
+                             const std::array<BoundaryValues, 3>& bv) const;
   double face_gradient(const Field& q, int d, int i, int j, int k) const;
+  double boundary_face_gradient(const Field& q, int d, int i, int j, int k) const;
   void cell_gradient(const Field& q, int d, Field& out) const;
   double divergence(const FaceField& U, int i, int j, int k) const;
   // The divergence of the continuity constraint: the cut-cell balance (per unit cell volume) in the
@@ -402,5 +407,35 @@ class FlowSolver {
   long step_ = 0;
   int last_helmholtz_iterations_ = 0;
 };
+
+inline double FlowSolver::face_area(int d, int i, int j, int k) const {
+  switch (d) {
+    case 0: return grid_.dy(j) * grid_.dz(k);
+    case 1: return grid_.dx(i) * grid_.dz(k);
+    default: return grid_.dx(i) * grid_.dy(j);
+  }
+}
+
+// Linear interpolation to the face between the centres of its two cells (second order on smooth
+// stretched grids: the weight accounts for the face not being midway between the centres).
+inline double FlowSolver::face_value(const Field& q, int c, int d, int i, int j, int k,
+                                     const std::array<BoundaryValues, 3>& bv) const {
+  const Axis& ax = grid_.axis(d);
+  const int f = d == 0 ? i : d == 1 ? j : k;
+  if (f <= 0 || f >= ax.size()) return boundary_face_value(q, c, d, i, j, k, bv);
+  const int li = i - (d == 0), lj = j - (d == 1), lk = k - (d == 2);
+  const double hl = ax.width(f - 1), hr = ax.width(f);
+  const double wl = hr / (hl + hr);
+  return wl * q(li, lj, lk) + (1 - wl) * q(i, j, k);
+}
+
+// Compact gradient across the face.
+inline double FlowSolver::face_gradient(const Field& q, int d, int i, int j, int k) const {
+  const Axis& ax = grid_.axis(d);
+  const int f = d == 0 ? i : d == 1 ? j : k;
+  if (f <= 0 || f >= ax.size()) return boundary_face_gradient(q, d, i, j, k);
+  const double dist = ax.centre(f) - ax.centre(f - 1);
+  return (q(i, j, k) - q(i - (d == 0), j - (d == 1), k - (d == 2))) / dist;
+}
 
 }  // namespace finverse::cfd
