@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "cfd/cut_faces.hpp"
+#include "cfd/vec3.hpp"
 
 namespace finverse::cfd {
 
@@ -30,10 +31,6 @@ namespace {
 
 using Poly = std::vector<Vec3>;
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 // The point where edge a -> b meets x_d = c (a and b on opposite sides).
 Vec3 on_plane(const Vec3& a, const Vec3& b, int d, double c) {

@@ -10,13 +10,10 @@
 
 #include "cfd/flow_solver.hpp"
 #include "cfd/surface_traction_3d.hpp"
+#include "cfd/vec3.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {
-
-namespace {
-double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-}  // namespace
 
 void FlowSolver::immerse(const TriangulatedSurface& body) {
   if (dim() != 3) throw Error("flow solver: an immersed triangulated body needs a 3-D grid");
@@ -97,7 +94,7 @@ void FlowSolver::place_surface(double t) {
       body_velocity_[static_cast<std::size_t>(c)](g.i, g.j, g.k) = v[static_cast<std::size_t>(c)];
     }
     // Normal momentum balance at the no-slip wall (kinematic pressure): dp/dn = -a_B . n.
-    ib_dpdn_.push_back(-dot3(a, g.normal));
+    ib_dpdn_.push_back(-dot(a, g.normal));
   }
   // Solid cells (and, above, ghost cells): the velocity of their closest surface point (the last
   // resort of a cleared cell, and the flux of faces inside the body, which the cut-cell balance
@@ -131,26 +128,22 @@ void FlowSolver::place_surface_cut_cells() {
   for (std::size_t n = 0; n < pieces.size(); ++n) {
     const SurfacePiece& p = pieces[n];
     const Vec3& A = p.area_vector;
-    area[n] = std::sqrt(dot3(A, A));
+    area[n] = std::sqrt(dot(A, A));
     double g = 0;
     if (!vel.empty()) {
       const auto& t = tris[static_cast<std::size_t>(p.triangle)];
       const Vec3 &a = pts[static_cast<std::size_t>(t[0])], &b = pts[static_cast<std::size_t>(t[1])],
                  &c = pts[static_cast<std::size_t>(t[2])];
-      const auto diff = [](const Vec3& u, const Vec3& v) { return Vec3{u[0] - v[0], u[1] - v[1], u[2] - v[2]}; };
-      const auto cross = [](const Vec3& u, const Vec3& v) {
-        return Vec3{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-      };
-      const Vec3 N = cross(diff(b, a), diff(c, a));
-      const double nn = dot3(N, N);
-      const double la = dot3(cross(diff(b, p.centroid), diff(c, p.centroid)), N) / nn;
-      const double lb = dot3(cross(diff(c, p.centroid), diff(a, p.centroid)), N) / nn;
+      const Vec3 N = cross(sub(b, a), sub(c, a));
+      const double nn = dot(N, N);
+      const double la = dot(cross(sub(b, p.centroid), sub(c, p.centroid)), N) / nn;
+      const double lb = dot(cross(sub(c, p.centroid), sub(a, p.centroid)), N) / nn;
       const double lc = 1 - la - lb;
       const Vec3 &va = vel[static_cast<std::size_t>(t[0])], &vb = vel[static_cast<std::size_t>(t[1])],
                  &vc = vel[static_cast<std::size_t>(t[2])];
       const Vec3 v{la * va[0] + lb * vb[0] + lc * vc[0], la * va[1] + lb * vb[1] + lc * vc[1],
                    la * va[2] + lb * vb[2] + lc * vc[2]};
-      g = dot3(v, A);
+      g = dot(v, A);
     }
     flux.push_back({p.cell, g});
     net += g;
@@ -189,7 +182,7 @@ void FlowSolver::move_surface(double t) {
       e.vel = ib_->stencil(P, b.point, b.normal, BoundaryCondition::Dirichlet, f);
       e.pres = ib_->stencil(P, b.point, b.normal, BoundaryCondition::Neumann, f);
       e.ub = surface_->interpolate(surface_state_.velocity, b);
-      e.dpdn = -dot3(surface_->interpolate(surface_state_.acceleration, b), b.normal);
+      e.dpdn = -dot(surface_->interpolate(surface_state_.acceleration, b), b.normal);
       fs.push_back(e);
     }
     settle_cleared_cells(old, fs);

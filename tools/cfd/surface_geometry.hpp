@@ -27,10 +27,9 @@
 #include <vector>
 
 #include "cfd/triangulated_surface.hpp"
+#include "cfd/vec3.hpp"
 
 namespace finverse::cfd {
-
-using Vec3 = std::array<double, 3>;
 
 // The point of the surface closest to a query point.
 struct SurfaceHit {

@@ -6,17 +6,13 @@
 #include <map>
 #include <utility>
 
+#include "cfd/vec3.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {
 
 namespace {
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 void add_to(Vec3& s, const Vec3& a, double f = 1.0) {
   for (int d = 0; d < 3; ++d) s[d] += f * a[d];
 }

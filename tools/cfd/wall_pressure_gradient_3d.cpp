@@ -7,19 +7,12 @@
 
 #include <Eigen/Dense>
 
+#include "cfd/vec3.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {
 
 namespace {
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 unit(const Vec3& a) {
-  const double l = std::sqrt(dot(a, a));
-  return {a[0] / l, a[1] / l, a[2] / l};
-}
 double local_width(const StretchedGrid& g, const Vec3& x) {
   return std::max({g.axis(0).width_at(x[0]), g.axis(1).width_at(x[1]), g.axis(2).width_at(x[2])});
 }
