@@ -164,7 +164,10 @@ nlohmann::json compare_dfg(finverse::Summary& summary, const std::vector<std::st
   nlohmann::json runs = nlohmann::json::array();
   for (const std::vector<DfgRun>* set : {&std::as_const(ours), &std::as_const(peer)})
     for (const DfgRun& r : *set)
-      runs.push_back({{"run", r.label}, {"wall_s", r.wall_s}, {"worst_error", r.worst_error}, {"within_1pct", r.accurate},
+      runs.push_back({{"run", r.label},
+                      {"wall_s", r.wall_s},
+                      {"worst_error", r.worst_error},
+                      {"within_1pct", r.accurate},
                       {"CL_max", std::isfinite(r.cl_max) ? nlohmann::json(r.cl_max) : nlohmann::json(nullptr)}});
   const std::string& P = c.prefix;
   summary.info(P + "_finverse_wall_time", a.wall_s, "s");
