@@ -353,7 +353,13 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   // spread of 0.5 %, all 1.4-1.8 % below the bound midpoint. The walls matter more than the core: a
   // D/64 core with the cells growing towards the walls (ratio 1.05) saturates at only 0.9693. On
   // this same grid DFG 2D-3 (dfg_2d3) meets the high-precision CL_max of John (2004) within +0.38 %
-  // and its time within 0.001 s.
+  // and its time within 0.001 s. Half the step (--cfl 0.25, to t = 10) moves this grid's 2D-2
+  // numbers little: CL_max 0.98349 (-0.06 %), CL_min -1.01755, CD_max 3.22893 (+0.13 %), St 0.30243.
+  // OpenFOAM's do not (tools/scripts/openfoam_dfg.py, pimpleFoam, t_end 7): at 48 cells per cylinder
+  // quarter CL_max 1.00642 at Courant 0.5 but 0.98254 at 0.25 (CL_min -1.01744, CD_max 3.22792, St
+  // 0.29994: within 0.1 % of this grid but for St), at 32 cells 0.99471 and 0.96205. Its lift maximum
+  // rises with the mesh and falls with the step, by 2-3 % each here, so its 1.008 at 64 cells and
+  // Courant 0.5 is not evidence that the converged value lies inside the 1996 interval.
   // 2D-3 on the same grid as 2D-2 (the same Reynolds number at the sine's peak).
   const bool default_grid = variant >= 2 && !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
   ds.core_cells_per_diameter = default_grid ? 48 : a.core_cells_per_diameter;
