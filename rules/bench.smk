@@ -95,8 +95,9 @@ rule bench_dfg2d2_openfoam:
 
 # The peer's time-step error: its finest mesh again at half the step (Courant 0.25). pimpleFoam's
 # 2D-2 lift maximum depends on its step far more than fin-cfd's does (measured at 48 cells per
-# quarter, t_end 7, 1 rank: CL_max 0.98254 at Courant 0.25, against 1.00642 at 0.5 (t_end 10); St
-# 0.29994 against 0.29935; at 32 cells 0.96205 against 0.99471; fin-cfd dfg_2d2's default grid moves
+# quarter, t_end 7, 1 rank: CL_max 0.98254 at Courant 0.25 and 0.97076 at 0.125, against 1.00642
+# at 0.5 (t_end 10): first order in the step; St 0.29994 and 0.30024 against 0.29935; at 32 cells
+# 0.96205 against 0.99471; fin-cfd dfg_2d2's default grid moves
 # by -0.06 % with --cfl 0.25), so fin-cfd-bench reports the change (dfg2d2_openfoam_CL_max_time_step_change)
 # beside the comparison: a peer run that meets the bounds only at the larger step meets them by its
 # time-step error.

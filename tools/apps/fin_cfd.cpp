@@ -356,10 +356,12 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   // and its time within 0.001 s. Half the step (--cfl 0.25, to t = 10) moves this grid's 2D-2
   // numbers little: CL_max 0.98349 (-0.06 %), CL_min -1.01755, CD_max 3.22893 (+0.13 %), St 0.30243.
   // OpenFOAM's do not (tools/scripts/openfoam_dfg.py, pimpleFoam, t_end 7): at 48 cells per cylinder
-  // quarter CL_max 1.00642 at Courant 0.5 but 0.98254 at 0.25 (CL_min -1.01744, CD_max 3.22792, St
-  // 0.29994: within 0.1 % of this grid but for St), at 32 cells 0.99471 and 0.96205. Its lift maximum
-  // rises with the mesh and falls with the step, by 2-3 % each here, so its 1.008 at 64 cells and
-  // Courant 0.5 is not evidence that the converged value lies inside the 1996 interval.
+  // quarter CL_max 1.00642 / 0.98254 / 0.97076 at Courant 0.5 / 0.25 / 0.125 (first order in its
+  // step: the change halves with it; at 0.25 CL_min -1.01744, CD_max 3.22792, St 0.29994, within
+  // 0.1 % of this grid but for St), at 32 cells 0.99471 / 0.96205 at 0.5 / 0.25. Extrapolated in the
+  // step, about 0.959 at 48 cells and 0.929 at 32: the peer's lift maximum falls with its step and
+  // rises with its mesh by several % each at these meshes, so neither its 1.008 at 64 cells and
+  // Courant 0.5 nor its small-step values tell where the converged value lies.
   // 2D-3 on the same grid as 2D-2 (the same Reynolds number at the sine's peak).
   const bool default_grid = variant >= 2 && !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
   ds.core_cells_per_diameter = default_grid ? 48 : a.core_cells_per_diameter;

@@ -326,8 +326,9 @@ def main():
     ap.add_argument("--window", type=float, default=3.0, help="evaluate CD_max, CL_max, St over the last WINDOW s")
     ap.add_argument("--dt", type=float, default=None, help="time step (default: from --courant)")
     # pimpleFoam here (PISO: one outer iteration, two pressure correctors) carries a splitting error
-    # that the 2D-2 lift feels strongly: at 48 cells per quarter CL_max is 1.00642 at Courant 0.5 and
-    # 0.98254 at 0.25 (t_end 7, measured), so the peer's step is part of its accuracy.
+    # that the 2D-2 lift feels strongly, first order in the step: at 48 cells per quarter CL_max is
+    # 1.00642, 0.98254 and 0.97076 at Courant 0.5, 0.25 and 0.125 (measured, t_end 7 for the small
+    # steps), so the peer's step is part of its accuracy.
     ap.add_argument("--courant", type=float, default=0.5,
                     help="time step: Courant number of the cylinder's cells at 1.5 Um (default 0.5)")
     ap.add_argument("--ranks", type=int, default=2)
