@@ -435,6 +435,12 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
     graded("CD_max", "CD_max", r.cd_max);
     graded("CL_max", "CL_max", r.cl_max);
     graded("St", "St", r.st);
+    // Not among the goals, but the benchmark's fourth quantity: a check of the pressure
+    // field itself, away from the body's surface.
+    if (std::isfinite(r.dp_half_period)) {
+      graded("dp_half_period", "dp_half_period", r.dp_half_period);
+      s.info("t_lift_peak", r.t_lift_peak, "s");
+    }
     s.info("periods_in_window", r.periods);
     s.info("CD_mean", r.cd_mean);
     s.info("CL_min", r.cl_min);

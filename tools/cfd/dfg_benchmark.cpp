@@ -45,6 +45,65 @@ StretchedGrid dfg_grid(const DfgSetup& ds) {
                        .wall_ratio = ds.wall_stretch_ratio});
 }
 
+void dfg_periodic_statistics(DfgResult& r, double window) {
+  if (r.history.empty()) return;
+  const DfgSample& last = r.history.back();
+  const double Ubar = 1.0;  // 2D-2: Um = 1.5
+  // Window statistics; the period from upward zero crossings of CL - mean(CL), located by
+  // linear interpolation between steps.
+  const double t_start = last.t - window;
+  double mean = 0;
+  int count = 0;
+  r.cd_max = r.cl_max = r.cd_max_cv = r.cl_max_cv = -1e300;
+  r.cl_min = 1e300;
+  for (const DfgSample& s : r.history)
+    if (s.t >= t_start) {
+      r.cd_max = std::max(r.cd_max, s.cd);
+      r.cl_max = std::max(r.cl_max, s.cl);
+      r.cl_min = std::min(r.cl_min, s.cl);
+      r.cd_max_cv = std::max(r.cd_max_cv, s.cd_cv);
+      r.cl_max_cv = std::max(r.cl_max_cv, s.cl_cv);
+      mean += s.cl;
+      r.cd_mean += s.cd;
+      ++count;
+    }
+  mean /= std::max(count, 1);
+  r.cd_mean /= std::max(count, 1);
+  std::vector<double> up;
+  for (std::size_t n = 1; n < r.history.size(); ++n) {
+    const DfgSample &a = r.history[n - 1], &c = r.history[n];
+    if (a.t < t_start) continue;
+    const double fa = a.cl - mean, fc = c.cl - mean;
+    if (fa < 0 && fc >= 0) up.push_back(a.t + (c.t - a.t) * (-fa) / (fc - fa));
+  }
+  r.periods = static_cast<int>(up.size()) - 1;
+  if (r.periods >= 1) {
+    const double period = (up.back() - up.front()) / r.periods;
+    r.st = kD / (period * Ubar);
+    // The benchmark's pressure difference: at t0 + 1/(2f), t0 the time of a lift maximum (the
+    // last one whose half period ends inside the run), located by the parabola through the
+    // largest sample and its neighbours; dp interpolated linearly between steps.
+    for (std::size_t n = r.history.size() - 2; n >= 1 && r.history[n].t >= t_start; --n) {
+      const DfgSample &a = r.history[n - 1], &b = r.history[n], &c = r.history[n + 1];
+      if (!(b.cl > a.cl && b.cl >= c.cl) || b.cl - mean < 0.5 * (r.cl_max - mean)) continue;
+      const double h0 = b.t - a.t, h1 = c.t - b.t;
+      const double s0 = (b.cl - a.cl) / h0, s1 = (c.cl - b.cl) / h1;
+      const double curvature = (s1 - s0) / (0.5 * (h0 + h1));
+      const double t0 = curvature < 0 ? 0.5 * (a.t + b.t) - s0 / curvature : b.t;
+      const double th = t0 + 0.5 * period;
+      if (th > last.t) continue;
+      for (std::size_t m = n; m + 1 < r.history.size(); ++m) {
+        const DfgSample &p = r.history[m], &q = r.history[m + 1];
+        if (q.t < th) continue;
+        r.dp_half_period = p.dp + (q.dp - p.dp) * (th - p.t) / (q.t - p.t);
+        r.t_lift_peak = t0;
+        break;
+      }
+      break;
+    }
+  }
+}
+
 DfgResult run_dfg(const DfgSetup& ds) {
   if (ds.variant < 1 || ds.variant > 3) throw Error("dfg: variant must be 1 (2D-1), 2 (2D-2) or 3 (2D-3)");
   const auto t0 = std::chrono::steady_clock::now();
@@ -132,40 +191,7 @@ DfgResult run_dfg(const DfgSetup& ds) {
       r.cl_max_cv = std::max(r.cl_max_cv, s.cl_cv);
     }
   }
-  if (ds.variant == 2) {
-    // Window statistics; the period from upward zero crossings of CL - mean(CL), located by
-    // linear interpolation between steps.
-    const double t_start = last.t - ds.window;
-    double mean = 0;
-    int count = 0;
-    r.cd_max = r.cl_max = r.cd_max_cv = r.cl_max_cv = -1e300;
-    r.cl_min = 1e300;
-    for (const DfgSample& s : r.history)
-      if (s.t >= t_start) {
-        r.cd_max = std::max(r.cd_max, s.cd);
-        r.cl_max = std::max(r.cl_max, s.cl);
-        r.cl_min = std::min(r.cl_min, s.cl);
-        r.cd_max_cv = std::max(r.cd_max_cv, s.cd_cv);
-        r.cl_max_cv = std::max(r.cl_max_cv, s.cl_cv);
-        mean += s.cl;
-        r.cd_mean += s.cd;
-        ++count;
-      }
-    mean /= std::max(count, 1);
-    r.cd_mean /= std::max(count, 1);
-    std::vector<double> up;
-    for (std::size_t n = 1; n < r.history.size(); ++n) {
-      const DfgSample &a = r.history[n - 1], &c = r.history[n];
-      if (a.t < t_start) continue;
-      const double fa = a.cl - mean, fc = c.cl - mean;
-      if (fa < 0 && fc >= 0) up.push_back(a.t + (c.t - a.t) * (-fa) / (fc - fa));
-    }
-    r.periods = static_cast<int>(up.size()) - 1;
-    if (r.periods >= 1) {
-      const double period = (up.back() - up.front()) / r.periods;
-      r.st = kD / (period * Ubar);
-    }
-  }
+  if (ds.variant == 2) dfg_periodic_statistics(r, ds.window);
   r.cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

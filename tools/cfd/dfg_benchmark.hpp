@@ -22,6 +22,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "cfd/flow_solver.hpp"
@@ -73,6 +74,9 @@ struct DfgResult {
   // 2D-2 window: CD mean, CL min; the same maxima from the control-volume force.
   double cd_mean = 0, cl_min = 0, cd_max_cv = 0, cl_max_cv = 0;
   int periods = 0;
+  // 2D-2: dp at t0 + 1/(2f), t0 the time of a lift maximum in the window (Schaefer & Turek's
+  // fourth 2D-2 quantity); NaN when the window holds no full period.
+  double dp_half_period = std::numeric_limits<double>::quiet_NaN(), t_lift_peak = 0;
   double cd_drift = 0;  // 2D-1: |CD(t_end) - CD(t_end - 1 s)|, the distance from steady state
   long steps = 0, cells = 0, ghost_cells = 0;
   double mean_poisson_iterations = 0, max_poisson_iterations = 0, mean_momentum_iterations = 0;
@@ -85,5 +89,9 @@ struct DfgResult {
 StretchedGrid dfg_grid(const DfgSetup& setup);
 
 DfgResult run_dfg(const DfgSetup& setup);
+
+// 2D-2's statistics over the last `window` seconds of r.history: CD_max, CL_max, CL_min, CD mean,
+// the control-volume maxima, St from the lift's period and dp at t0 + 1/(2f).
+void dfg_periodic_statistics(DfgResult& r, double window);
 
 }  // namespace finverse::cfd
