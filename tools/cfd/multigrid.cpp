@@ -51,8 +51,10 @@ void Multigrid::cycle_level(int l, const Field& b, Field& x, CycleType type) {
     coarse_.solve(b, x);
     return;
   }
-  for (int s = 0; s < options_.pre_sweeps; ++s) smooth(options_.smoother, op, b, x, true, omega_);
-  op.residual(b, x, r_[sl]);
+  const bool fuse = options_.smoother == SmootherKind::RedBlack && options_.pre_sweeps > 0;
+  for (int s = 0; s < options_.pre_sweeps - (fuse ? 1 : 0); ++s) smooth(options_.smoother, op, b, x, true, omega_);
+  if (fuse) red_black_sweep_residual(op, b, x, omega_, r_[sl]);
+  else op.residual(b, x, r_[sl]);
   transfers_[sl].restrict_residual(r_[sl], b_[sl + 1]);
   x_[sl + 1].fill(0.0);
   switch (type) {

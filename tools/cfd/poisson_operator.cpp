@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cfd/stencil_lines.hpp"
+
 namespace finverse::cfd {
 
 namespace {
@@ -19,38 +21,13 @@ double face_area(const StretchedGrid& g, int d, int i, int j, int k) {
   }
 }
 
-// The stencil kernel: out = b - A p (with_b) or A p. Runs over lines (j,k) in parallel; x fastest.
-// D = 2 skips the z terms at compile time.
+// out = b - A p (with_b) or A p over all lines (j,k) in parallel (stencil_lines.hpp).
 template <int D, bool WithB>
 void stencil(const PoissonOperator& op, const Field* b, const Field& p, Field& out) {
-  const StretchedGrid& g = op.grid();
-  const int nx = g.nx(), ny = g.ny(), nz = g.nz();
-  const double* tx = op.transmissibility(0).data();
-  const double* ty = op.transmissibility(1).data();
-  const double* tz = op.transmissibility(2).data();
-  const double* dg = op.diagonal().data();
-  const std::ptrdiff_t sy = p.stride_y(), sz = p.stride_z();
-#pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
-  for (int l = 0; l < ny * nz; ++l) {
-    const int j = l % ny, k = l / ny;
-    const double* pc = &p(0, j, k);
-    double* o = &out(0, j, k);
-    const double* bb = WithB ? &(*b)(0, j, k) : nullptr;
-    const double* txr = tx + static_cast<std::size_t>(nx + 1) * static_cast<std::size_t>(l);
-    const double* tys = ty + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) +
-                                                             static_cast<std::size_t>(ny + 1) * k);
-    const double* tyn = tys + nx;
-    const double* tzb = tz + static_cast<std::size_t>(nx) * static_cast<std::size_t>(l);
-    const double* tzt = tzb + static_cast<std::size_t>(nx) * ny;
-    const double* d = dg + static_cast<std::size_t>(nx) * static_cast<std::size_t>(l);
-    for (int i = 0; i < nx; ++i) {
-      double a = d[i] * pc[i] - txr[i] * pc[i - 1] - txr[i + 1] * pc[i + 1] - tys[i] * pc[i - sy] -
-                 tyn[i] * pc[i + sy];
-      if constexpr (D == 3) a -= tzb[i] * pc[i - sz] + tzt[i] * pc[i + sz];
-      if constexpr (WithB) o[i] = bb[i] - a;
-      else o[i] = a;
-    }
-  }
+  const StencilLines<D, WithB> lines(op, b, p, out);
+  const int ny = op.grid().ny(), nz = op.grid().nz();
+#pragma omp parallel for schedule(static) if (static_cast<long>(op.grid().cells()) >= parallel_min_cells)
+  for (int l = 0; l < ny * nz; ++l) lines.line(l % ny, l / ny);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "cfd/stencil_lines.hpp"
+
 namespace finverse::cfd {
 
 namespace {
@@ -72,6 +74,29 @@ void fused_colours(const PoissonOperator& op, const Field& b, Field& x, int firs
     for (int j = 0; j < ny; ++j) {
       if (k < nz) lines.update(j, k, first);
       if (k > 0) lines.update(j, k - 1, 1 - first);
+    }
+  }
+}
+
+// fused_colours with the residual r = b - A x of the result: plane k - 2 is final once the
+// second colour of plane k - 1 is, so its residual follows in the same pass while the plane is
+// still in cache, instead of in a separate pass over the whole grid. Line (j, k - 2) reads x on
+// lines (j +- 1, k - 2) and (j, k - 3), final since the previous plane's barrier, and (j, k - 1),
+// whose second colour this thread has just updated; nothing writes plane k - 2 any more. Two
+// extra passes of the plane loop finish the last planes (in 2-D, nz = 1, the residual then waits
+// for the barrier after the second colour, as its lines read their neighbours j +- 1).
+template <int D>
+void fused_colours_residual(const PoissonOperator& op, const Field& b, Field& x, double omega, Field& r) {
+  const ColourLines<D> lines(op, b, x, omega);
+  const StencilLines<D, true> residual(op, &b, x, r);
+  const int ny = op.grid().ny(), nz = op.grid().nz();
+#pragma omp parallel if (static_cast<long>(op.grid().cells()) >= parallel_min_cells)
+  for (int k = 0; k <= nz + 1; ++k) {
+#pragma omp for schedule(static)
+    for (int j = 0; j < ny; ++j) {
+      if (k < nz) lines.update(j, k, 0);
+      if (k > 0 && k <= nz) lines.update(j, k - 1, 1);
+      if (k > 1) residual.line(j, k - 2);
     }
   }
 }
@@ -218,6 +243,17 @@ void zebra(const PoissonOperator& op, const Field& b, Field& x, bool forward) {
 }
 
 }  // namespace
+
+void red_black_sweep_residual(const PoissonOperator& op, const Field& b, Field& x, double omega, Field& r) {
+  if (op.bc().periodic(0) || op.bc().periodic(1) || op.bc().periodic(2)) {
+    red_black_sweep(op, b, x, true, omega);
+    op.residual(b, x, r);
+  } else if (op.dim() == 3) {
+    fused_colours_residual<3>(op, b, x, omega, r);
+  } else {
+    fused_colours_residual<2>(op, b, x, omega, r);
+  }
+}
 
 void red_black_sweep(const PoissonOperator& op, const Field& b, Field& x, bool forward, double omega) {
   if (op.dim() == 3) rb<3>(op, b, x, forward, omega);

@@ -26,6 +26,10 @@ enum class SmootherKind { RedBlack, ZebraLines };
 // z,y,x). x's ghosts are refreshed as needed.
 // omega: over-relaxation factor of the point updates (1 = Gauss-Seidel).
 void red_black_sweep(const PoissonOperator& op, const Field& b, Field& x, bool forward, double omega = 1.0);
+// A forward red-black sweep followed by r = b - A x, bit for bit red_black_sweep(.., true, ..) and
+// op.residual, in one pass over the grid where no axis is periodic (the multigrid's last
+// pre-smoothing sweep: the fine levels are bound by memory bandwidth).
+void red_black_sweep_residual(const PoissonOperator& op, const Field& b, Field& x, double omega, Field& r);
 void zebra_line_sweep(const PoissonOperator& op, const Field& b, Field& x, bool forward);
 
 inline void smooth(SmootherKind kind, const PoissonOperator& op, const Field& b, Field& x, bool forward,
