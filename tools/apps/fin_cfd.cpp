@@ -361,7 +361,11 @@ int dfg(int variant, bool coarse, const BodyCaseArgs& a, const std::filesystem::
   // 0.1 % of this grid but for St), at 32 cells 0.99471 / 0.96205 at 0.5 / 0.25. Extrapolated in the
   // step, about 0.959 at 48 cells and 0.929 at 32: the peer's lift maximum falls with its step and
   // rises with its mesh by several % each at these meshes, so neither its 1.008 at 64 cells and
-  // Courant 0.5 nor its small-step values tell where the converged value lies.
+  // Courant 0.5 nor its small-step values tell where the converged value lies. Its step error is
+  // PISO's splitting: with 3 PIMPLE outer iterations (converged in the step at Courant 0.5; 32
+  // cells: 0.92609 at 0.5, 0.92807 at 0.25) it gives 0.92609 / 0.94618 / 0.95861 at 32 / 40 / 48
+  // cells (St 0.29828 / 0.29980 / 0.30051), which extrapolate to 0.987 at second order and to
+  // 1.002 at the observed order 1.4: the peer converged in time points at a lift 0.3-2 % above ours.
   // 2D-3 on the same grid as 2D-2 (the same Reynolds number at the sine's peak).
   const bool default_grid = variant >= 2 && !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
   ds.core_cells_per_diameter = default_grid ? 48 : a.core_cells_per_diameter;

@@ -334,9 +334,10 @@ def main():
                     help="time step: Courant number of the cylinder's cells at 1.5 Um (default 0.5)")
     # PIMPLE: several outer iterations per step re-solve the momentum equation with the corrected
     # convecting flux, which PISO (1, the default) lags by one step. With 3 the lift maximum is
-    # converged in the step at Courant 0.5 (32 cells: 0.92608 at 0.5, 0.92792 at 0.25, t_end 7;
+    # converged in the step at Courant 0.5 (32 cells: 0.92609 at 0.5, 0.92807 at 0.25, t_end 7;
     # PISO's 0.99471 / 0.96205 extrapolate to 0.929): PISO's first-order error is the splitting.
-    # A step costs about 2.6 times PISO's.
+    # A step costs about 2.6 times PISO's. At 40 and 48 cells (Courant 0.5): 0.94618 and 0.95861,
+    # still rising with the mesh (observed order 1.4 from 32 / 40 / 48).
     ap.add_argument("--outer-correctors", type=int, default=1,
                     help="PIMPLE outer iterations per time step (default 1: PISO)")
     ap.add_argument("--ranks", type=int, default=2)
