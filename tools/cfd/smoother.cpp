@@ -28,16 +28,11 @@ struct ColourLines {
         omega(w) {}
 
   void update(int j, int k, int colour) const {
-    const auto l = static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(k);
     double* xc = &(*x)(0, j, k);
     const double* bb = &(*b)(0, j, k);
-    const double* txr = tx + static_cast<std::size_t>(nx + 1) * l;
-    const double* tys = ty + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) +
-                                                             static_cast<std::size_t>(ny + 1) * k);
-    const double* tyn = tys + nx;
-    const double* tzb = tz + static_cast<std::size_t>(nx) * l;
-    const double* tzt = tzb + static_cast<std::size_t>(nx) * ny;
-    const double* inv = inv_diag + static_cast<std::size_t>(nx) * l;
+    const LineCoefficients c(tx, ty, tz, nx, ny, j, k);
+    const double *txr = c.x_faces, *tys = c.y_lower, *tyn = c.y_upper, *tzb = c.z_lower, *tzt = c.z_upper;
+    const double* inv = inv_diag + c.cell;
     for (int i = (j + k + colour) & 1; i < nx; i += 2) {
       double s = bb[i] + txr[i] * xc[i - 1] + txr[i + 1] * xc[i + 1] + tys[i] * xc[i - sy] +
                  tyn[i] * xc[i + sy];

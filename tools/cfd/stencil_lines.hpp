@@ -12,6 +12,23 @@
 
 namespace finverse::cfd {
 
+// Where line (j, k)'s coefficients start: its x faces (nx + 1 of them), its lower and upper y and
+// z faces and its cells (offset `cell` into any per-cell array such as the diagonal).
+struct LineCoefficients {
+  const double *x_faces, *y_lower, *y_upper, *z_lower, *z_upper;
+  std::size_t cell;
+
+  LineCoefficients(const double* tx, const double* ty, const double* tz, int nx, int ny, int j, int k) {
+    const auto l = static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(k);
+    x_faces = tx + static_cast<std::size_t>(nx + 1) * l;
+    y_lower = ty + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny + 1) * k);
+    y_upper = y_lower + nx;
+    z_lower = tz + static_cast<std::size_t>(nx) * l;
+    z_upper = z_lower + static_cast<std::size_t>(nx) * ny;
+    cell = static_cast<std::size_t>(nx) * l;
+  }
+};
+
 template <int D, bool WithB>
 struct StencilLines {
   int nx, ny;
@@ -27,17 +44,12 @@ struct StencilLines {
         sy(x.stride_y()), sz(x.stride_z()), b(rhs), p(&x), out(&result) {}
 
   void line(int j, int k) const {
-    const auto l = static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(k);
     const double* pc = &(*p)(0, j, k);
     double* o = &(*out)(0, j, k);
     const double* bb = WithB ? &(*b)(0, j, k) : nullptr;
-    const double* txr = tx + static_cast<std::size_t>(nx + 1) * l;
-    const double* tys = ty + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) +
-                                                             static_cast<std::size_t>(ny + 1) * k);
-    const double* tyn = tys + nx;
-    const double* tzb = tz + static_cast<std::size_t>(nx) * l;
-    const double* tzt = tzb + static_cast<std::size_t>(nx) * ny;
-    const double* d = diag + static_cast<std::size_t>(nx) * l;
+    const LineCoefficients c(tx, ty, tz, nx, ny, j, k);
+    const double *txr = c.x_faces, *tys = c.y_lower, *tyn = c.y_upper, *tzb = c.z_lower, *tzt = c.z_upper;
+    const double* d = diag + c.cell;
     for (int i = 0; i < nx; ++i) {
       double a = d[i] * pc[i] - txr[i] * pc[i - 1] - txr[i + 1] * pc[i + 1] - tys[i] * pc[i - sy] -
                  tyn[i] * pc[i + sy];

@@ -34,6 +34,26 @@ void reference_sweep(const PoissonOperator& op, const Field& b, Field& x, bool f
         }
 }
 
+// A grid big enough for the parallel path, a sphere (circle) of masked cells and a Dirichlet side;
+// with `periodic`, the last axis periodic.
+PoissonOperator masked_operator(int dim, bool periodic) {
+  const int n = dim == 3 ? 28 : 160;
+  const StretchedGrid g = dim == 3 ? StretchedGrid(test::stretched_axis(1), test::stretched_axis(1).refined(),
+                                                   Axis::uniform(-1, 2, n))
+                                   : StretchedGrid(test::stretched_axis(3), Axis::uniform(-1, 2, n));
+  FaceCoefficients beta(g, 1.0);
+  beta.mask_cells([&](int i, int j, int k) {
+    const double x = g.xc(i) - 0.3, y = g.yc(j) - 0.2, z = dim == 3 ? g.zc(k) - 0.5 : 0.0;
+    return x * x + y * y + z * z < 0.3 * 0.3;
+  });
+  BoundaryConditions bc = BoundaryConditions::all(BcType::Neumann);
+  bc[Side::XHi] = BcType::Dirichlet;
+  if (periodic) bc[dim == 3 ? Side::ZLo : Side::YLo] = bc[dim == 3 ? Side::ZHi : Side::YHi] = BcType::Periodic;
+  PoissonOperator op;
+  op.setup(g, beta, bc);
+  return op;
+}
+
 double max_difference(const StretchedGrid& g, const Field& a, const Field& b) {
   double d = 0;
   for (int k = 0; k < g.nz(); ++k)
@@ -45,21 +65,9 @@ double max_difference(const StretchedGrid& g, const Field& a, const Field& b) {
 TEST(RedBlackSmoother, OnePassSweepIsTheTwoColourGaussSeidel) {
   const int saved = omp_get_max_threads();
   for (int dim : {2, 3}) {
-    // Big enough for the parallel path; a sphere (circle) of masked cells and a Dirichlet side.
-    const int n = dim == 3 ? 28 : 160;
-    const StretchedGrid g = dim == 3 ? StretchedGrid(test::stretched_axis(1), test::stretched_axis(1).refined(),
-                                                     Axis::uniform(-1, 2, n))
-                                     : StretchedGrid(test::stretched_axis(3), Axis::uniform(-1, 2, n));
+    const PoissonOperator op = masked_operator(dim, false);
+    const StretchedGrid& g = op.grid();
     ASSERT_GE(static_cast<long>(g.cells()), parallel_min_cells);
-    FaceCoefficients beta(g, 1.0);
-    beta.mask_cells([&](int i, int j, int k) {
-      const double x = g.xc(i) - 0.3, y = g.yc(j) - 0.2, z = dim == 3 ? g.zc(k) - 0.5 : 0.0;
-      return x * x + y * y + z * z < 0.3 * 0.3;
-    });
-    BoundaryConditions bc = BoundaryConditions::all(BcType::Neumann);
-    bc[Side::XHi] = BcType::Dirichlet;
-    PoissonOperator op;
-    op.setup(g, beta, bc);
     const Field b = test::random_field(g, 11);
     for (bool forward : {true, false})
       for (int threads : {1, 2}) {
@@ -83,21 +91,9 @@ TEST(RedBlackSmoother, FusedResidualIsTheSweepThenTheResidual) {
   const int saved = omp_get_max_threads();
   for (int dim : {2, 3})
     for (bool periodic : {false, true}) {
-      const int n = dim == 3 ? 28 : 160;
-      const StretchedGrid g = dim == 3 ? StretchedGrid(test::stretched_axis(1), test::stretched_axis(1).refined(),
-                                                       Axis::uniform(-1, 2, n))
-                                       : StretchedGrid(test::stretched_axis(3), Axis::uniform(-1, 2, n));
+      const PoissonOperator op = masked_operator(dim, periodic);
+      const StretchedGrid& g = op.grid();
       ASSERT_GE(static_cast<long>(g.cells()), parallel_min_cells);
-      FaceCoefficients beta(g, 1.0);
-      beta.mask_cells([&](int i, int j, int k) {
-        const double x = g.xc(i) - 0.3, y = g.yc(j) - 0.2, z = dim == 3 ? g.zc(k) - 0.5 : 0.0;
-        return x * x + y * y + z * z < 0.3 * 0.3;
-      });
-      BoundaryConditions bc = BoundaryConditions::all(BcType::Neumann);
-      bc[Side::XHi] = BcType::Dirichlet;
-      if (periodic) bc[dim == 3 ? Side::ZLo : Side::YLo] = bc[dim == 3 ? Side::ZHi : Side::YHi] = BcType::Periodic;
-      PoissonOperator op;
-      op.setup(g, beta, bc);
       const Field b = test::random_field(g, 11);
       for (int threads : {1, 2}) {
         omp_set_num_threads(threads);
