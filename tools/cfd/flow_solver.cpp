@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "cfd/loops.hpp"
 #include "core/error.hpp"
@@ -354,36 +355,58 @@ double FlowSolver::boundary_face_gradient(const Field& q, int d, int i, int j, i
 // faces, so this is their linear interpolation). Next to a non-periodic boundary the boundary
 // face's gradient is not a property of the flow (it is the Neumann condition of the correction),
 // so the cell value is extrapolated linearly from the two nearest interior faces instead.
-void FlowSolver::cell_gradient(const Field& q, int d, Field& out) const {
+double FlowSolver::cell_gradient_at(const Field& q, int d, int i, int j, int k) const {
   const Axis& ax = grid_.axis(d);
   const int n = ax.size();
-  const bool periodic = bnd_.periodic(d);
-  for_each_cell(grid_, [&](int i, int j, int k) {
-    const int idx[3] = {i, j, k};
-    const int m = idx[d];
-    int f1[3] = {i, j, k};
-    if (periodic || (m > 0 && m < n - 1)) {
-      f1[d] = m + 1;
-      out(i, j, k) = 0.5 * (face_gradient(q, d, i, j, k) + face_gradient(q, d, f1[0], f1[1], f1[2]));
+  const int idx[3] = {i, j, k};
+  const int m = idx[d];
+  int f1[3] = {i, j, k};
+  if (bnd_.periodic(d) || (m > 0 && m < n - 1)) {
+    f1[d] = m + 1;
+    return 0.5 * (face_gradient(q, d, i, j, k) + face_gradient(q, d, f1[0], f1[1], f1[2]));
+  }
+  if (n == 1) return 0;
+  // Boundary cell: interior faces a (nearest) and b (next).
+  const int fa = m == 0 ? 1 : n - 1;
+  f1[d] = fa;
+  const double ga = face_gradient(q, d, f1[0], f1[1], f1[2]);
+  if (n == 2) return ga;
+  const int fb = m == 0 ? 2 : n - 2;
+  int f2[3] = {i, j, k};
+  f2[d] = fb;
+  const double gb = face_gradient(q, d, f2[0], f2[1], f2[2]);
+  return ga + (ax.centre(m) - ax.face(fa)) * (gb - ga) / (ax.face(fb) - ax.face(fa));
+}
+
+// The same gradient a grid line at a time: away from the boundary cells each interior cell is the
+// expression of cell_gradient_at with its neighbours read at a fixed stride, which the compiler
+// vectorises (per cell, the generic path costs two index computations and two branches per face;
+// it was 6 % of the fin's time step). Same operations in the same order, so the same bits.
+void FlowSolver::cell_gradient(const Field& q, int d, Field& out) const {
+  const Axis& ax = grid_.axis(d);
+  const int n = ax.size(), nx = grid_.nx();
+  std::vector<double> dist(static_cast<std::size_t>(n) + 1, 0.0);
+  for (int f = 1; f < n; ++f) dist[static_cast<std::size_t>(f)] = ax.centre(f) - ax.centre(f - 1);
+  const std::ptrdiff_t stride = d == 0 ? 1 : d == 1 ? q.stride_y() : q.stride_z();
+  for_each_line(grid_, [&](int j, int k) {
+    const double* a = &q(0, j, k);
+    double* o = &out(0, j, k);
+    if (d == 0) {
+      for (int i = 1; i < n - 1; ++i) {
+        const auto I = static_cast<std::size_t>(i);
+        o[i] = 0.5 * ((a[i] - a[i - 1]) / dist[I] + (a[i + 1] - a[i]) / dist[I + 1]);
+      }
+      o[0] = cell_gradient_at(q, d, 0, j, k);
+      if (n > 1) o[n - 1] = cell_gradient_at(q, d, n - 1, j, k);
       return;
     }
-    if (n == 1) {
-      out(i, j, k) = 0;
+    const int m = d == 1 ? j : k;
+    if (m == 0 || m == n - 1) {
+      for (int i = 0; i < nx; ++i) o[i] = cell_gradient_at(q, d, i, j, k);
       return;
     }
-    // Boundary cell: interior faces a (nearest) and b (next).
-    const int fa = m == 0 ? 1 : n - 1;
-    f1[d] = fa;
-    const double ga = face_gradient(q, d, f1[0], f1[1], f1[2]);
-    if (n == 2) {
-      out(i, j, k) = ga;
-      return;
-    }
-    const int fb = m == 0 ? 2 : n - 2;
-    int f2[3] = {i, j, k};
-    f2[d] = fb;
-    const double gb = face_gradient(q, d, f2[0], f2[1], f2[2]);
-    out(i, j, k) = ga + (ax.centre(m) - ax.face(fa)) * (gb - ga) / (ax.face(fb) - ax.face(fa));
+    const double dl = dist[static_cast<std::size_t>(m)], dr = dist[static_cast<std::size_t>(m) + 1];
+    for (int i = 0; i < nx; ++i) o[i] = 0.5 * ((a[i] - a[i - stride]) / dl + (a[i + stride] - a[i]) / dr);
   });
 }
 

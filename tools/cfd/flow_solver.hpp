@@ -308,6 +308,7 @@ class FlowSolver {
   double face_gradient(const Field& q, int d, int i, int j, int k) const;
   double boundary_face_gradient(const Field& q, int d, int i, int j, int k) const;
   void cell_gradient(const Field& q, int d, Field& out) const;
+  double cell_gradient_at(const Field& q, int d, int i, int j, int k) const;
   double divergence(const FaceField& U, int i, int j, int k) const;
   // The divergence of the continuity constraint: the cut-cell balance (per unit cell volume) in the
   // cut cells of a moving body with cut_cell_continuity, divergence() elsewhere.

@@ -19,6 +19,14 @@ void for_each_cell(const StretchedGrid& g, Fn fn) {
   }
 }
 
+// fn(j, k) for every grid line of cells along x (the kernel runs i itself, contiguous in memory).
+template <class Fn>
+void for_each_line(const StretchedGrid& g, Fn fn) {
+  const int ny = g.ny(), nz = g.nz();
+#pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
+  for (int l = 0; l < ny * nz; ++l) fn(l % ny, l / ny);
+}
+
 // fn(i, j, k) for every face normal to axis d (i, j or k runs to n(d) along d).
 template <class Fn>
 void for_each_face(const StretchedGrid& g, int d, Fn fn) {
