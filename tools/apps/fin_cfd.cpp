@@ -500,6 +500,15 @@ int turek_hron(int variant, bool coarse, const BodyCaseArgs& a, double kick_velo
   //         frequency +1.09 %; control-volume drag mean -0.35 % (dp/dn = 0: -1.27 %, +1.33 %,
   //         -1.72 %, +1.10 %; walls 1.05: -1.4 %, -3.6 %, -8.1 %, +1.1 %; and the staircase
   //         balance: -2.3 %, -9.5 %, -12.5 %, +0.9 %; uniform D/32: -7.4 %, -49 %, -42 %, 0.0 %).
+  //   CFD3's lift amplitude (mostly the flag's) depends on where the flag's straight edges fall in
+  //   their cells, more than on h: the core's faces are symmetric about y = 0.2, so an edge cell
+  //   holds a fluid fraction 1 - frac(0.1 N_core). Measured (t_end 7, window [6, 7), walls 0.98,
+  //   box N_core / 2, wake box 2): D/48 (fraction 0.2, the cell's centre inside the flag) 402.7
+  //   N/m, 4.432 Hz; D/56 (0.4) 409.8, 4.431; D/44 (0.6, centre in the fluid) 410.9, 4.442; the
+  //   default D/64 (0.6) 430.3, 4.444. Within one alignment (D/44 -> D/64) the amplitude rises by
+  //   19 N/m, so the default's -1.7 % is a grid error of the flag's edges, not converged, and no
+  //   evidence of a lift deficit elsewhere (walls 0.97 instead of 0.98: +0.3 %; half the step:
+  //   -0.25 %; wake box 1 -> 2: +0.05 %, all at D/48).
   const bool default_grid = !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
   ts.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : coarse ? 12 : variant == 2 ? 24 : 32;
   ts.core_cells_per_diameter = default_grid ? (variant == 2 ? 48 : 64) : a.core_cells_per_diameter;
