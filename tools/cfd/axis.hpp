@@ -61,6 +61,12 @@ class Axis {
   double face(int i) const { return faces_[static_cast<std::size_t>(i)]; }
   double centre(int i) const { return 0.5 * (face(i) + face(i + 1)); }
   double width(int i) const { return face(i + 1) - face(i); }
+  // Across the interior face f (0 < f < size()): the distance between the centres of cells f - 1
+  // and f, and the weight of cell f - 1 in the linear interpolation to the face (the face is not
+  // midway between the centres on a stretched axis). Every kernel takes them from here, so that
+  // line-wise and cell-wise evaluations of a stencil give the same bits.
+  double centre_distance(int f) const { return centre(f) - centre(f - 1); }
+  double lower_weight(int f) const { return width(f) / (width(f - 1) + width(f)); }
   // Width of the cell containing coordinate x (clamped to the axis): the local grid spacing of a
   // point on an immersed surface.
   double width_at(double x) const;

@@ -103,7 +103,7 @@ ControlVolumeSample ControlVolumeForce::integrate(double t, const std::array<con
     const Axis& ax = grid_.axis(a);
     for (const int f : {lo_[A], hi_[A]}) {
       const double sign = f == lo_[A] ? -1.0 : 1.0;
-      const double wa = ax.width(f - 1), wb = ax.width(f), dist = ax.centre(f) - ax.centre(f - 1);
+      const double wa = ax.width(f - 1), wb = ax.width(f), dist = ax.centre_distance(f);
       for (int m2 = lo_[T2]; m2 < hi_[T2]; ++m2)
         for (int m1 = lo_[T1]; m1 < hi_[T1]; ++m1) {
           int below[3], above[3];

@@ -386,7 +386,7 @@ void FlowSolver::cell_gradient(const Field& q, int d, Field& out) const {
   const Axis& ax = grid_.axis(d);
   const int n = ax.size(), nx = grid_.nx();
   std::vector<double> dist(static_cast<std::size_t>(n) + 1, 0.0);
-  for (int f = 1; f < n; ++f) dist[static_cast<std::size_t>(f)] = ax.centre(f) - ax.centre(f - 1);
+  for (int f = 1; f < n; ++f) dist[static_cast<std::size_t>(f)] = ax.centre_distance(f);
   const std::ptrdiff_t stride = d == 0 ? 1 : d == 1 ? q.stride_y() : q.stride_z();
   for_each_line(grid_, [&](int j, int k) {
     const double* a = &q(0, j, k);

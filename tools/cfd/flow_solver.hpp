@@ -425,8 +425,7 @@ inline double FlowSolver::face_value(const Field& q, int c, int d, int i, int j,
   const int f = d == 0 ? i : d == 1 ? j : k;
   if (f <= 0 || f >= ax.size()) return boundary_face_value(q, c, d, i, j, k, bv);
   const int li = i - (d == 0), lj = j - (d == 1), lk = k - (d == 2);
-  const double hl = ax.width(f - 1), hr = ax.width(f);
-  const double wl = hr / (hl + hr);
+  const double wl = ax.lower_weight(f);
   return wl * q(li, lj, lk) + (1 - wl) * q(i, j, k);
 }
 
@@ -435,7 +434,7 @@ inline double FlowSolver::face_gradient(const Field& q, int d, int i, int j, int
   const Axis& ax = grid_.axis(d);
   const int f = d == 0 ? i : d == 1 ? j : k;
   if (f <= 0 || f >= ax.size()) return boundary_face_gradient(q, d, i, j, k);
-  const double dist = ax.centre(f) - ax.centre(f - 1);
+  const double dist = ax.centre_distance(f);
   return (q(i, j, k) - q(i - (d == 0), j - (d == 1), k - (d == 2))) / dist;
 }
 

@@ -28,13 +28,13 @@ namespace finverse::cfd {
 // face_value (the boundary faces use it), so the bits do not depend on the loop's shape.
 void FlowSolver::convective_term(std::array<Field, 3>& out) const {
   const int D = dim(), nx = grid_.nx();
-  // Weight of the lower cell at each interior face (face_value's wl).
+  // Weight of the lower cell at each interior face (as face_value).
   std::array<std::vector<double>, 3> lower_weight;
   for (int d = 0; d < D; ++d) {
     const Axis& ax = grid_.axis(d);
     auto& w = lower_weight[static_cast<std::size_t>(d)];
     w.assign(static_cast<std::size_t>(ax.size()) + 1, 0.0);
-    for (int f = 1; f < ax.size(); ++f) w[static_cast<std::size_t>(f)] = ax.width(f) / (ax.width(f - 1) + ax.width(f));
+    for (int f = 1; f < ax.size(); ++f) w[static_cast<std::size_t>(f)] = ax.lower_weight(f);
   }
   for (int c = 0; c < D; ++c) {
     const Field& q = u_[static_cast<std::size_t>(c)];

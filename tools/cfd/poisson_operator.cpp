@@ -73,7 +73,7 @@ void PoissonOperator::setup(const StretchedGrid& grid, const FaceCoefficients& b
         const int f = d == 0 ? i : d == 1 ? j : k;  // face position along d
         double dist;
         int bf = f;  // face whose beta applies (a periodic last face takes face 0's)
-        if (f > 0 && f < nd) dist = ax.centre(f) - ax.centre(f - 1);
+        if (f > 0 && f < nd) dist = ax.centre_distance(f);
         else if (lo == BcType::Periodic) {
           dist = 0.5 * (ax.width(0) + ax.width(nd - 1));
           bf = 0;

@@ -34,6 +34,18 @@ TEST(Axis, WidthAtIsTheContainingCellsWidthClampedToTheAxis) {
   EXPECT_DOUBLE_EQ(a.width_at(99.0), 4.0);
 }
 
+TEST(Axis, FaceInterpolationIsExactForLinearFunctions) {
+  const Axis a({0.0, 1.0, 3.0, 7.0});  // centres 0.5, 2, 5
+  EXPECT_DOUBLE_EQ(a.centre_distance(1), 1.5);
+  EXPECT_DOUBLE_EQ(a.centre_distance(2), 3.0);
+  // q(x) = 2 x + 1 at the centres, interpolated to faces 1 and 2.
+  const auto q = [](double x) { return 2 * x + 1; };
+  for (int f : {1, 2}) {
+    const double w = a.lower_weight(f);
+    EXPECT_NEAR(w * q(a.centre(f - 1)) + (1 - w) * q(a.centre(f)), q(a.face(f)), 1e-14) << "face " << f;
+  }
+}
+
 TEST(Axis, RejectsNonIncreasingFaces) {
   EXPECT_THROW(Axis({0.0, 1.0, 1.0}), std::invalid_argument);
   EXPECT_THROW(Axis({0.0}), std::invalid_argument);
