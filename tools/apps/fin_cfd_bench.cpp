@@ -18,8 +18,9 @@
 //   fin-cfd-bench -n 64 -n 96 -n 128 --poisson results/bench/poisson.json --json results/bench/cfd.json
 //   fin-cfd-bench -n 16 --dfg N32/dfg_2d2/summary.json --dfg N48/dfg_2d2/summary.json
 //                 --openfoam results/bench/dfg2d2/openfoam.json
-//                 --openfoam results/bench/dfg2d2/openfoam_courant0.25.json --json results/bench/cfd.json
-//   fin-cfd-bench -n 16 --dfg2d3 N/dfg_2d3/summary.json --openfoam2d3 results/bench/dfg2d3/openfoam.json
+//                 --openfoam results/bench/dfg2d2/openfoam_courant0.25.json
+//                 --dfg2d3 N/dfg_2d3/summary.json --openfoam2d3 results/bench/dfg2d3/openfoam.json
+//                 --json results/bench/cfd_dfg_studies.json
 #include <algorithm>
 #include <chrono>
 #include <cmath>
