@@ -26,9 +26,7 @@ double dot(const Field& a, const Field& b) {
   return ordered_line_sum(a.nx(), a.ny(), a.nz(), [&](int j, int k) {
     const double* pa = &a(0, j, k);
     const double* pb = &b(0, j, k);
-    double s = 0;
-    for (int i = 0; i < a.nx(); ++i) s += pa[i] * pb[i];
-    return s;
+    return lane_sum(a.nx(), [&](int i) { return pa[i] * pb[i]; });
   });
 }
 

@@ -76,6 +76,21 @@ double ordered_line_sum(int nx, int ny, int nz, LineSum line) {
   return s;
 }
 
+// Sum of term(i) over i in [0, n) in eight interleaved partial sums (i mod 8), added pairwise at
+// the end: a fixed order, so the same bits on every call, but eight independent chains of
+// additions instead of one. A single chain waits one addition's latency per term (a strict
+// left-to-right sum cannot be vectorised without -ffast-math), which made the multigrid-CG inner
+// products 8.5 % of a 2-D time step (perf, Turek-Hron CFD3, 1 thread).
+template <class Term>
+double lane_sum(int n, Term term) {
+  double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  int i = 0;
+  for (; i + 8 <= n; i += 8)
+    for (int q = 0; q < 8; ++q) s[q] += term(i + q);
+  for (int q = 0; i < n; ++i, ++q) s[q] += term(i);
+  return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+}
+
 // Interior inner product and norms, deterministic (see above).
 double dot(const Field& a, const Field& b);
 double norm2(const Field& a);

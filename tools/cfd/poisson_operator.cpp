@@ -318,14 +318,9 @@ void PoissonOperator::remove_mean(Field& r) const {
     const int* comp = component_.data();
     const double mean = ordered_line_sum(nx, ny, grid_.nz(), [&](int j, int k) {
                           const double* p = &r(0, j, k);
-                          double s = 0;
-                          if (all) {
-                            for (int i = 0; i < nx; ++i) s += p[i];
-                          } else {
-                            const int* c = comp + cell_index(0, j, k);
-                            for (int i = 0; i < nx; ++i) s += c[i] == 0 ? p[i] : 0.0;
-                          }
-                          return s;
+                          if (all) return lane_sum(nx, [&](int i) { return p[i]; });
+                          const int* c = comp + cell_index(0, j, k);
+                          return lane_sum(nx, [&](int i) { return c[i] == 0 ? p[i] : 0.0; });
                         }) /
                         static_cast<double>(active_cells_);
 #pragma omp parallel for schedule(static) if (static_cast<long>(grid_.cells()) >= parallel_min_cells)
@@ -334,9 +329,9 @@ void PoissonOperator::remove_mean(Field& r) const {
       if (all) {
         for (int i = 0; i < nx; ++i) p[i] -= mean;
       } else {
+        // Subtracting 0 leaves a value's bits as they are, and the select vectorises.
         const int* c = comp + cell_index(0, l % ny, l / ny);
-        for (int i = 0; i < nx; ++i)
-          if (c[i] == 0) p[i] -= mean;
+        for (int i = 0; i < nx; ++i) p[i] -= c[i] == 0 ? mean : 0.0;
       }
     }
     return;

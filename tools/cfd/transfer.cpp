@@ -105,15 +105,22 @@ void GridTransfer::prolongate_add(Field& ce, Field& fx) const {
     const int j = l % ny, k = l / ny;
     const auto& ey = prol_[1][static_cast<std::size_t>(j)];
     const auto& ez = prol_[2][static_cast<std::size_t>(k)];
-    const double* row[4] = {&ce(0, ey[0].c, ez[0].c), &ce(0, ey[1].c, ez[0].c), &ce(0, ey[0].c, ez[1].c),
-                            &ce(0, ey[1].c, ez[1].c)};
-    const double wyz[4] = {ey[0].w * ez[0].w, ey[1].w * ez[0].w, ey[0].w * ez[1].w, ey[1].w * ez[1].w};
+    const double* all_rows[4] = {&ce(0, ey[0].c, ez[0].c), &ce(0, ey[1].c, ez[0].c), &ce(0, ey[0].c, ez[1].c),
+                                 &ce(0, ey[1].c, ez[1].c)};
+    const double all_w[4] = {ey[0].w * ez[0].w, ey[1].w * ez[0].w, ey[0].w * ez[1].w, ey[1].w * ez[1].w};
+    // Only the coarse rows with a weight: in 2-D (and next to a one-child coarse cell) half of
+    // them have none, and adding their exact zero changed nothing but the time.
+    const double* row[4];
+    double wyz[4];
+    int rows = 0;
+    for (int q = 0; q < 4; ++q)
+      if (all_w[q] != 0.0) row[rows] = all_rows[q], wyz[rows++] = all_w[q];
     double* out = &fx(0, j, k);
     const double* s = sc ? sc + static_cast<std::size_t>(nx) * static_cast<std::size_t>(l) : nullptr;
     for (int i = 0; i < nx; ++i) {
       const auto& ex = prol_[0][static_cast<std::size_t>(i)];
       double v = 0;
-      for (int q = 0; q < 4; ++q) v += wyz[q] * (ex[0].w * row[q][ex[0].c] + ex[1].w * row[q][ex[1].c]);
+      for (int q = 0; q < rows; ++q) v += wyz[q] * (ex[0].w * row[q][ex[0].c] + ex[1].w * row[q][ex[1].c]);
       out[i] += s ? s[i] * v : v;
     }
   }
