@@ -208,6 +208,26 @@ TEST(Field, LayoutIsContiguousXFastestWithGhosts) {
   EXPECT_EQ(f2.index(0, 0, 0), 7 + 1);  // no ghost layer in z for 2-D fields
 }
 
+// Every term once, whatever n is against the eight lanes (integers, so the sum is exact), and
+// lines of 5, 8 and 13 cells give the inner product of the whole interior.
+TEST(Field, LaneSumAddsEveryTermOnce) {
+  for (int n = 0; n <= 27; ++n)
+    EXPECT_EQ(lane_sum(n, [](int i) { return static_cast<double>(i + 1); }), n * (n + 1) / 2.0) << "n = " << n;
+  for (int nx : {5, 8, 13}) {
+    const StretchedGrid g(Axis::uniform(0, 1, nx), Axis::uniform(0, 1, 3), Axis::uniform(0, 1, 2));
+    Field a(g, 1), b(g, 1);
+    double expected = 0;
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < nx; ++i) {
+          a(i, j, k) = i + 10 * j + 100 * k;
+          b(i, j, k) = 1 + (i % 3);
+          expected += a(i, j, k) * b(i, j, k);
+        }
+    EXPECT_EQ(dot(a, b), expected) << "nx = " << nx;
+  }
+}
+
 TEST(FaceCoefficients, MaskZeroesEveryFaceOfSolidCells) {
   const StretchedGrid g(Axis::uniform(0, 1, 4), Axis::uniform(0, 1, 4), Axis::uniform(0, 1, 4));
   FaceCoefficients beta(g, 1.0);
