@@ -55,6 +55,11 @@ def dfg_grid_flags(name):
     flags = f"--cells-per-diameter {m[1]} --core-cells-per-diameter {m[2] or 0}"
     return flags + (f" --wall-stretch-ratio {m[3]}" if m[3] else "")
 
+
+def repeated_flags(**paths):
+    """fin-cfd-bench's file arguments: repeated_flags(dfg=[a, b]) -> '--dfg a --dfg b'."""
+    return " ".join(f"--{flag} {p}" for flag, ps in paths.items() for p in ps)
+
 # The peer's meshes: 48, and 32 to show that the next coarser one misses (St -1.1 %); 24 misses by
 # more (St -2.4 %) and adds nothing to the comparison.
 DFG_BENCH_OPENFOAM = config["bench"]["dfg2d2_openfoam"] or [32, 48]
@@ -194,8 +199,7 @@ if have("fin-cfd-bench"):
             sizes=" ".join(f"-n {n}" for n in ([16, 24, 32] if COARSE else [64, 96, 128])),
             steps="--warmup 1 --steps 2" if COARSE else "--warmup 2 --steps 5",
             poisson=lambda wildcards, input: f"--poisson {input.poisson}" if input.poisson else "",
-            dfg=lambda wildcards, input: " ".join(f"--dfg {p}" for p in input.dfg)
-                + "".join(f" --openfoam {p}" for p in input.openfoam),
+            dfg=lambda wildcards, input: repeated_flags(dfg=input.dfg, openfoam=input.openfoam),
         log:
             "results/logs/bench/cfd.log",
         threads: THREADS
@@ -221,10 +225,8 @@ if have("fin-cfd-bench") and have("fin-cfd") and not COARSE:
         output:
             json="results/bench/cfd_dfg_studies.json",
         params:
-            dfg=lambda wildcards, input: " ".join(f"--dfg {p}" for p in input.dfg)
-                + "".join(f" --openfoam {p}" for p in input.openfoam)
-                + "".join(f" --dfg2d3 {p}" for p in input.dfg3)
-                + "".join(f" --openfoam2d3 {p}" for p in input.openfoam3),
+            dfg=lambda wildcards, input: repeated_flags(dfg=input.dfg, openfoam=input.openfoam,
+                                                        dfg2d3=input.dfg3, openfoam2d3=input.openfoam3),
         log:
             "results/logs/bench/cfd_dfg_studies.log",
         threads: THREADS
