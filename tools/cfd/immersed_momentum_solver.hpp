@@ -45,7 +45,16 @@ class ImmersedMomentumSolver {
                     Field& x, Field& out);
 
  private:
+  // scale = every row's Helmholtz diagonal; solid = the Field indices of the solid cells.
+  static void row_scales(const PoissonOperator& op, const GhostCellSet& ghosts, double mass, double stiffness,
+                         Field& scale, std::vector<std::ptrdiff_t>& solid);
+  // apply() with the scales and solid cells of row_scales().
+  static void apply_rows(const HelmholtzSolver& helmholtz, const GhostCellSet& ghosts, double mass, double stiffness,
+                         const Field& scale, const std::vector<std::ptrdiff_t>& solid, Field& x, Field& out);
+
   Field r_, r0_, p_, v_, s_, t_, ph_, sh_;
+  Field scale_;                       // row scales of the current solve
+  std::vector<std::ptrdiff_t> solid_;  // its solid cells
 };
 
 }  // namespace finverse::cfd
