@@ -71,14 +71,26 @@ TEST(ImmersedBoundary, DirichletGhostValuesReproduceALinearField) {
   for (const GhostCell& gc : set.ghosts()) EXPECT_NEAR(q(gc.i, gc.j, 0), lin(g.xc(gc.i), g.yc(gc.j)), 1e-11);
 }
 
-TEST(ImmersedBoundary, MomentumSystemWithGhostRowsConverges) {
-  const Polygon body = Polygon::circle(0.2, 0.2, 0.05, 128);
-  const StretchedGrid g = test_grid(false);
-  const GhostCellSet set(g, body);
+// A circle's ghost-cell momentum system on the test grid: the Helmholtz rows and the solver.
+struct MomentumSystem {
+  StretchedGrid g;
+  GhostCellSet set;
   HelmholtzSolver hs;
-  hs.setup(g, FaceCoefficients(g, 1.0), BoundaryConditions::all(BcType::Dirichlet));
   ImmersedMomentumSolver ms;
-  ms.setup(g);
+
+  explicit MomentumSystem(bool stretched)
+      : g(test_grid(stretched)), set(g, Polygon::circle(0.2, 0.2, 0.05, 128)) {
+    hs.setup(g, FaceCoefficients(g, 1.0), BoundaryConditions::all(BcType::Dirichlet));
+    ms.setup(g);
+  }
+};
+
+TEST(ImmersedBoundary, MomentumSystemWithGhostRowsConverges) {
+  MomentumSystem sys(false);
+  const StretchedGrid& g = sys.g;
+  const GhostCellSet& set = sys.set;
+  const HelmholtzSolver& hs = sys.hs;
+  ImmersedMomentumSolver& ms = sys.ms;
   // Viscous-dominated: nu dt / h^2 = 2, far from the mass-dominated regime.
   const double h = 0.6 / 96, mass = 1.0, stiffness = 2.0 * h * h / 2;
   Field b(g), x(g);
@@ -96,13 +108,11 @@ TEST(ImmersedBoundary, MomentumSystemWithGhostRowsConverges) {
 TEST(ImmersedBoundary, MomentumSolvePinsSolidCellsAndMatchesItsOperator) {
   // The solve keeps the rows' scales and solid cells of its own; the public operator must give the
   // residual it reports, and the solid rows must pin u to the body's value.
-  const Polygon body = Polygon::circle(0.2, 0.2, 0.05, 128);
-  const StretchedGrid g = test_grid(true);
-  const GhostCellSet set(g, body);
-  HelmholtzSolver hs;
-  hs.setup(g, FaceCoefficients(g, 1.0), BoundaryConditions::all(BcType::Dirichlet));
-  ImmersedMomentumSolver ms;
-  ms.setup(g);
+  MomentumSystem sys(true);
+  const StretchedGrid& g = sys.g;
+  const GhostCellSet& set = sys.set;
+  const HelmholtzSolver& hs = sys.hs;
+  ImmersedMomentumSolver& ms = sys.ms;
   const double mass = 1.0, stiffness = 1e-5;
   Field b(g), x(g), mx(g);
   for (int j = 0; j < g.ny(); ++j)
