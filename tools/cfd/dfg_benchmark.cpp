@@ -132,7 +132,7 @@ DfgResult run_dfg(const DfgSetup& ds) {
   const Polygon body = Polygon::circle(kXc, kYc, 0.5 * kD, ds.polygon_vertices);
   solver.immerse(body);
   solver.initialise({});
-  const SurfaceTraction traction(grid, *solver.immersed(), body);
+  const SurfaceTraction traction(grid, *solver.immersed(), body, ds.wall_extrapolation);
   const auto& cvb = ds.control_volume;
   const ControlVolumeForce control_volume(grid, *solver.immersed(), cvb[0], cvb[1], cvb[2], cvb[3]);
   std::vector<ControlVolumeSample> cv;

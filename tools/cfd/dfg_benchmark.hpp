@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "cfd/flow_solver.hpp"
+#include "cfd/surface_traction.hpp"
 
 namespace finverse::cfd {
 
@@ -52,6 +53,9 @@ struct DfgSetup {
   // The pressure ghosts carry the wall's momentum balance dp/dn = -nu d(omega)/ds
   // (FlowOptions::viscous_wall_pressure); false: dp/dn = 0, to compare.
   bool viscous_wall_pressure = true;
+  // How the surface traction and dp reach the wall from their probes (surface_traction.hpp);
+  // Quadratic, to compare.
+  WallExtrapolation wall_extrapolation = WallExtrapolation::Linear;
   // Control volume [x0, x1] x [y0, y1] of the independent momentum-balance force
   // (control_volume_force.hpp); two cells clear of the body, so the default needs N >= 8.
   std::array<double, 4> control_volume{0.11, 0.45, 0.11, 0.29};

@@ -6,8 +6,9 @@
 
 namespace finverse::cfd {
 
-SurfaceTraction::SurfaceTraction(const StretchedGrid& grid, const GhostCellSet& ghosts, const Polygon& body)
-    : grid_(grid), ghosts_(&ghosts), body_(body) {
+SurfaceTraction::SurfaceTraction(const StretchedGrid& grid, const GhostCellSet& ghosts, const Polygon& body,
+                                 WallExtrapolation extrapolation)
+    : grid_(grid), ghosts_(&ghosts), body_(body), extrapolation_(extrapolation) {
   const auto& v = body_.vertices();
   for (std::size_t e = 0; e < v.size(); ++e) {
     const auto& a = v[e];
@@ -38,7 +39,23 @@ SurfaceSample SurfaceTraction::sample(double x, double y, const SurfacePoint& s,
   o.velocity2 = ghosts_->stencil(p2, s, BoundaryCondition::Dirichlet);
   o.pressure1 = ghosts_->stencil(p1, s, BoundaryCondition::None);
   o.pressure2 = ghosts_->stencil(p2, s, BoundaryCondition::None);
+  if (extrapolation_ == WallExtrapolation::Quadratic) {
+    const std::array<double, 2> p3{x + 3 * o.probe * s.normal[0], y + 3 * o.probe * s.normal[1]};
+    o.velocity3 = ghosts_->stencil(p3, s, BoundaryCondition::Dirichlet);
+    o.pressure3 = ghosts_->stencil(p3, s, BoundaryCondition::None);
+  }
   return o;
+}
+
+// The polynomial through the wall and the probes, evaluated (differentiated) at the wall.
+double SurfaceTraction::wall_value(double q1, double q2, double q3) const {
+  if (extrapolation_ == WallExtrapolation::Linear) return 2 * q1 - q2;
+  return 3 * q1 - 3 * q2 + q3;
+}
+
+double SurfaceTraction::wall_derivative(double w1, double w2, double w3, double d) const {
+  if (extrapolation_ == WallExtrapolation::Linear) return (4 * w1 - w2) / (2 * d);
+  return (18 * w1 - 9 * w2 + 2 * w3) / (6 * d);
 }
 
 SurfaceLoads SurfaceTraction::evaluate(const Field& u, const Field& v, const Field& p, double nu, double rho) const {
@@ -53,16 +70,27 @@ SurfaceLoads SurfaceTraction::evaluate(const Field& u, const Field& v, const Fie
   SurfaceLoads L;
   L.pressure.resize(samples_.size());
   L.traction.resize(samples_.size());
+  const bool third = extrapolation_ == WallExtrapolation::Quadratic;
   // Serial and in sample order: the sums are bitwise reproducible.
   for (std::size_t n = 0; n < samples_.size(); ++n) {
     const SurfaceSample& s = samples_[n];
-    const double pw = rho * (2 * s.pressure1.apply(p, 0.0) - s.pressure2.apply(p, 0.0));
+    const double pw =
+        rho * wall_value(s.pressure1.apply(p, 0.0), s.pressure2.apply(p, 0.0), third ? s.pressure3.apply(p, 0.0) : 0.0);
     const double mu = rho * nu;
     const auto uw = body(s.point[0], s.point[1]);
     const auto b1 = body(s.point[0] + s.probe * s.normal[0], s.point[1] + s.probe * s.normal[1]);
     const auto b2 = body(s.point[0] + 2 * s.probe * s.normal[0], s.point[1] + 2 * s.probe * s.normal[1]);
-    const double dudn = (4 * (s.velocity1.apply(u, uw[0]) - b1[0]) - (s.velocity2.apply(u, uw[0]) - b2[0])) / (2 * s.probe);
-    const double dvdn = (4 * (s.velocity1.apply(v, uw[1]) - b1[1]) - (s.velocity2.apply(v, uw[1]) - b2[1])) / (2 * s.probe);
+    const auto b3 = third ? body(s.point[0] + 3 * s.probe * s.normal[0], s.point[1] + 3 * s.probe * s.normal[1])
+                          : std::array<double, 2>{0.0, 0.0};
+    // Velocity relative to the body's rigid field at each probe: zero on the wall.
+    const auto relative = [&](const Field& q, int c) {
+      const auto C = static_cast<std::size_t>(c);
+      return std::array<double, 3>{s.velocity1.apply(q, uw[C]) - b1[C], s.velocity2.apply(q, uw[C]) - b2[C],
+                                   third ? s.velocity3.apply(q, uw[C]) - b3[C] : 0.0};
+    };
+    const auto wu = relative(u, 0), wv = relative(v, 1);
+    const double dudn = wall_derivative(wu[0], wu[1], wu[2], s.probe);
+    const double dvdn = wall_derivative(wv[0], wv[1], wv[2], s.probe);
     const std::array<double, 2> tp{-pw * s.normal[0], -pw * s.normal[1]}, tv{mu * dudn, mu * dvdn};
     L.pressure[n] = pw;
     L.traction[n] = {tp[0] + tv[0], tp[1] + tv[1]};
@@ -80,7 +108,8 @@ SurfaceLoads SurfaceTraction::evaluate(const Field& u, const Field& v, const Fie
 double SurfaceTraction::wall_pressure(const Field& p, double x, double y) const {
   const SurfacePoint s = body_.closest(x, y);
   const SurfaceSample o = sample(s.point[0], s.point[1], s, 0.0);
-  return 2 * o.pressure1.apply(p, 0.0) - o.pressure2.apply(p, 0.0);
+  return wall_value(o.pressure1.apply(p, 0.0), o.pressure2.apply(p, 0.0),
+                    extrapolation_ == WallExtrapolation::Quadratic ? o.pressure3.apply(p, 0.0) : 0.0);
 }
 
 }  // namespace finverse::cfd

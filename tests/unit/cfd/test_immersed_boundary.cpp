@@ -5,6 +5,7 @@
 // conservation, mirror symmetry).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -152,6 +153,67 @@ TEST(ImmersedBoundary, ForceInAUniformPressureGradientIsTheBuoyancyIntegral) {
     EXPECT_NEAR(L.force[1], -rho * gy * body.area(), 1e-9 * rho * body.area());
     EXPECT_EQ(L.viscous_force[0], 0.0);
     EXPECT_NEAR(tr.wall_pressure(p, 0.15, 0.2), 5.0 + gx * 0.15 + gy * 0.2, 1e-12);
+  }
+}
+
+TEST(ImmersedBoundary, QuadraticWallExtrapolationIsExactForAFieldQuadraticAlongTheNormal) {
+  // An octagon in p = u = v = x y: bilinear, so the probes' interpolation is exact, and along a
+  // face normal n quadratic, p(t) = p_w + g t + c t^2 with c = n_x n_y (+-1/2 on the four faces at
+  // 45 degrees). The linear extrapolation misses p_w by -2 c d^2; the quadratic one and its
+  // derivative are exact.
+  std::vector<std::array<double, 2>> corners;
+  for (int k = 0; k < 8; ++k) {
+    const double t = std::numbers::pi * (0.125 + 0.25 * k);
+    corners.push_back({0.3 + 0.1 * std::cos(t), 0.2 + 0.1 * std::sin(t)});
+  }
+  const Polygon body(corners);
+  const auto near_corner = [&](const SurfaceSample& s) {
+    for (const auto& c : corners)
+      if (std::hypot(s.point[0] - c[0], s.point[1] - c[1]) < 4 * s.probe) return true;  // stencils see the next face
+    return false;
+  };
+  for (bool stretched : {false, true}) {
+    const StretchedGrid g = test_grid(stretched);
+    const GhostCellSet set(g, body);
+    const SurfaceTraction linear(g, set, body), quadratic(g, set, body, WallExtrapolation::Quadratic);
+    Field q(g), zero(g);
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i) q(i, j, 0) = g.xc(i) * g.yc(j);
+    const double rho = 2.0, nu = 1e-3;
+    const SurfaceLoads Ll = linear.evaluate(zero, zero, q, nu, rho), Lq = quadratic.evaluate(zero, zero, q, nu, rho);
+    int checked = 0, diagonal = 0;
+    for (std::size_t n = 0; n < quadratic.samples().size(); ++n) {
+      const SurfaceSample& s = quadratic.samples()[n];
+      if (near_corner(s)) continue;
+      const double x = s.point[0], y = s.point[1], d = s.probe, c = s.normal[0] * s.normal[1];
+      EXPECT_NEAR(Lq.pressure[n], rho * x * y, 1e-12);
+      EXPECT_NEAR(Ll.pressure[n], rho * (x * y - 2 * c * d * d), 1e-12);
+      ++checked;
+      if (std::abs(c) > 0.49) {
+        EXPECT_GT(std::abs(Ll.pressure[n] - rho * x * y), 0.9 * rho * d * d);
+        ++diagonal;
+      }
+    }
+    EXPECT_GT(checked, 40);
+    EXPECT_GT(diagonal, 20);
+    const auto& m = corners[0];  // the middle of the face between the first two corners
+    const double xm = 0.5 * (m[0] + corners[1][0]), ym = 0.5 * (m[1] + corners[1][1]);
+    EXPECT_NEAR(quadratic.wall_pressure(q, xm, ym), xm * ym, 1e-12);
+    // The wall derivative, with the wall datum x_s y_s of one sample (a body moving at that
+    // velocity): w = x y - x_s y_s vanishes there and dw/dn = y_s n_x + x_s n_y.
+    int derivatives = 0;
+    for (std::size_t n = 0; n < quadratic.samples().size(); n += 7) {
+      const SurfaceSample& s = quadratic.samples()[n];
+      if (near_corner(s)) continue;
+      const double x = s.point[0], y = s.point[1];
+      const auto wall = [&](double, double) { return std::array<double, 2>{x * y, x * y}; };
+      const SurfaceLoads W = quadratic.evaluate(q, q, zero, nu, rho, wall);
+      const double dwdn = y * s.normal[0] + x * s.normal[1];
+      EXPECT_NEAR(W.traction[n][0], rho * nu * dwdn, 1e-12);
+      EXPECT_NEAR(W.traction[n][1], rho * nu * dwdn, 1e-12);
+      ++derivatives;
+    }
+    EXPECT_GT(derivatives, 5);
   }
 }
 
