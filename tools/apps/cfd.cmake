@@ -1,6 +1,6 @@
 # CFD executables; included from tools/apps/CMakeLists.txt.
 add_executable(fin-poisson-bench ${CMAKE_CURRENT_LIST_DIR}/fin-poisson-bench.cpp)
-target_link_libraries(fin-poisson-bench PRIVATE finverse_cfd finverse_core finverse_warnings)
+target_link_libraries(fin-poisson-bench PRIVATE finverse_cfd_validation finverse_cfd finverse_core finverse_warnings)
 
 # The hypre peer of the Poisson benchmark: only where the peers are installed
 # (tools/scripts/install-deps.sh --peers); tests never need it.
@@ -8,18 +8,18 @@ find_package(MPI COMPONENTS C)
 find_path(HYPRE_INCLUDE_DIR HYPRE_struct_ls.h PATH_SUFFIXES hypre)
 find_library(HYPRE_LIBRARY HYPRE)
 if(MPI_C_FOUND AND HYPRE_INCLUDE_DIR AND HYPRE_LIBRARY)
-  add_executable(fin-poisson-hypre ${CMAKE_CURRENT_LIST_DIR}/fin_poisson_hypre.cpp)
+  add_executable(fin-poisson-hypre ${CMAKE_CURRENT_LIST_DIR}/fin-poisson-hypre.cpp)
   target_include_directories(fin-poisson-hypre SYSTEM PRIVATE ${HYPRE_INCLUDE_DIR})
   # The C API only: keep Open MPI's deprecated C++ bindings out.
   target_compile_definitions(fin-poisson-hypre PRIVATE OMPI_SKIP_MPICXX MPICH_SKIP_MPICXX)
-  target_link_libraries(fin-poisson-hypre PRIVATE finverse_cfd ${HYPRE_LIBRARY} MPI::MPI_C CLI11::CLI11
+  target_link_libraries(fin-poisson-hypre PRIVATE finverse_cfd_validation finverse_cfd ${HYPRE_LIBRARY} MPI::MPI_C CLI11::CLI11
                         nlohmann_json::nlohmann_json finverse_warnings)
 endif()
 
 # The Navier-Stokes solver's validation cases (rules/cfd.smk).
-add_executable(fin-cfd ${CMAKE_CURRENT_LIST_DIR}/fin_cfd.cpp ${CMAKE_CURRENT_LIST_DIR}/fin_cfd_fin.cpp)
-target_link_libraries(fin-cfd PRIVATE finverse_cfd finverse_cfd_io finverse_core finverse_vtkio finverse_warnings)
+add_executable(fin-cfd ${CMAKE_CURRENT_LIST_DIR}/fin-cfd.cpp ${CMAKE_CURRENT_LIST_DIR}/fin_cfd_fin.cpp)
+target_link_libraries(fin-cfd PRIVATE finverse_cfd_validation finverse_cfd finverse_cfd_io finverse_core finverse_vtkio finverse_warnings)
 
 # The flow solver's benchmark file results/bench/cfd.json (rules/bench.smk).
-add_executable(fin-cfd-bench ${CMAKE_CURRENT_LIST_DIR}/fin_cfd_bench.cpp)
-target_link_libraries(fin-cfd-bench PRIVATE finverse_cfd finverse_core finverse_warnings)
+add_executable(fin-cfd-bench ${CMAKE_CURRENT_LIST_DIR}/fin-cfd-bench.cpp)
+target_link_libraries(fin-cfd-bench PRIVATE finverse_cfd_validation finverse_cfd finverse_core finverse_warnings)

@@ -13,8 +13,8 @@
 #include <limits>
 #include <string>
 
-#include "cfd/poisson_bench_problem.hpp"
-#include "cfd/poisson_solver.hpp"
+#include "cfd/validation/poisson_bench_problem.hpp"
+#include "cfd/poisson/poisson_solver.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/summary.hpp"

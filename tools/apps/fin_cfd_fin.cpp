@@ -12,7 +12,7 @@
 #include "cfd/io/fin_flow_case.hpp"
 #include "cfd/io/fin_input.hpp"
 #include "cfd/io/loads_record.hpp"
-#include "cfd/io/thin_plate_case.hpp"
+#include "cfd/validation/thin_plate_case.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"

@@ -1,5 +1,5 @@
 // fin-cfd's fin subcommands (issue 4; DESIGN.md sections 1, 4, 5.1), kept apart from the solver's
-// validation cases in fin_cfd.cpp:
+// validation cases in fin-cfd.cpp:
 //
 //   fin-cfd fin --mesh mesh.h5 --motion motion.h5 --out loads.h5 [--reynolds 1000] [--periods 2] ...
 //       prescribed-motion flow around the fin's closed thin body; loads.h5 per the contract;

@@ -6,11 +6,11 @@
 #include <functional>
 #include <random>
 
-#include "cfd/boundary.hpp"
-#include "cfd/face_coefficients.hpp"
-#include "cfd/field.hpp"
-#include "cfd/grid.hpp"
-#include "cfd/poisson_solver.hpp"
+#include "cfd/poisson/poisson_boundary.hpp"
+#include "cfd/poisson/face_coefficients.hpp"
+#include "cfd/grid/field.hpp"
+#include "cfd/grid/stretched_grid.hpp"
+#include "cfd/poisson/poisson_solver.hpp"
 
 namespace finverse::cfd::test {
 

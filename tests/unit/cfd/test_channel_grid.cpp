@@ -1,4 +1,4 @@
-// The grid of the cylinder-in-a-channel benchmarks (channel_benchmark.hpp, channel_grid; the DFG
+// The grid of the cylinder-in-a-channel benchmarks (cylinder_channel.hpp, channel_grid; the DFG
 // driver's dfg_grid): the core and box hold their spacings, the counts allow three multigrid
 // halvings, the uniform box around the cylinder is symmetric about its centre, and
 // wall_stretch_ratio sets the growth between the box and the channel walls on its own: 1 keeps the
@@ -11,8 +11,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "cfd/channel_benchmark.hpp"
-#include "cfd/dfg_benchmark.hpp"
+#include "cfd/validation/cylinder_channel.hpp"
+#include "cfd/validation/dfg_benchmark.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {

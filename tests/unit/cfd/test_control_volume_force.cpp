@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "cfd/control_volume_force.hpp"
-#include "cfd/surface_shapes.hpp"
+#include "cfd/forces/control_volume_force.hpp"
+#include "cfd/immersed/surface_shapes.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <vector>
 
-#include "cfd/cut_faces.hpp"
+#include "cfd/immersed/cut_faces.hpp"
 
 namespace finverse::cfd {
 namespace {

@@ -9,8 +9,8 @@
 #include <map>
 #include <set>
 
-#include "cfd/cut_faces.hpp"
-#include "cfd/surface_shapes.hpp"
+#include "cfd/immersed/cut_faces.hpp"
+#include "cfd/immersed/surface_shapes.hpp"
 
 namespace finverse::cfd {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "cfd/dfg_benchmark.hpp"
+#include "cfd/validation/dfg_benchmark.hpp"
 
 namespace finverse::cfd {
 namespace {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "cfd/dfg_benchmark.hpp"
+#include "cfd/validation/dfg_benchmark.hpp"
 
 namespace finverse::cfd {
 namespace {

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "cfd/io/fin_flow_case.hpp"
-#include "cfd/io/thin_plate_case.hpp"
+#include "cfd/validation/thin_plate_case.hpp"
 #include "tiny_fin_case.hpp"
 #include "core/error.hpp"
 

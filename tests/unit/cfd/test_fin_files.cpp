@@ -8,7 +8,7 @@
 
 #include "cfd/io/fin_input.hpp"
 #include "cfd/io/loads_record.hpp"
-#include "cfd/io/thin_plate_case.hpp"
+#include "cfd/validation/thin_plate_case.hpp"
 #include "core/error.hpp"
 #include "core/stage_files.hpp"
 #include "../scratch_dir.hpp"

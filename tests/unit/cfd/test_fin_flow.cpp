@@ -8,7 +8,7 @@
 
 #include "cfd/io/fin_flow_case.hpp"
 #include "cfd/io/loads_record.hpp"
-#include "cfd/io/thin_plate_case.hpp"
+#include "cfd/validation/thin_plate_case.hpp"
 #include "tiny_fin_case.hpp"
 #include "core/error.hpp"
 

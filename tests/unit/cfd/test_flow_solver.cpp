@@ -12,9 +12,9 @@
 #include <numbers>
 #include <string>
 
-#include "cfd/checkpoint.hpp"
-#include "cfd/flow_solver.hpp"
-#include "cfd/taylor_green.hpp"
+#include "cfd/io/flow_checkpoint.hpp"
+#include "cfd/flow/flow_solver.hpp"
+#include "cfd/validation/taylor_green.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "cfd/ghost_cells.hpp"
-#include "cfd/immersed_polygon.hpp"
+#include "cfd/immersed/ghost_cells.hpp"
+#include "cfd/immersed/immersed_polygon.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "cfd/axis.hpp"
-#include "cfd/face_coefficients.hpp"
-#include "cfd/field.hpp"
-#include "cfd/grid.hpp"
+#include "cfd/grid/stretched_axis.hpp"
+#include "cfd/poisson/face_coefficients.hpp"
+#include "cfd/grid/field.hpp"
+#include "cfd/grid/stretched_grid.hpp"
 
 namespace finverse::cfd {
 namespace {

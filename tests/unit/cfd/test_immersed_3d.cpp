@@ -12,10 +12,10 @@
 #include <numbers>
 #include <vector>
 
-#include "cfd/flow_solver.hpp"
-#include "cfd/ghost_cells.hpp"
-#include "cfd/surface_shapes.hpp"
-#include "cfd/surface_traction_3d.hpp"
+#include "cfd/flow/flow_solver.hpp"
+#include "cfd/immersed/ghost_cells.hpp"
+#include "cfd/immersed/surface_shapes.hpp"
+#include "cfd/forces/surface_traction_3d.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {

@@ -9,11 +9,11 @@
 #include <cmath>
 #include <numbers>
 
-#include "cfd/flow_solver.hpp"
-#include "cfd/ghost_cells.hpp"
-#include "cfd/immersed_momentum_solver.hpp"
-#include "cfd/immersed_polygon.hpp"
-#include "cfd/surface_traction.hpp"
+#include "cfd/flow/flow_solver.hpp"
+#include "cfd/immersed/ghost_cells.hpp"
+#include "cfd/immersed/immersed_momentum_solver.hpp"
+#include "cfd/immersed/immersed_polygon.hpp"
+#include "cfd/forces/surface_traction.hpp"
 
 namespace finverse::cfd {
 namespace {

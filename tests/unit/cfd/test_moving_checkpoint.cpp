@@ -1,4 +1,4 @@
-// Checkpoint and restart of the flow solver with a moving immersed body (checkpoint.hpp,
+// Checkpoint and restart of the flow solver with a moving immersed body (flow_checkpoint.hpp,
 // FlowSolver::state/restore): a 2-D rigid cylinder heaving and pitching across a box, and a 3-D
 // triangulated sphere moving through a periodic box. Stepping 2N times and stepping N times, writing
 // a checkpoint, reading it into a fresh solver and stepping N more give bitwise the same state and
@@ -15,10 +15,10 @@
 #include <numbers>
 #include <string>
 
-#include "cfd/checkpoint.hpp"
-#include "cfd/flow_solver.hpp"
-#include "cfd/surface_shapes.hpp"
-#include "cfd/surface_traction.hpp"
+#include "cfd/io/flow_checkpoint.hpp"
+#include "cfd/flow/flow_solver.hpp"
+#include "cfd/immersed/surface_shapes.hpp"
+#include "cfd/forces/surface_traction.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {

@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <cstring>
 
-#include "cfd/coarsening.hpp"
-#include "cfd/dfg_benchmark.hpp"
-#include "cfd/poisson_solver.hpp"
+#include "cfd/poisson/coarsening.hpp"
+#include "cfd/validation/dfg_benchmark.hpp"
+#include "cfd/poisson/poisson_solver.hpp"
 #include "support.hpp"
 
 namespace finverse::cfd {

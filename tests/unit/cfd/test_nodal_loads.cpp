@@ -7,8 +7,8 @@
 #include <random>
 
 #include "cfd/io/fin_input.hpp"
-#include "cfd/io/thin_plate_case.hpp"
-#include "cfd/nodal_loads.hpp"
+#include "cfd/validation/thin_plate_case.hpp"
+#include "cfd/forces/nodal_loads.hpp"
 
 namespace finverse::cfd {
 namespace {

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "cfd/poisson_operator.hpp"
-#include "cfd/poisson_solver.hpp"
+#include "cfd/poisson/poisson_operator.hpp"
+#include "cfd/poisson/poisson_solver.hpp"
 #include "support.hpp"
 
 namespace finverse::cfd {

@@ -8,8 +8,8 @@
 
 #include <cmath>
 
-#include "cfd/poisson_operator.hpp"
-#include "cfd/smoother.hpp"
+#include "cfd/poisson/poisson_operator.hpp"
+#include "cfd/poisson/smoother.hpp"
 #include "support.hpp"
 
 namespace finverse::cfd {

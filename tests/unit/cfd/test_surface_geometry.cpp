@@ -7,8 +7,8 @@
 #include <numbers>
 #include <random>
 
-#include "cfd/surface_geometry.hpp"
-#include "cfd/surface_shapes.hpp"
+#include "cfd/immersed/surface_geometry.hpp"
+#include "cfd/immersed/surface_shapes.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {

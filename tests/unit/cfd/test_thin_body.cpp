@@ -6,10 +6,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "cfd/fin_surface_motion.hpp"
+#include "cfd/immersed/fin_surface_motion.hpp"
 #include "cfd/io/fin_input.hpp"
-#include "cfd/io/thin_plate_case.hpp"
-#include "cfd/thin_body.hpp"
+#include "cfd/validation/thin_plate_case.hpp"
+#include "cfd/immersed/thin_body.hpp"
 #include "core/error.hpp"
 #include "core/stage_files.hpp"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "cfd/time_spline.hpp"
+#include "cfd/immersed/time_spline.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {

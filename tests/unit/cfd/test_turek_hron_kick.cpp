@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "cfd/turek_hron_cfd.hpp"
+#include "cfd/validation/turek_hron_cfd.hpp"
 
 namespace finverse::cfd {
 namespace {

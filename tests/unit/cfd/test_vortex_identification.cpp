@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "cfd/vortex_identification.hpp"
+#include "cfd/flow/vortex_identification.hpp"
 
 using namespace finverse::cfd;
 

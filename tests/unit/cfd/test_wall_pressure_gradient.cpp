@@ -6,12 +6,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cfd/field.hpp"
-#include "cfd/ghost_cells.hpp"
-#include "cfd/grid.hpp"
-#include "cfd/surface_shapes.hpp"
-#include "cfd/wall_pressure_gradient.hpp"
-#include "cfd/wall_pressure_gradient_3d.hpp"
+#include "cfd/grid/field.hpp"
+#include "cfd/immersed/ghost_cells.hpp"
+#include "cfd/grid/stretched_grid.hpp"
+#include "cfd/immersed/surface_shapes.hpp"
+#include "cfd/forces/wall_pressure_gradient.hpp"
+#include "cfd/forces/wall_pressure_gradient_3d.hpp"
 
 namespace finverse::cfd {
 namespace {

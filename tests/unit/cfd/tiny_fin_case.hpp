@@ -5,7 +5,7 @@
 
 #include "cfd/io/fin_flow_case.hpp"
 #include "cfd/io/fin_input.hpp"
-#include "cfd/io/thin_plate_case.hpp"
+#include "cfd/validation/thin_plate_case.hpp"
 
 namespace finverse::cfd::io::test {
 

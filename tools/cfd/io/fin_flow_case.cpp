@@ -9,7 +9,7 @@
 
 #include "cfd/io/fin_flow_checkpoint.hpp"
 #include "cfd/io/loads_record.hpp"
-#include "cfd/nodal_loads.hpp"
+#include "cfd/forces/nodal_loads.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd::io {

@@ -26,9 +26,9 @@
 #include <functional>
 #include <string>
 
-#include "cfd/grid.hpp"
+#include "cfd/grid/stretched_grid.hpp"
 #include "cfd/io/fin_input.hpp"
-#include "cfd/flow_solver.hpp"
+#include "cfd/flow/flow_solver.hpp"
 #include "core/stage_files.hpp"
 
 namespace finverse::cfd::io {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "cfd/checkpoint.hpp"
+#include "cfd/io/flow_checkpoint.hpp"
 #include "core/error.hpp"
 #include "core/sha256.hpp"
 

@@ -1,6 +1,6 @@
 // Checkpoints of fin-cfd's fin run (issue 4: "checkpoints every N steps, and a restart from one
 // reproduces the uninterrupted run exactly"; DESIGN.md section 5.1): the flow solver's state
-// (checkpoint.hpp; with the moving surface it includes the body's solid-cell velocities, and the
+// (flow_checkpoint.hpp; with the moving surface it includes the body's solid-cell velocities, and the
 // geometry is re-placed at the checkpoint's time), the run's loop counters and the loads record
 // so far, so that a restarted run writes the same loads.h5 datasets bit for bit.
 //
@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cfd/flow_solver.hpp"
+#include "cfd/flow/flow_solver.hpp"
 #include "cfd/io/fin_flow_case.hpp"
 #include "cfd/io/fin_input.hpp"
 #include "cfd/io/loads_record.hpp"

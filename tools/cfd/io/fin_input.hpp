@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "cfd/fin_surface_motion.hpp"
+#include "cfd/immersed/fin_surface_motion.hpp"
 #include "core/stage_files.hpp"
 
 namespace finverse::cfd::io {

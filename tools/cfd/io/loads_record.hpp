@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "cfd/thin_body.hpp"
+#include "cfd/immersed/thin_body.hpp"
 #include "core/stage_files.hpp"
 
 namespace finverse::cfd::io {
