@@ -326,18 +326,13 @@ def main():
     ap.add_argument("--t-end", type=float, default=10.0)
     ap.add_argument("--window", type=float, default=3.0, help="evaluate CD_max, CL_max, St over the last WINDOW s")
     ap.add_argument("--dt", type=float, default=None, help="time step (default: from --courant)")
-    # pimpleFoam here (PISO: one outer iteration, two pressure correctors) carries a splitting error
-    # that the 2D-2 lift feels strongly, first order in the step: at 48 cells per quarter CL_max is
-    # 1.00642, 0.98254 and 0.97076 at Courant 0.5, 0.25 and 0.125 (measured, t_end 7 for the small
-    # steps), so the peer's step is part of its accuracy.
+    # PISO's splitting error makes the 2D-2 lift first order in the step, so the peer's step is part
+    # of its accuracy (docs/studies/dfg_2d2_lift_maximum.md).
     ap.add_argument("--courant", type=float, default=0.5,
                     help="time step: Courant number of the cylinder's cells at 1.5 Um (default 0.5)")
     # PIMPLE: several outer iterations per step re-solve the momentum equation with the corrected
-    # convecting flux, which PISO (1, the default) lags by one step. With 3 the lift maximum is
-    # converged in the step at Courant 0.5 (32 cells: 0.92609 at 0.5, 0.92807 at 0.25, t_end 7;
-    # PISO's 0.99471 / 0.96205 extrapolate to 0.929): PISO's first-order error is the splitting.
-    # A step costs about 2.6 times PISO's. At 40 and 48 cells (Courant 0.5): 0.94618 and 0.95861,
-    # still rising with the mesh (observed order 1.4 from 32 / 40 / 48).
+    # convecting flux, which PISO (1, the default) lags by one step; with 3 the 2D-2 lift maximum is
+    # converged in the step at Courant 0.5 (docs/studies/dfg_2d2_lift_maximum.md).
     ap.add_argument("--outer-correctors", type=int, default=1,
                     help="PIMPLE outer iterations per time step (default 1: PISO)")
     ap.add_argument("--ranks", type=int, default=2)

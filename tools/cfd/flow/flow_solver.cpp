@@ -162,14 +162,9 @@ void FlowSolver::index_body_faces() {
 // A face between a fluid cell and a body cell of a moving triangulated body with the cut-cell
 // balance: its stored velocity is the mean over the face, the fluid part (aperture alpha) moving
 // with the fluid cell it opens into and the solid part with the wall, alpha u_fluid + (1 - alpha)
-// u_B(face centre). Interpolating between the fluid cell and the ghost cell instead (as the
-// staircase balance does for its closed faces) lets the ghost value, a reflection that carries the
-// no-slip condition of the momentum equations, into the continuity constraint of the open part:
-// ghost values follow their image points' fluid values, the projection answers the ghost values,
-// and on a thin deforming body this loop grew (measured on fin-mesh's default fin, two cells
-// thick, 2.2 million cells: CFL 2.5 at step 17 and 20 at step 25, a jet running along the span one
-// cell per step; with the fluid value, CFL <= 0.56 after the start-up, as with the staircase
-// balance).
+// u_B(face centre). Not the interpolation with the ghost cell: that lets the ghost value, a
+// reflection carrying the no-slip condition, into the continuity constraint of the open part, and
+// on a thin deforming body that loop grew until the run blew up (docs/studies/cut_cell_balance.md).
 double FlowSolver::cut_body_face_velocity(const BodyFace& b, const Field& ud) const {
   const int d = b.d;
   int fl[3] = {b.i, b.j, b.k};

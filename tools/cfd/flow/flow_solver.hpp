@@ -41,9 +41,8 @@
 // N^n, the Crank-Nicolson half nu/2 L u^n) act on the state at t^n, so a ghost cell of the new
 // geometry that was a fluid or ghost cell at t^n keeps its u^n (its fluid value, or the ghost value
 // that imposed u_B at the body's t^n position). Re-imposing it for the t^{n+1} position moves the
-// wall by U dt within those terms, an O(U dt / h) error of the near-wall shear: a cylinder towed
-// through fluid at rest then had 8% (CFL 0.2) to 13% (CFL 0.4) less viscous drag than the same
-// cylinder fixed in a stream (8 cells per diameter, Re 20).
+// wall by U dt within those terms, an O(U dt / h) error of the near-wall shear (measured on a towed
+// cylinder: docs/studies/cut_cell_balance.md).
 // Cut-cell mass balance of a moving body (Seo & Mittal 2011, J. Comput. Phys. 230:7347; cut_faces.hpp):
 // with the staircase balance above, the fluid volume and the position of the body's mass source
 // jump by a cell whenever a cell is cleared or covered, and the pressure answers each jump with an
@@ -140,48 +139,21 @@ struct FlowOptions {
   bool cut_cell_continuity = true;
   // The same for a moving triangulated body (immerse(SurfaceMotion)). Off here, so the solver's own
   // tests keep the balance they were written for; fin-cfd fin turns it on (FinFlowOptions).
-  // Measured: a heaving sphere 9.6 cells across, largest second difference of the force 4x smaller.
   // Body cells that the surface splits into two fluid parts (split_cells: a plate thinner than the
-  // cell) stay closed, so that no balance joins the fluid on the two sides of the plate. Rim cells,
-  // whose fluid wraps around the edge, stay open (they were closed too before, as every body cell
-  // with fluid cells on opposite sides). The body faces keep the fluid cell's velocity on their fluid part
-  // (cut_body_face_velocity); with the ghost cell's in it the default fin blew up at step 25. Noise
-  // of the force coefficients (rms of their second difference over steps 11-100 / sqrt 6, i.e. the
-  // standard deviation of white noise), staircase / rims closed / rims open: default fin (2.2 M
-  // cells, Re 1000) lateral 0.65 / 0.47 / 0.29, thrust 0.26 / 0.24 / 0.11; a rigid plate 0.1 c
-  // thick pitching and heaving (fin-cfd thin_plate, Re 100, 20 cells per chord: two cells thick)
-  // lateral 1.85 / 1.79 / 0.92, thrust 0.78 / 0.81 / 0.34. The staircase's closed faces move with
-  // the wall (body_face_velocities); while they took the interpolation with the ghost cell, the
-  // staircase blew up on the default fin at step 229 (CFL 2.4: a fluid cell with ghost cells on
-  // three sides whose velocity flipped sign every step) and its noise was fin 1.02 / 0.20, plate
-  // 30.0 / 1.80. The plate's mean force coefficients over its first half period at 20 / 30 / 40
-  // cells per chord, lateral: rims closed 5.771 / 6.055, rims open 5.725 / 5.830 / 5.831 (the
-  // former staircase 6.007 / 6.161 / 5.900, today's 5.889 at 20); thrust: rims closed -1.302 /
-  // -1.117, rims open -1.244 / -1.203 / -1.110 (former staircase -1.390 / -1.096 / -1.147, today's
-  // -1.396 at 20): with open rims the lateral force has converged at 30 cells per chord and the
-  // thrust converges monotonically.
+  // cell) stay closed, so that no balance joins the fluid on the two sides of the plate; rim cells,
+  // whose fluid wraps around the edge, stay open. The body faces keep the fluid cell's velocity on
+  // their fluid part (cut_body_face_velocity), the staircase's closed faces the wall's
+  // (body_face_velocities). Why each, with the force noise measured: docs/studies/cut_cell_balance.md.
   bool cut_cell_continuity_3d = false;
   // The same for fixed 2-D bodies (immerse(Polygon), immerse(regions)). Off here, so the solver's
   // own tests and the immersed-Couette order study keep the balance they were validated with; the
   // channel benchmarks (DFG, Turek-Hron) turn it on (DfgSetup, TurekHronSetup::cut_cell_continuity).
-  // Measured (errors from the reference or the bound midpoints), staircase -> cut cells:
-  // DFG 2D-1 at D/48: CD +0.40% -> +0.53%, CL -1.75% -> +0.09%, dp -0.70% -> +1.02%; DFG 2D-2 (D/24
-  // box, D/48 core, walls 0.97): CD_max -0.53% -> +0.23%, CL_max -1.56% -> -1.31%, St +0.96% ->
-  // +0.80%; Turek-Hron CFD2 drag -0.35% -> +0.33%, lift +1.40% -> +1.36%; CFD3 (D/24 box, D/48
-  // core, t = 5 s) lift amplitude -18.5% -> -9.3%, drag mean -2.7% -> -1.0%.
+  // What it changes on each benchmark: docs/studies/cut_cell_balance.md.
   bool cut_cell_continuity_fixed = false;
   // Fixed 2-D bodies at rest: the pressure ghosts impose the wall's momentum balance
   // dp/dn = -nu d(omega)/ds (wall_pressure_gradient.hpp) instead of dp/dn = 0. Off here for the
-  // same reason as cut_cell_continuity_fixed; the channel benchmarks turn it on. Measured (errors
-  // from the bound midpoints or the reference), dp/dn = 0 -> momentum balance, cut cells:
-  // DFG 2D-1 at D/48: CD +0.53% -> -0.23%, CL +0.06% -> -1.91%, dp +1.02% -> +0.25%, and the
-  // surface-traction drag, 0.61% above the control-volume drag, now 0.15% below it; at D/64: CD
-  // +0.60% -> +0.02%, CL +1.42% -> +0.29%, dp +0.16% -> -0.26%. Turek-Hron CFD2: drag +0.33% ->
-  // -0.11%, lift +1.36% -> +1.24%; CFD3 drag mean -1.27% -> -1.55% (control volume -0.35% in
-  // both), drag amplitude +1.33% -> +1.31%, lift amplitude -1.72% -> -1.71%, frequency +1.10% ->
-  // +1.09%. DFG 2D-2 (D/24 box, D/48 core, walls 0.97): CD_max +0.23% ->
-  // -0.16% (control volume 3.2253 -> 3.2242, the traction's now 3.2248), CL_max -1.31% -> -1.59%,
-  // St +0.80% -> +0.81%.
+  // same reason as cut_cell_continuity_fixed; the channel benchmarks turn it on (what it changes
+  // there: docs/studies/wall_momentum_balance.md).
   bool viscous_wall_pressure = false;
   // Body force per unit mass, evaluated at cell centres at t^{n+1/2}.
   VelocityFunction body_force;

@@ -12,8 +12,8 @@
 // times U* for the solid part, which moves with the wall. The fluid part's own velocity is large in
 // a cell with a tiny fluid part whose wall velocity varies (its volume changes fast and feeds
 // through a tiny aperture); the momentum equations' convective fluxes take the full face, and the
-// mean keeps them bounded. (A thin pitching plate at 20 cells per chord that blew up within 8 steps
-// was cured by keeping faces between fluid cells whole, cut_cell_balance.cpp, not by this.)
+// mean keeps them bounded. (The blow-ups of thin plates were cured by keeping faces between fluid
+// cells whole, cut_cell_balance.cpp, not by this: docs/studies/cut_cell_balance.md.)
 #include <algorithm>
 #include <cmath>
 

@@ -17,9 +17,8 @@
 // again the exact viscous stress of a translating and rotating wall.
 // WallExtrapolation::Quadratic adds a third probe at 3d and takes the next order,
 //     p_w = 3 p(d) - 3 p(2d) + p(3d),   du/dn = [18 w(d) - 9 w(2d) + 2 w(3d)] / (6 d)   (O(d^3)),
-// to measure how much of a force is the evaluation's rather than the flow's: on DFG 2D-2's default
-// grid it moves the lift amplitude by -0.14 % and the drag by +1.1 % (fin-cfd.cpp, dfg_2d2). The
-// default stays linear: the benchmarks' numbers and the nodal loads are all measured with it.
+// to measure how much of a force is the evaluation's rather than the flow's. The default stays
+// linear, which agrees with the control-volume drag (docs/studies/dfg_2d2_lift_maximum.md).
 #pragma once
 
 #include <array>

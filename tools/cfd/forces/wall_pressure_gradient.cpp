@@ -43,10 +43,8 @@ WallPressureGradient::WallPressureGradient(const StretchedGrid& grid, const Ghos
   // The slope is the least-squares line through the wall vorticity at 2K points spaced D cells
   // along the surface (+-K D cells around B). The vorticity at each point carries the probes'
   // bilinear interpolation error, O(h) with a pattern that changes from cell to cell, so a slope
-  // over a few cells is off by O(h / window): on a circle of radius 24 (48) cells with
-  // u_theta = (r - R) sin(theta) the largest error is 13 % (14 %) with one point on each side one
-  // cell away, 1.8 % (1.6 %) with K = 3, D = 2 (test_wall_pressure_gradient.cpp). The DFG 2D-1
-  // drag moved by 0.02 % between the two.
+  // over a few cells is off by O(h / window); K = 3, D = 2 keeps it near 2 % on a circle
+  // (test_wall_pressure_gradient.cpp; docs/studies/wall_momentum_balance.md).
   constexpr int K = 3;
   constexpr double D = 2.0;
   for (const GhostCell& g : ghosts.ghosts()) {

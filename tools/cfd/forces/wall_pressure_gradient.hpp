@@ -6,15 +6,12 @@
 //     dp/dn = -nu d(omega)/ds,       omega = n_x dv/dn - n_y du/dn on the wall,
 // s the arc length along t. The ghost-cell method's pressure condition dp/dn = 0 (Mittal et al.
 // 2008, a boundary-layer approximation) drops this term, and at the DFG benchmarks' Reynolds
-// numbers it is not small: on DFG 2D-1 (Re 20, D/48) the drag from the extrapolated wall pressure
-// (surface_traction.hpp) moved by 1.6 % between probes one and two cells out and probes two and
-// four cells out, and stood 0.6 % above the control-volume drag; with this condition it is 0.15 %
-// below it (FlowOptions::viscous_wall_pressure has the benchmarks' numbers). Per ghost cell, the wall vorticity is found at surface points
-// B + k D h t, k = +-1 .. +-K, beside its boundary intercept B (h the local cell width, each point
-// projected onto the body) from the one-sided derivative of two velocity probes along that point's
-// normal, the same as in surface_traction.hpp, and its slope along the surface is fitted by least
-// squares. Near a corner of the body (a point's normal more than ~25 degrees from B's) the
-// vorticity is singular and the gradient is left 0.
+// numbers it is not small (docs/studies/wall_momentum_balance.md). Per ghost cell, the wall
+// vorticity is found at surface points B + k D h t, k = +-1 .. +-K, beside its boundary intercept B
+// (h the local cell width, each point projected onto the body) from the one-sided derivative of two
+// velocity probes along that point's normal, the same as in surface_traction.hpp, and its slope
+// along the surface is fitted by least squares. Near a corner of the body (a point's normal more
+// than ~25 degrees from B's) the vorticity is singular and the gradient is left 0.
 #pragma once
 
 #include <array>

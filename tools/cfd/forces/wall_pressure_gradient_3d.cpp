@@ -24,9 +24,7 @@ WallPressureGradient3D::WallPressureGradient3D(const StretchedGrid& grid, const 
   // As in 2-D (wall_pressure_gradient.cpp): K points spaced D cells on each side of B along each
   // tangent, normals within ~25 degrees of B's, so a body resolved by fewer than about 14 cells per
   // radius keeps dp/dn = 0 (the sphere of sphere_re100 at D/20 and DFG 3D-1Z's cylinder at D/12).
-  // Narrower windows that reached them were tried and dropped: on the D/20 sphere (K = 3, D = 1)
-  // the traction drag fell 2.6 % to 1.0520 and moved away from the control-volume drag (0.18 %
-  // apart with dp/dn = 0, 1.4 % with the narrow fit); DFG 3D-1Z at D/12 (K = 2, D = 1) fell 3.2 %.
+  // Narrower windows that reached them were tried and dropped (docs/studies/wall_momentum_balance.md).
   constexpr double kSmooth = 0.906;
   constexpr int K = 3;
   constexpr double D = 2.0;

@@ -16,11 +16,8 @@
 // 3D-1Z), the gradient is left 0 there: dp/dn = 0 of Mittal et al. (2008).
 //
 // Off by default (FlowOptions::viscous_wall_pressure; fin-cfd sphere_re100 / dfg_3d1z
-// --wall-momentum-balance), because in 3-D it has not paid: on the sphere at Re 100, D/32 (t = 15,
-// fin-cfd sphere_re100 --cells-per-diameter 32 --t-end 15) the traction drag went from 1.09194 to
-// 1.07478 (reference 1.087) and the control-volume drag (control_volume_force.hpp) from 1.08779 to
-// 1.08303: the traction and the independent momentum balance drifted apart (0.38 % -> 0.76 %),
-// whereas in 2-D the same condition brought them together (DFG 2D-1: 0.61 % -> 0.15 %).
+// --wall-momentum-balance): in 3-D it drove the traction and the control-volume drag apart, where in
+// 2-D it brought them together (docs/studies/wall_momentum_balance.md).
 #pragma once
 
 #include <array>

@@ -33,8 +33,7 @@ namespace {
 // cell single: the widest of those whose removal leaves even parts on both sides. Leaving always
 // the run's last cell single instead (plain left-to-right pairing) keeps that cell, often a wall
 // cell, at its fine width level after level; being the narrowest cell of the level it then caps
-// h_min and with it the coarsening of the whole grid (a DFG 2D-2 grid, 288 x 168, went
-// 139x57 -> 119x43 -> ... and MG-PCG needed 19 iterations instead of 8).
+// h_min and with it the coarsening of the whole grid (measured: docs/studies/poisson_multigrid.md).
 std::vector<bool> pair_runs(const Axis& ax, double limit) {
   const int n = ax.size();
   std::vector<bool> merge(static_cast<std::size_t>(n), false);

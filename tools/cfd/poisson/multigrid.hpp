@@ -3,8 +3,8 @@
 // Hierarchy: each level merges neighbouring cells along the axes where they are strongly coupled,
 // i.e. where the cells are not much wider than the level's narrowest cells (coarsening.hpp): full
 // coarsening on uniform grids, semi-coarsening towards isotropy on stretched ones, which keeps the
-// point smoother effective on grids with far-field aspect ratios of 10-40 (benchmark grid 128^3,
-// aspect 36: MG-PCG 119 iterations with plain halving, 8-9 with this coarsening, as on 32^3).
+// point smoother effective on grids with far-field aspect ratios of 10-40 (iteration counts:
+// docs/studies/poisson_multigrid.md).
 // Coarse operators are rediscretised from face-area-averaged beta (coarsen_operator), which
 // carries stretching and immersed-boundary masks down.
 // Coarsening stops once a level has at most `coarsest_max_cells` cells or no axis can be halved;
@@ -39,9 +39,8 @@ struct MultigridOptions {
   // Cells are merged along an axis where both are at most this many times the level's narrowest
   // width (coarsening.hpp); <= 0 halves every axis regardless of stretching.
   double coarsening_ratio = 2.0;
-  // Over-relaxation of the red-black point smoother; 0 picks the measured best: 1.2 in 3-D (V(2,2)
-  // factor on 32^3 uniform 0.185 -> 0.165, MG-PCG on the stretched 64^3 benchmark grid 0.102 ->
-  // 0.081) and 1 (Gauss-Seidel) in 2-D. Symmetric for any omega in (0, 2), as CG needs.
+  // Over-relaxation of the red-black point smoother; 0 picks the measured best: 1.2 in 3-D and 1
+  // (Gauss-Seidel) in 2-D (docs/studies/poisson_multigrid.md). Symmetric for any omega in (0, 2).
   double relaxation = 0.0;
   int max_levels = 32;
 };
