@@ -94,12 +94,12 @@ int main(int argc, char** argv) {
               std::to_string(mo.min_angle_deg) + "), longest edge " + std::to_string(pm.max_edge / c) + " c");
 
     const auto ibm = mesh::build_ibm_surface(pm, ibm_thickness * c);
-    const auto check = mesh::check_surface(ibm.points, ibm.triangles);
-    const double expected_volume = fin.area() * ibm.thickness;
-    log::info("IBM surface: " + std::to_string(ibm.points.size()) + " vertices, " + std::to_string(ibm.triangles.size()) +
-              " triangles, closed " + (check.closed ? "yes" : "NO") + ", self-intersecting " +
-              (check.self_intersecting ? "YES" : "no") + ", outward " + (check.outward ? "yes" : "NO") + ", volume / (area t) " +
-              std::to_string(check.volume / expected_volume));
+    const auto check = mesh::check_surface(ibm.points, ibm.body.triangles);
+    const double expected_volume = fin.area() * ibm.body.thickness;
+    log::info("IBM surface: " + std::to_string(ibm.points.size()) + " vertices, " +
+              std::to_string(ibm.body.triangles.size()) + " triangles, closed " + (check.closed ? "yes" : "NO") +
+              ", self-intersecting " + (check.self_intersecting ? "YES" : "no") + ", outward " +
+              (check.outward ? "yes" : "NO") + ", volume / (area t) " + std::to_string(check.volume / expected_volume));
     if (!check.closed || check.self_intersecting || !check.outward)
       throw Error("fin-mesh: the IBM surface is not a closed, outward-oriented surface free of self-intersections");
 
@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
       sum.info("nodes", static_cast<double>(pm.points.size()));
       sum.info("shell_triangles", static_cast<double>(pm.triangles.size()));
       sum.info("beam_elements", static_cast<double>(beams));
-      sum.info("ibm_triangles", static_cast<double>(ibm.triangles.size()));
+      sum.info("ibm_triangles", static_cast<double>(ibm.body.triangles.size()));
       sum.parameters() = cli::effective_config(app);
       sum.set_timing(mesh_seconds, cli::threads_in_use());
       sum.write(summary_out);

@@ -1,9 +1,9 @@
-// Closed thin immersed-boundary body from the planform mesh (DESIGN.md section 5.1) and its
-// watertightness / self-intersection checks with CGAL Polygon_mesh_processing.
+// Closed thin immersed-boundary body from the planform mesh (DESIGN.md section 5.1; the
+// construction is core/thin_body.hpp's) and its checks with CGAL Polygon_mesh_processing.
 #include "mesh/ibm_surface.hpp"
 
 #include <cmath>
-#include <map>
+#include <string>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -19,51 +19,13 @@ namespace finverse::mesh {
 IbmSurface build_ibm_surface(const PlanformMesh& m, double thickness) {
   if (!(std::isfinite(thickness) && thickness > 0))
     throw Error("--ibm-thickness: " + std::to_string(thickness) + " m, expected > 0");
-  IbmSurface s;
-  s.thickness = thickness;
-  const double h = 0.5 * thickness;
   const int n = static_cast<int>(m.points.size());
-  std::vector<int> top(n), bottom(n), rim(n, -1);
-  auto add = [&](int node, double y, int sign) {
-    s.points.push_back({m.points[node][0], y, m.points[node][1]});
-    s.source_node.push_back(node);
-    s.offset_sign.push_back(sign);
-    return static_cast<int>(s.points.size()) - 1;
-  };
-  for (int i = 0; i < n; ++i) top[i] = add(i, h, +1);
-  for (int i = 0; i < n; ++i) bottom[i] = add(i, -h, -1);
-  for (int i = 0; i < n; ++i)
-    if (m.on_boundary[i]) rim[i] = add(i, 0.0, 0);
-
-  // A planform triangle counter-clockwise in (x, z) has its right-hand normal along -y: it is the
-  // bottom face as it stands and the top face reversed.
-  std::map<std::pair<int, int>, int> directed;
-  for (const auto& t : m.triangles) {
-    s.triangles.push_back({bottom[t[0]], bottom[t[1]], bottom[t[2]]});
-    s.triangles.push_back({top[t[0]], top[t[2]], top[t[1]]});
-    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
-  }
-  auto oriented = [&](std::array<int, 3> tri, double ox, double oz) {
-    const auto& a = s.points[tri[0]];
-    const auto& b = s.points[tri[1]];
-    const auto& c = s.points[tri[2]];
-    const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
-    const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
-    const double nx = uy * vz - uz * vy, nz = ux * vy - uy * vx;
-    if (nx * ox + nz * oz < 0) std::swap(tri[1], tri[2]);
-    return tri;
-  };
-  // Rim wall: an outline edge a->b of a counter-clockwise triangle has the interior on its left,
-  // so the outward in-plane direction is to its right, (dz, -dx) in (x, z).
-  for (const auto& [e, count] : directed) {
-    const auto [a, b] = e;
-    if (directed.count({b, a})) continue;  // interior edge
-    const double ox = m.points[b][1] - m.points[a][1], oz = -(m.points[b][0] - m.points[a][0]);
-    s.triangles.push_back(oriented({top[a], top[b], rim[b]}, ox, oz));
-    s.triangles.push_back(oriented({top[a], rim[b], rim[a]}, ox, oz));
-    s.triangles.push_back(oriented({rim[a], rim[b], bottom[b]}, ox, oz));
-    s.triangles.push_back(oriented({rim[a], bottom[b], bottom[a]}, ox, oz));
-  }
+  IbmSurface s;
+  s.body = build_thin_body(m.triangles, n, thickness, "planform mesh");
+  // At rest the mid-surface is the planform in y = 0; its right-hand normal is -y at every node.
+  std::vector<std::array<double, 3>> rest(m.points.size()), normal(m.points.size(), {0.0, -1.0, 0.0});
+  for (std::size_t i = 0; i < m.points.size(); ++i) rest[i] = {m.points[i][0], 0.0, m.points[i][1]};
+  s.points = thin_body_points(s.body, rest, normal);
   return s;
 }
 

@@ -71,19 +71,19 @@ stage::Mesh assemble_mesh(const FinTemplate& t, const PlanformMesh& m, const Ibm
   if (roots.size() < 2) throw Error("fin-mesh: fewer than two root nodes: the fin would be free to rotate");
   out.root_nodes = NdArray<std::int32_t>({roots.size()}, std::vector<std::int32_t>(roots.begin(), roots.end()));
 
-  const std::size_t nvi = ibm.points.size(), nti = ibm.triangles.size();
+  const std::size_t nvi = ibm.points.size(), nti = ibm.body.triangles.size();
   out.ibm_points = NdArray<double>({nvi, 3});
   out.ibm_source_node = NdArray<std::int32_t>({nvi});
   out.ibm_offset_sign = NdArray<std::int32_t>({nvi});
   for (std::size_t i = 0; i < nvi; ++i) {
     for (int k = 0; k < 3; ++k) out.ibm_points(i, k) = ibm.points[i][k];
-    out.ibm_source_node(i) = ibm.source_node[i];
-    out.ibm_offset_sign(i) = ibm.offset_sign[i];
+    out.ibm_source_node(i) = ibm.body.source_node[i];
+    out.ibm_offset_sign(i) = ibm.body.offset_sign[i];
   }
   out.ibm_triangles = NdArray<std::int32_t>({nti, 3});
   for (std::size_t i = 0; i < nti; ++i)
-    for (int k = 0; k < 3; ++k) out.ibm_triangles(i, k) = ibm.triangles[i][k];
-  out.ibm_thickness = ibm.thickness;
+    for (int k = 0; k < 3; ++k) out.ibm_triangles(i, k) = ibm.body.triangles[i][k];
+  out.ibm_thickness = ibm.body.thickness;
   out.chord = t.chord;
   return out;
 }

@@ -1,6 +1,6 @@
-// Tests of the closed thin body around a deforming mid-surface (cfd/thin_body.hpp) and its motion
-// (cfd/fin_surface_motion.hpp): fin-mesh's /ibm reproduced exactly, watertightness, the normals'
-// analytic time derivatives against finite differences.
+// Tests of the closed thin body (core/thin_body.hpp), its placement around a deforming mid-surface
+// (cfd/immersed/thin_body.hpp) and its motion (cfd/immersed/fin_surface_motion.hpp): fin-mesh's /ibm
+// reproduced, watertightness, the normals' analytic time derivatives against finite differences.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,8 +29,8 @@ std::vector<Vec3> points_of(const NdArray<double>& p) {
   return out;
 }
 
-// fin-mesh's output (the golden coarse fin): the same construction gives the same /ibm
-// connectivity, sources and signs, and the placement at rest gives /ibm/points to round-off.
+// fin-mesh's output (the golden coarse fin): the construction gives the golden /ibm connectivity,
+// sources and signs, and the placement along the computed vertex normals gives /ibm/points.
 TEST(ThinBody, ReproducesFinMeshIbmSurface) {
   const auto mesh = stage::read<stage::Mesh>(FINVERSE_COARSE_FIN_MESH);
   ASSERT_TRUE(mesh.ibm_thickness.has_value());

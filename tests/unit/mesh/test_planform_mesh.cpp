@@ -124,7 +124,7 @@ TEST_F(Fixture, StructuralMeshBeamsRootsAndSections) {
 TEST_F(Fixture, IbmSurfaceClosedOutwardNoSelfIntersection) {
   const double h = 0.05 * fin->chord;
   const auto ibm = build_ibm_surface(*pm, h);
-  const auto c = check_surface(ibm.points, ibm.triangles);
+  const auto c = check_surface(ibm.points, ibm.body.triangles);
   EXPECT_TRUE(c.closed);
   EXPECT_FALSE(c.self_intersecting);
   EXPECT_TRUE(c.outward);
@@ -135,14 +135,18 @@ TEST_F(Fixture, IbmSurfaceClosedOutwardNoSelfIntersection) {
     perimeter += std::hypot(poly[(i + 1) % poly.size()][0] - poly[i][0], poly[(i + 1) % poly.size()][1] - poly[i][1]);
   EXPECT_NEAR(c.volume, fin->area() * h, 1e-9 * fin->area() * h);
   EXPECT_NEAR(c.area, 2 * fin->area() + perimeter * h, 1e-9 * c.area);
+  // Each vertex is its node offset by exactly offset_sign * h/2 along y; the rim vertices are
+  // exactly the outline nodes, one each.
+  std::vector<int> rim(pm->points.size(), 0);
   for (std::size_t i = 0; i < ibm.points.size(); ++i) {
-    const int src = ibm.source_node[i];
-    EXPECT_DOUBLE_EQ(ibm.points[i][0], pm->points[src][0]);
-    EXPECT_DOUBLE_EQ(ibm.points[i][1], 0.5 * h * ibm.offset_sign[i]);
-    if (ibm.offset_sign[i] == 0) {
-      EXPECT_TRUE(pm->on_boundary[src]);
-    }
+    const int src = ibm.body.source_node[i];
+    EXPECT_EQ(ibm.points[i][0], pm->points[src][0]);
+    EXPECT_EQ(ibm.points[i][1], 0.5 * h * ibm.body.offset_sign[i]);
+    EXPECT_EQ(ibm.points[i][2], pm->points[src][1]);
+    if (ibm.body.offset_sign[i] == 0) ++rim[src];
   }
+  for (std::size_t n = 0; n < rim.size(); ++n) EXPECT_EQ(rim[n], pm->on_boundary[n] ? 1 : 0) << "node " << n;
+  EXPECT_NO_THROW(check_watertight(ibm.body.triangles, static_cast<int>(ibm.points.size()), "ibm"));
 }
 
 TEST(IbmSurfaceCheck, DetectsOpenAndSelfIntersectingSurfaces) {
