@@ -1,12 +1,12 @@
 // Crisfield's cylindrical arc-length method with adaptive step and cutback (see arc_length.hpp).
-#include "arc_length.hpp"
+#include "fem/arc_length.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "errors.hpp"
-#include "static_newton.hpp"
+#include "fem/errors.hpp"
+#include "fem/static_newton.hpp"
 
 namespace finverse::fem {
 

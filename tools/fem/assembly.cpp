@@ -1,5 +1,5 @@
 // Deterministic two-phase assembly (see assembly.hpp).
-#include "assembly.hpp"
+#include "fem/assembly.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -26,8 +26,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "dof_map.hpp"
-#include "model.hpp"
+#include "fem/dof_map.hpp"
+#include "fem/model.hpp"
 
 namespace finverse::fem {
 

@@ -1,11 +1,11 @@
 // Rectangular section constants and Gauss-Legendre rules (see beam_section.hpp).
-#include "beam_section.hpp"
+#include "fem/beam_section.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "errors.hpp"
+#include "fem/errors.hpp"
 
 namespace finverse::fem {
 

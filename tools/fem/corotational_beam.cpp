@@ -1,6 +1,6 @@
 // Corotational beam: local flexibility-based stiffness, Battini-Pacoste corotational
 // transformation and consistent tangent, consistent mass (see corotational_beam.hpp).
-#include "corotational_beam.hpp"
+#include "fem/corotational_beam.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -8,8 +8,8 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
-#include "errors.hpp"
-#include "rotation.hpp"
+#include "fem/errors.hpp"
+#include "fem/rotation.hpp"
 
 namespace finverse::fem {
 

@@ -30,9 +30,9 @@
 
 #include <Eigen/Core>
 
-#include "beam_section.hpp"
-#include "element.hpp"
-#include "material.hpp"
+#include "fem/beam_section.hpp"
+#include "fem/element.hpp"
+#include "fem/material.hpp"
 
 namespace finverse::fem {
 

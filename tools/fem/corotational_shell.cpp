@@ -1,14 +1,14 @@
 // Corotational flat shell triangle: EICR kinematics, internal force, consistent tangent, mass
 // (see corotational_shell.hpp).
-#include "corotational_shell.hpp"
+#include "fem/corotational_shell.hpp"
 
 #include <cmath>
 #include <sstream>
 
 #include <Eigen/Geometry>
 
-#include "errors.hpp"
-#include "rotation.hpp"
+#include "fem/errors.hpp"
+#include "fem/rotation.hpp"
 
 namespace finverse::fem {
 

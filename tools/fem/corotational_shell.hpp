@@ -37,9 +37,9 @@
 
 #include <Eigen/Core>
 
-#include "element.hpp"
-#include "flat_shell_triangle.hpp"
-#include "material.hpp"
+#include "fem/element.hpp"
+#include "fem/flat_shell_triangle.hpp"
+#include "fem/material.hpp"
 
 namespace finverse::fem {
 

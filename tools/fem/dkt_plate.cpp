@@ -1,5 +1,5 @@
 // DKT plate stiffness (see dkt_plate.hpp).
-#include "dkt_plate.hpp"
+#include "fem/dkt_plate.hpp"
 
 namespace finverse::fem {
 

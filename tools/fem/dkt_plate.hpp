@@ -15,7 +15,7 @@
 
 #include <Eigen/Core>
 
-#include "plane_stress.hpp"
+#include "fem/plane_stress.hpp"
 
 namespace finverse::fem {
 

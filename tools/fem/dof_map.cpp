@@ -1,5 +1,5 @@
 // Equation numbering (see dof_map.hpp).
-#include "dof_map.hpp"
+#include "fem/dof_map.hpp"
 
 namespace finverse::fem {
 

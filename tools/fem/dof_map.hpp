@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "model.hpp"
+#include "fem/model.hpp"
 
 namespace finverse::fem {
 

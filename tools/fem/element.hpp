@@ -13,7 +13,7 @@
 
 #include <Eigen/Core>
 
-#include "nodal_state.hpp"
+#include "fem/nodal_state.hpp"
 
 namespace finverse::fem {
 

@@ -1,8 +1,8 @@
 // Flat shell triangle = OPT membrane + DKT plate (see flat_shell_triangle.hpp).
-#include "flat_shell_triangle.hpp"
+#include "fem/flat_shell_triangle.hpp"
 
-#include "dkt_plate.hpp"
-#include "opt_membrane.hpp"
+#include "fem/dkt_plate.hpp"
+#include "fem/opt_membrane.hpp"
 
 namespace finverse::fem {
 

@@ -1,12 +1,12 @@
 // Generalized-alpha time stepping with Newton iterations (see generalized_alpha.hpp).
-#include "generalized_alpha.hpp"
+#include "fem/generalized_alpha.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "errors.hpp"
-#include "static_newton.hpp"
+#include "fem/errors.hpp"
+#include "fem/static_newton.hpp"
 
 namespace finverse::fem {
 

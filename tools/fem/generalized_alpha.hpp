@@ -20,10 +20,10 @@
 // relations, so prescribed root motion enters consistently.
 #pragma once
 
-#include "assembly.hpp"
-#include "dof_map.hpp"
-#include "model.hpp"
-#include "sparse_solver.hpp"
+#include "fem/assembly.hpp"
+#include "fem/dof_map.hpp"
+#include "fem/model.hpp"
+#include "fem/sparse_solver.hpp"
 
 namespace finverse::fem {
 

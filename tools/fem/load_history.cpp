@@ -1,12 +1,12 @@
 // Linear interpolation of tabulated nodal loads (see load_history.hpp).
-#include "load_history.hpp"
+#include "fem/load_history.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "errors.hpp"
-#include "nodal_state.hpp"
+#include "fem/errors.hpp"
+#include "fem/nodal_state.hpp"
 
 namespace finverse::fem {
 

@@ -1,10 +1,10 @@
 // Validation of material constants (see material.hpp).
-#include "material.hpp"
+#include "fem/material.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "errors.hpp"
+#include "fem/errors.hpp"
 
 namespace finverse::fem {
 

@@ -1,5 +1,5 @@
 // Linearised modal analysis (see modal.hpp).
-#include "modal.hpp"
+#include "fem/modal.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "assembly.hpp"
-#include "dof_map.hpp"
-#include "errors.hpp"
-#include "static_newton.hpp"
+#include "fem/assembly.hpp"
+#include "fem/dof_map.hpp"
+#include "fem/errors.hpp"
+#include "fem/static_newton.hpp"
 
 namespace finverse::fem {
 

@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "model.hpp"
-#include "sparse_solver.hpp"
+#include "fem/model.hpp"
+#include "fem/sparse_solver.hpp"
 
 namespace finverse::fem {
 

@@ -1,11 +1,11 @@
 // Structural model bookkeeping and input checks (see model.hpp).
-#include "model.hpp"
+#include "fem/model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "errors.hpp"
+#include "fem/errors.hpp"
 
 namespace finverse::fem {
 

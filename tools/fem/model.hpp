@@ -19,13 +19,13 @@
 
 #include <Eigen/Core>
 
-#include "beam_section.hpp"
-#include "corotational_beam.hpp"
-#include "element.hpp"
-#include "load_history.hpp"
-#include "material.hpp"
-#include "nodal_state.hpp"
-#include "stiffness_field.hpp"
+#include "fem/beam_section.hpp"
+#include "fem/corotational_beam.hpp"
+#include "fem/element.hpp"
+#include "fem/load_history.hpp"
+#include "fem/material.hpp"
+#include "fem/nodal_state.hpp"
+#include "fem/stiffness_field.hpp"
 
 namespace finverse::fem {
 

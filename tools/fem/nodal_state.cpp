@@ -1,5 +1,5 @@
 // Multiplicative configuration update (see nodal_state.hpp).
-#include "nodal_state.hpp"
+#include "fem/nodal_state.hpp"
 
 namespace finverse::fem {
 

@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "rotation.hpp"
+#include "fem/rotation.hpp"
 
 namespace finverse::fem {
 

@@ -1,5 +1,5 @@
 // ANDES OPT membrane stiffness (see opt_membrane.hpp).
-#include "opt_membrane.hpp"
+#include "fem/opt_membrane.hpp"
 
 #include <algorithm>
 

@@ -1,12 +1,12 @@
 // Q9 total-Lagrangian St. Venant-Kirchhoff plane-strain solid (see plane_strain_solid.hpp).
-#include "plane_strain_solid.hpp"
+#include "fem/plane_strain_solid.hpp"
 
 #include <cmath>
 #include <sstream>
 
 #include <Eigen/LU>
 
-#include "errors.hpp"
+#include "fem/errors.hpp"
 
 namespace finverse::fem {
 

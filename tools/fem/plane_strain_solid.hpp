@@ -32,8 +32,8 @@
 
 #include <Eigen/Core>
 
-#include "element.hpp"
-#include "material.hpp"
+#include "fem/element.hpp"
+#include "fem/material.hpp"
 
 namespace finverse::fem {
 

@@ -1,5 +1,5 @@
 // Quasi-static increment of eq. (2) and its marching driver (see quasi_static_increment.hpp).
-#include "quasi_static_increment.hpp"
+#include "fem/quasi_static_increment.hpp"
 
 #include <algorithm>
 

@@ -22,9 +22,9 @@
 
 #include <Eigen/Core>
 
-#include "model.hpp"
-#include "nodal_state.hpp"
-#include "static_newton.hpp"
+#include "fem/model.hpp"
+#include "fem/nodal_state.hpp"
+#include "fem/static_newton.hpp"
 
 namespace finverse::fem {
 

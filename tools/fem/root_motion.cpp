@@ -1,5 +1,5 @@
 // Root displacements and rigid-body rotation from tracked positions (see root_motion.hpp).
-#include "root_motion.hpp"
+#include "fem/root_motion.hpp"
 
 #include <cmath>
 #include <memory>
@@ -10,8 +10,8 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
-#include "errors.hpp"
-#include "load_history.hpp"
+#include "fem/errors.hpp"
+#include "fem/load_history.hpp"
 
 namespace finverse::fem {
 

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "model.hpp"
-#include "rotation.hpp"
+#include "fem/model.hpp"
+#include "fem/rotation.hpp"
 
 namespace finverse::fem {
 

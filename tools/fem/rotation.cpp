@@ -1,5 +1,5 @@
 // Rotation-vector utilities (see rotation.hpp).
-#include "rotation.hpp"
+#include "fem/rotation.hpp"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // Sparse direct solver wrapper (see sparse_solver.hpp).
-#include "sparse_solver.hpp"
+#include "fem/sparse_solver.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -9,7 +9,7 @@
 #include <Eigen/SparseLU>
 #include <Eigen/UmfPackSupport>
 
-#include "errors.hpp"
+#include "fem/errors.hpp"
 
 namespace finverse::fem {
 

@@ -1,5 +1,5 @@
 // Spectral peak picking (see spectral_peaks.hpp).
-#include "spectral_peaks.hpp"
+#include "fem/spectral_peaks.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <unsupported/Eigen/FFT>
 
-#include "errors.hpp"
+#include "fem/errors.hpp"
 
 namespace finverse::fem {
 

@@ -1,11 +1,11 @@
 // Load-controlled Newton-Raphson with step cutting (see static_newton.hpp).
-#include "static_newton.hpp"
+#include "fem/static_newton.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "errors.hpp"
+#include "fem/errors.hpp"
 
 namespace finverse::fem {
 

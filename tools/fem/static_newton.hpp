@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "assembly.hpp"
-#include "dof_map.hpp"
-#include "model.hpp"
-#include "sparse_solver.hpp"
+#include "fem/assembly.hpp"
+#include "fem/dof_map.hpp"
+#include "fem/model.hpp"
+#include "fem/sparse_solver.hpp"
 
 namespace finverse::fem {
 

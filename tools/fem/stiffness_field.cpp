@@ -1,11 +1,11 @@
 // Per-element modulus factors and periodic modulation (see stiffness_field.hpp).
-#include "stiffness_field.hpp"
+#include "fem/stiffness_field.hpp"
 
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
-#include "errors.hpp"
+#include "fem/errors.hpp"
 
 namespace finverse::fem {
 

@@ -1,11 +1,11 @@
 // Static, quasi-static and dynamic runs over output times (see structural_run.hpp).
-#include "structural_run.hpp"
+#include "fem/structural_run.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "errors.hpp"
-#include "quasi_static_increment.hpp"
+#include "fem/errors.hpp"
+#include "fem/quasi_static_increment.hpp"
 
 namespace finverse::fem {
 

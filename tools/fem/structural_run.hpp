@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "generalized_alpha.hpp"
-#include "model.hpp"
-#include "static_newton.hpp"
+#include "fem/generalized_alpha.hpp"
+#include "fem/model.hpp"
+#include "fem/static_newton.hpp"
 
 namespace finverse::fem {
 

@@ -1,12 +1,12 @@
 // Structured Q9 strip mesh (see structured_mesh.hpp).
-#include "structured_mesh.hpp"
+#include "fem/structured_mesh.hpp"
 
 #include <cmath>
 #include <memory>
 #include <sstream>
 
-#include "errors.hpp"
-#include "plane_strain_solid.hpp"
+#include "fem/errors.hpp"
+#include "fem/plane_strain_solid.hpp"
 
 namespace finverse::fem {
 

@@ -14,9 +14,9 @@
 #include <functional>
 #include <vector>
 
-#include "material.hpp"
-#include "model.hpp"
-#include "nodal_state.hpp"
+#include "fem/material.hpp"
+#include "fem/model.hpp"
+#include "fem/nodal_state.hpp"
 
 namespace finverse::fem {
 

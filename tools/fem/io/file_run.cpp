@@ -1,14 +1,14 @@
 // Stage files -> structural run -> stage files (see file_run.hpp).
-#include "file_run.hpp"
+#include "fem/io/file_run.hpp"
 
 #include <sstream>
 
 #include "core/log.hpp"
 #include "core/stage_files.hpp"
 #include "fem/errors.hpp"
-#include "fin_model.hpp"
-#include "material_spec.hpp"
-#include "run_output.hpp"
+#include "fem/io/fin_model.hpp"
+#include "fem/io/material_spec.hpp"
+#include "fem/io/run_output.hpp"
 
 namespace finverse::fem::io {
 

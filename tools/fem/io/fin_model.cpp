@@ -1,5 +1,5 @@
 // Fin model from mesh.h5, the materials file, loads.h5 and motion.h5 (see fin_model.hpp).
-#include "fin_model.hpp"
+#include "fem/io/fin_model.hpp"
 
 #include <cmath>
 #include <sstream>

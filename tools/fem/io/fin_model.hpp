@@ -8,9 +8,9 @@
 #include <map>
 
 #include "core/stage_files.hpp"
+#include "fem/io/material_spec.hpp"
 #include "fem/model.hpp"
 #include "fem/root_motion.hpp"
-#include "material_spec.hpp"
 
 namespace finverse::fem::io {
 

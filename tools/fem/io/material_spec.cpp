@@ -1,5 +1,5 @@
 // Parsing and range checks of the materials file (see material_spec.hpp).
-#include "material_spec.hpp"
+#include "fem/io/material_spec.hpp"
 
 #include <cmath>
 #include <fstream>

@@ -1,5 +1,5 @@
 // motion.h5-schema response file and ParaView series of a structural run (see run_output.hpp).
-#include "run_output.hpp"
+#include "fem/io/run_output.hpp"
 
 #include "core/vtk_output.hpp"
 

@@ -2,12 +2,13 @@
 // against Euler-Bernoulli theory, (a) from the linearised generalized eigenproblem, (b) from the
 // spectrum of a simulated free vibration after a tip impulse (generalized-alpha, rho_inf = 1);
 // and the energy drift of an undamped free vibration over 100 periods.
+#include "fem/validation/cases.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
-#include "cases.hpp"
 #include "fem/errors.hpp"
 #include "fem/generalized_alpha.hpp"
 #include "fem/modal.hpp"

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "fem/sparse_solver.hpp"
-#include "report.hpp"
+#include "fem/validation/report.hpp"
 
 namespace finverse::fem::validation {
 

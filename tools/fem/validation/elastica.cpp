@@ -1,11 +1,12 @@
 // Elastica validation: cantilever with a dead tip load perpendicular to the undeformed axis,
 // solved with corotational beams and load-controlled Newton; compared with the shooting solution
 // of EI theta'' = -P cos(theta) in structures.json ("elastica_tip_load").
+#include "fem/validation/cases.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include "cases.hpp"
 #include "fem/errors.hpp"
 #include "fem/model.hpp"
 #include "fem/static_newton.hpp"

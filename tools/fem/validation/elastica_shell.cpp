@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "fem/static_newton.hpp"
-#include "shell_cases.hpp"
-#include "shell_meshes.hpp"
-#include "shell_reference.hpp"
+#include "fem/validation/shell_cases.hpp"
+#include "fem/validation/shell_meshes.hpp"
+#include "fem/validation/shell_reference.hpp"
 
 namespace finverse::fem::validation {
 

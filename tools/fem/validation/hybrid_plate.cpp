@@ -1,5 +1,5 @@
 // Hybrid plate against CalculiX, static and dynamic (see hybrid_plate.hpp).
-#include "hybrid_plate.hpp"
+#include "fem/validation/hybrid_plate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 #include "fem/errors.hpp"
 #include "fem/generalized_alpha.hpp"
 #include "fem/static_newton.hpp"
-#include "hybrid_plate_model.hpp"
+#include "fem/validation/hybrid_plate_model.hpp"
 
 namespace finverse::fem::validation {
 namespace {

@@ -15,7 +15,7 @@
 #include <filesystem>
 
 #include "fem/sparse_solver.hpp"
-#include "report.hpp"
+#include "fem/validation/report.hpp"
 
 namespace finverse::fem::validation {
 

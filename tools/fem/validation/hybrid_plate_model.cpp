@@ -1,5 +1,5 @@
 // Hybrid plate model (see hybrid_plate_model.hpp).
-#include "hybrid_plate_model.hpp"
+#include "fem/validation/hybrid_plate_model.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -11,7 +11,7 @@
 
 #include "fem/corotational_shell.hpp"
 #include "fem/errors.hpp"
-#include "shell_meshes.hpp"
+#include "fem/validation/shell_meshes.hpp"
 
 namespace finverse::fem::validation {
 

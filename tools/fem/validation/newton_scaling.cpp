@@ -1,5 +1,5 @@
 // Newton-iteration cost against problem size (see newton_scaling.hpp).
-#include "newton_scaling.hpp"
+#include "fem/validation/newton_scaling.hpp"
 
 #include <algorithm>
 #include <chrono>

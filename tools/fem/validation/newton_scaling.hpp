@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "fem/sparse_solver.hpp"
-#include "hybrid_plate_model.hpp"
+#include "fem/validation/hybrid_plate_model.hpp"
 
 namespace finverse::fem::validation {
 

@@ -1,5 +1,5 @@
 // Validation metrics (see report.hpp).
-#include "report.hpp"
+#include "fem/validation/report.hpp"
 
 #include <cmath>
 #include <limits>

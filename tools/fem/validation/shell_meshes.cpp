@@ -1,5 +1,5 @@
 // Shell validation meshes (see shell_meshes.hpp).
-#include "shell_meshes.hpp"
+#include "fem/validation/shell_meshes.hpp"
 
 #include <cmath>
 #include <memory>

@@ -1,5 +1,5 @@
 // Reference tables from structures.json (see shell_reference.hpp).
-#include "shell_reference.hpp"
+#include "fem/validation/shell_reference.hpp"
 
 #include <cmath>
 #include <fstream>

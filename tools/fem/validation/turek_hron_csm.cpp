@@ -1,6 +1,6 @@
 // Turek-Hron CSM1/CSM2 (static) and CSM3 (dynamic) with the Q9 SVK plane-strain solid (see
 // turek_hron_csm.hpp).
-#include "turek_hron_csm.hpp"
+#include "fem/validation/turek_hron_csm.hpp"
 
 #include <algorithm>
 #include <chrono>

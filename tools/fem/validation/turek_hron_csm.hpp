@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "fem/sparse_solver.hpp"
-#include "report.hpp"
+#include "fem/validation/report.hpp"
 
 namespace finverse::fem::validation {
 
