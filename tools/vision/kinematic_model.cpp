@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/flow_scales.hpp"
 
 namespace finverse::vision {
 namespace {
@@ -24,8 +25,8 @@ PrescribedKinematics::PrescribedKinematics(const KinematicParams& p) : p_(p) {
   require(p.strouhal > 0, "St must be > 0");
   require(p.heave_over_chord > 0, "heave amplitude must be > 0 (it sets the frequency through St)");
   require(p.chordwise_wavelength > 0, "chordwise wavelength must be > 0");
-  speed_ = p.reynolds * p.kinematic_viscosity / p.chord_m;                      // Re = U c / nu
-  frequency_ = p.strouhal * speed_ / (2.0 * p.heave_over_chord * p.chord_m);   // St = f 2A / U
+  speed_ = free_stream_speed(p.reynolds, p.chord_m, p.kinematic_viscosity);
+  frequency_ = flapping_frequency(p.strouhal, speed_, p.heave_over_chord * p.chord_m);
 }
 
 double PrescribedKinematics::pitch_amplitude(double eta) const {

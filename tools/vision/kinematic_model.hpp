@@ -8,7 +8,7 @@
 //   - root pitch of every ray about the dorsal axis z, amplitude U-shaped across the rays
 //     (edge rays pitch most) and phase W-shaped across the rays (Fig. 12(c)),
 //   - a chordwise bending wave travelling root to tip and a spanwise (cupping) bending mode,
-// at St = f (2A) / U = 0.44, Re = U c / nu = 1000 (section 4.2), so f = St U / (2 A).
+// at St = f (2A) / U = 0.44, Re = U c / nu = 1000 (section 4.2; U and f from core/flow_scales.hpp).
 // Fin rays are nearly inextensible (section 4.1: bony segmented rays), so the bending is not a
 // lateral offset added to the rest shape, which would stretch every bent ray: the two bending
 // modes define a lateral deflection w(s) whose slope sets the local bending angle
@@ -22,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/flow_scales.hpp"
 #include "core/nd_array.hpp"
 #include "vision/fin_surface.hpp"
 
@@ -44,7 +45,7 @@ struct KinematicParams {
   double chord_m = 0.01;
   double reynolds = 1000;
   double strouhal = 0.44;
-  double kinematic_viscosity = 1e-6;      // water, m^2/s
+  double kinematic_viscosity = kWaterKinematicViscosity;  // m^2/s
   double heave_over_chord = 0.44;         // root heave amplitude A / c
   double pitch_center_deg = 12;           // root pitch amplitude of the middle ray ("U": smallest)
   double pitch_edge_deg = 22;             // ... of the edge rays (largest)
@@ -61,7 +62,7 @@ class PrescribedKinematics final : public MotionSource {
  public:
   explicit PrescribedKinematics(const KinematicParams& p);
   std::string name() const override { return "prescribed_kinematics"; }
-  double period() const override { return 1.0 / frequency_; }
+  double period() const override { return 1.0 / frequency_; }  // 1 / f (truth.h5's T; see flapping_period)
   double frequency() const { return frequency_; }
   double speed() const { return speed_; }  // free-stream U, m/s
   NdArray<double> positions(const FinSurface& surface, double t) const override;

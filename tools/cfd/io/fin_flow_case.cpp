@@ -85,7 +85,7 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   if (!(c > 0)) throw Error("fin flow: chord: not given and the rest mesh has no x extent");
   if (!(o.reynolds > 0)) throw Error("--reynolds: " + num(o.reynolds) + ", expected > 0");
   if (!(o.rho > 0)) throw Error("--rho: " + num(o.rho) + ", expected > 0");
-  const double U = o.speed > 0 ? o.speed : o.reynolds * o.viscosity / c;
+  const double U = o.speed > 0 ? o.speed : free_stream_speed(o.reynolds, c, o.viscosity);
   if (!(U > 0)) throw Error("--speed / --viscosity: free-stream speed " + num(U) + " m/s, expected > 0");
   const double nu = U * c / o.reynolds;
   const double h = o.cells_per_chord > 0 ? c / o.cells_per_chord : std::min(c / 16, body.thickness / 2);

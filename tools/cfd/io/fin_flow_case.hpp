@@ -9,7 +9,8 @@
 // `spanwise` chords beyond the swept box; cell counts multiples of 8 (three multigrid halvings).
 // Boundaries: uniform inlet U at x-, convective outlet at x+, free-slip sides.
 // Flow: U and nu from the chord Reynolds number Re = U c / nu (U given, or U = Re nu / c for the
-// given nu); the stream starts impulsively (the uniform stream projected around the body at t_0).
+// given nu, core/flow_scales.hpp); the stream starts impulsively (the uniform stream projected
+// around the body at t_0).
 // Time step: fixed, dt = output_interval / m with the smallest m for which the estimated
 // convective CFL number (U + 2 x the body's fastest vertex speed) dt / h stays below `cfl`, so
 // every output time is a step; the solver's blow-up guard (cfl_limit, non-finite velocity) ends
@@ -29,6 +30,7 @@
 #include "cfd/grid/stretched_grid.hpp"
 #include "cfd/io/fin_input.hpp"
 #include "cfd/flow/flow_solver.hpp"
+#include "core/flow_scales.hpp"
 #include "core/stage_files.hpp"
 
 namespace finverse::cfd::io {
@@ -36,7 +38,7 @@ namespace finverse::cfd::io {
 struct FinFlowOptions {
   double reynolds = 1000;        // U c / nu (the seed paper's trout caudal fin)
   double speed = 0;              // U [m/s]; 0: U = reynolds * viscosity / chord
-  double viscosity = 1.0e-6;     // nu [m^2/s] (water) when speed = 0
+  double viscosity = kWaterKinematicViscosity;  // nu [m^2/s] when speed = 0
   double rho = 1000;             // [kg/m^3]
   double cells_per_chord = 0;    // h = c / this; 0: h = min(c / 16, ibm_thickness / 2)
   double core_margin = 0.25;     // [c]
