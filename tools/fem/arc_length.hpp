@@ -2,7 +2,7 @@
 // arc-length method (Crisfield 1981, "A fast incremental/iterative solution procedure that
 // handles snap-through", Computers & Structures 13:55-62; also Crisfield 1991, vol. 1, ch. 9).
 //
-// Unlike load control (static_newton.hpp) the load factor lambda is an unknown: each step
+// Unlike load control (static_solver.hpp) the load factor lambda is an unknown: each step
 // satisfies the constraint |Delta u|_s^2 = Delta l^2 on the step's displacement increment, so the
 // path goes through limit points (snap-through) where the tangent stiffness turns singular and
 // then indefinite. Per corrector iteration two solves with the same factorised tangent:
@@ -20,12 +20,12 @@
 // tangent) is retried with Delta l / 2, and below min_arc_length the solver throws NotConverged.
 //
 // |.|_s: translations divided by the model extent L_char plus rotations (radians), the same
-// scaling as the increment criterion of static_newton.hpp. Rotational increments are summed as
+// scaling as the increment criterion of static_solver.hpp. Rotational increments are summed as
 // spins, which is what the constraint measures (a step is small).
 // Loads: q = Model::reference_load() (the nodal loads); f_fixed = Model::external_load(time) -
 // load_factor(time) q (gravity and the tabulated loads at `time`) is held fixed. Prescribed DOFs
 // keep the values they have in the starting state. E(t) fields are evaluated at `time`.
-// Convergence: as static_newton.hpp, |r_free| <= residual_tolerance * scale + round-off floor
+// Convergence: as static_solver.hpp, |r_free| <= residual_tolerance * scale + round-off floor
 // and |du|_s <= increment_tolerance, with scale = max(|f_ext_free|, |reactions|, |q_free|):
 // the reference load enters the scale because a traced path crosses lambda = 0 (for a snapped-
 // through arch, at zero load and zero reactions) where the other two vanish.

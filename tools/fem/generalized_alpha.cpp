@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "fem/errors.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 
 namespace finverse::fem {
 

@@ -11,7 +11,7 @@
 #include "fem/assembly.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/errors.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 
 namespace finverse::fem {
 

@@ -24,7 +24,7 @@
 
 #include "fem/model.hpp"
 #include "fem/nodal_state.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 
 namespace finverse::fem {
 
@@ -41,7 +41,7 @@ class QuasiStaticIncrement {
   QuasiStaticIncrement(const Model& model, StaticOptions options = {.steps = 1});
 
   // x_{t+dt} from the base x_t; base is not modified. Throws NotConverged / SingularMatrix /
-  // InvalidInput (see static_newton.hpp).
+  // InvalidInput (see static_solver.hpp).
   NodalState solve(const NodalState& base, double t, double t_next, QuasiStaticInfo* info = nullptr);
 
   // dx = positions of solve() minus those of the base, [node][xyz]: the quantity eq. (2) compares.

@@ -20,7 +20,7 @@
 
 #include "fem/generalized_alpha.hpp"
 #include "fem/model.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 
 namespace finverse::fem {
 

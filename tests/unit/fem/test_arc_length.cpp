@@ -22,7 +22,7 @@
 
 #include "fem/arc_length.hpp"
 #include "fem/errors.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 
 using namespace finverse::fem;
 

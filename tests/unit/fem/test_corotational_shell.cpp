@@ -15,7 +15,7 @@
 #include "fem/corotational_shell.hpp"
 #include "fem/errors.hpp"
 #include "fem/model.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 
 namespace finverse::fem {
 namespace {

@@ -12,7 +12,7 @@
 
 #include "fem/corotational_beam.hpp"
 #include "fem/errors.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 #include "fem/validation/hybrid_plate.hpp"
 #include "fem/validation/hybrid_plate_model.hpp"
 

@@ -7,7 +7,7 @@
 #include "fem/errors.hpp"
 #include "fem/load_history.hpp"
 #include "fem/root_motion.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 #include "fem_test_models.hpp"
 
 using namespace finverse::fem;

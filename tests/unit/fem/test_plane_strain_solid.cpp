@@ -12,7 +12,7 @@
 #include "fem/errors.hpp"
 #include "fem/model.hpp"
 #include "fem/plane_strain_solid.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 #include "fem/structured_mesh.hpp"
 #include "fem/validation/turek_hron_csm.hpp"
 

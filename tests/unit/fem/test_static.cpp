@@ -1,12 +1,12 @@
-// Static Newton: linear-range cantilevers against beam theory (uniform and tapered), prescribed
-// root rotation, and the one-line errors for bad input.
+// StaticSolver (load-controlled Newton): linear-range cantilevers against beam theory (uniform and
+// tapered), prescribed root rotation, and the one-line errors for bad input.
 #include <cmath>
 #include <limits>
 
 #include <gtest/gtest.h>
 
 #include "fem/errors.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 #include "fem_test_models.hpp"
 
 using namespace finverse::fem;
@@ -24,7 +24,7 @@ std::string message_of(F&& f) {
 }
 }  // namespace
 
-TEST(StaticNewton, SmallLoadCantileverMatchesLinearBeamTheory) {
+TEST(StaticSolver, SmallLoadCantileverMatchesLinearBeamTheory) {
   // One load at a time: combined, the axial force would (correctly) stiffen the bending.
   const double L = 0.5, E = 2e9, b = 0.01, t = 0.002;
   const double EIy = E * b * t * t * t / 12, EIz = E * t * b * b * b / 12, EA = E * b * t;
@@ -48,7 +48,7 @@ TEST(StaticNewton, SmallLoadCantileverMatchesLinearBeamTheory) {
   EXPECT_NEAR(r.reaction(4), P * L, 1e-6 * P * L);  // moment about y at the root
 }
 
-TEST(StaticNewton, TaperedCantileverMatchesAnalyticIntegral) {
+TEST(StaticSolver, TaperedCantileverMatchesAnalyticIntegral) {
   // Thickness tapers linearly t0 -> t1 at constant width: w_tip = P int (L-x)^2 / (E I(x)) dx,
   // I = b t(x)^3 / 12, in closed form with u = t(x):
   //   w = 12 P / (E b k^3) [ -t1^2/(2u^2) + 2 t1/u + ln u ]_{t0}^{t1},  k = (t1 - t0)/L.
@@ -72,7 +72,7 @@ TEST(StaticNewton, TaperedCantileverMatchesAnalyticIntegral) {
   EXPECT_GT(std::abs(su.position[6].z() - exact), 0.1 * exact);
 }
 
-TEST(StaticNewton, PrescribedRootRotationTurnsTheBeamRigidly) {
+TEST(StaticSolver, PrescribedRootRotationTurnsTheBeamRigidly) {
   Model m = cantilever(4, 1.0, 1e9, 0.01, 0.002, 0.01, 0.002);
   const double angle = 1.2;  // rad, about z
   m.prescribe(0, 5, [&](double lam) { return angle * lam; });
@@ -89,7 +89,7 @@ TEST(StaticNewton, PrescribedRootRotationTurnsTheBeamRigidly) {
   EXPECT_GE(solver.linear_solver().numeric_count(), 8);
 }
 
-TEST(StaticNewton, UnconstrainedModelIsReportedAsSingular) {
+TEST(StaticSolver, UnconstrainedModelIsReportedAsSingular) {
   Model m;
   const int mat = m.add_material({"m", 1e9, 0.3, 1000});
   m.add_node(Vec3(0, 0, 0));
@@ -109,7 +109,7 @@ TEST(StaticNewton, UnconstrainedModelIsReportedAsSingular) {
   }
 }
 
-TEST(StaticNewton, NanLoadIsRejectedWithItsLocation) {
+TEST(StaticSolver, NanLoadIsRejectedWithItsLocation) {
   Model m = cantilever(2, 1.0, 1e9, 0.01, 0.002, 0.01, 0.002);
   const std::string msg = message_of<InvalidInput>(
       [&] { m.add_nodal_load(2, 1, std::numeric_limits<double>::quiet_NaN()); });
@@ -123,7 +123,7 @@ TEST(StaticNewton, NanLoadIsRejectedWithItsLocation) {
   EXPECT_THROW(solver.solve(s, 0, 1), InvalidInput);
 }
 
-TEST(StaticNewton, NonPhysicalMaterialsAreRejected) {
+TEST(StaticSolver, NonPhysicalMaterialsAreRejected) {
   Model m;
   auto msg = [&](Material mat) { return message_of<InvalidInput>([&] { m.add_material(mat); }); };
   EXPECT_NE(msg({"ray", 0.0, 0.3, 1000}).find("Young's modulus"), std::string::npos);
@@ -137,7 +137,7 @@ TEST(StaticNewton, NonPhysicalMaterialsAreRejected) {
   EXPECT_NO_THROW(m.add_material({"ray", 1e9, -0.99, 1e-3}));
 }
 
-TEST(StaticNewton, NonConvergenceIsReportedAfterStepCutting) {
+TEST(StaticSolver, NonConvergenceIsReportedAfterStepCutting) {
   Model m = cantilever(8, 1.0, 1e9, 0.01, 0.002, 0.01, 0.002);
   const double EI = 1e9 * 0.01 * 8e-9 / 12;
   m.add_nodal_load(8, 2, 10 * EI);

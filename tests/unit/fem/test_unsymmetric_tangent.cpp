@@ -13,7 +13,7 @@
 
 #include "fem/corotational_shell.hpp"
 #include "fem/errors.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 
 using namespace finverse::fem;
 

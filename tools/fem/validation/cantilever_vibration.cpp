@@ -14,7 +14,7 @@
 #include "fem/modal.hpp"
 #include "fem/model.hpp"
 #include "fem/spectral_peaks.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 
 namespace finverse::fem::validation {
 

@@ -9,7 +9,7 @@
 
 #include "fem/errors.hpp"
 #include "fem/model.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 
 namespace finverse::fem::validation {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 #include "fem/validation/shell_cases.hpp"
 #include "fem/validation/shell_meshes.hpp"
 #include "fem/validation/shell_reference.hpp"

@@ -11,7 +11,7 @@
 
 #include "fem/errors.hpp"
 #include "fem/generalized_alpha.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 #include "fem/validation/hybrid_plate_model.hpp"
 
 namespace finverse::fem::validation {

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 
 namespace finverse::fem::validation {
 

@@ -6,7 +6,7 @@
 // remove the rigid motion along z (the loads have no z resultant, so it carries no reaction).
 #include <sstream>
 
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 #include "fem/validation/shell_cases.hpp"
 #include "fem/validation/shell_meshes.hpp"
 #include "fem/validation/shell_reference.hpp"

@@ -12,7 +12,7 @@
 #include "fem/errors.hpp"
 #include "fem/generalized_alpha.hpp"
 #include "fem/model.hpp"
-#include "fem/static_newton.hpp"
+#include "fem/static_solver.hpp"
 #include "fem/structured_mesh.hpp"
 
 namespace finverse::fem::validation {

@@ -1,5 +1,5 @@
-// Load-controlled Newton-Raphson with step cutting (see static_newton.hpp).
-#include "fem/static_newton.hpp"
+// Load-controlled Newton-Raphson with step cutting (see static_solver.hpp).
+#include "fem/static_solver.hpp"
 
 #include <algorithm>
 #include <cmath>

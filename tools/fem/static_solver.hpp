@@ -1,4 +1,4 @@
-// Static equilibrium f_int(x) = f_ext(lambda) by Newton-Raphson under load control.
+// StaticSolver: static equilibrium f_int(x) = f_ext(lambda) by Newton-Raphson under load control.
 //
 // The load factor lambda goes from its start to its end value in steps; each step starts from
 // the converged configuration, applies the change of the prescribed DOFs, and iterates with the
