@@ -5,8 +5,9 @@
 #
 #   snakemake -c2 results/<case>/motion.h5
 #
-# Default case: one flapping period. f = St U / (2 A) with U = Re nu / c = 0.1 m/s and
-# A = 0.44 c gives f = 5 Hz, so T = 0.2 s = 100 frames at 500 fps, three 512 x 512 views.
+# Default case: one flapping period. f = St U / (2 A) with U = Re nu / c = 0.1 m/s (water;
+# core/flow_scales.hpp) and A = 0.44 c gives f = 5 Hz, so T = 0.2 s = 100 frames at 500 fps,
+# three 512 x 512 views.
 # fin.periods (if the schema has it) records more periods.
 
 _FIN = config["fin"]

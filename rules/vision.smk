@@ -19,11 +19,14 @@ _VOUT = f"results/{_VCASE}"
 _VTEMPLATE = (
     f"--chord {_VFIN['chord_m']} --height-over-chord {_VFIN['height_over_chord']} --rays {_VFIN['rays']}"
 )
-# The period T = 2 A / (St U) with U = Re nu / c (nu of water, as fin-synth): stored as the
-# kinematics' T attribute only when the record covers whole periods.
-_V_U = _VFIN["reynolds"] * 1e-6 / _VFIN["chord_m"]
-_V_T = 2 * _VFIN["heave_amplitude_over_chord"] * _VFIN["chord_m"] / (_VFIN["strouhal"] * _V_U)
-_V_PERIOD = f"--period {_V_T!r}" if float(_VFIN["periods"]).is_integer() else ""
+# The motion's period, stored as the kinematics' T attribute only when the record covers whole
+# periods: fin-track computes it from the flow scales as fin-synth does (core/flow_scales.hpp).
+_V_PERIOD = (
+    f"--reynolds {_VFIN['reynolds']} --strouhal {_VFIN['strouhal']}"
+    f" --heave-over-chord {_VFIN['heave_amplitude_over_chord']}"
+    if float(_VFIN["periods"]).is_integer()
+    else ""
+)
 _V_NOISY = "--blur-samples 3 --exposure 0.15 --noise-sigma 2"
 
 if have("fin-track"):

@@ -3,6 +3,8 @@
 #include "vision/camera.hpp"
 
 #include <cmath>
+#include <numbers>
+#include <random>
 
 #include <opencv2/calib3d.hpp>
 
@@ -73,6 +75,15 @@ std::vector<Camera> default_rig(const std::vector<std::string>& views, double ch
     rig.push_back(c);
   }
   return rig;
+}
+
+void perturb_principal_points(std::vector<Camera>& cameras, double px, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  for (auto& c : cameras) {
+    const double a = 2 * std::numbers::pi * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
+    c.K(0, 2) += px * std::cos(a);
+    c.K(1, 2) += px * std::sin(a);
+  }
 }
 
 void write_cameras(const std::filesystem::path& yml, const std::vector<Camera>& cameras) {

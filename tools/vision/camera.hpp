@@ -4,6 +4,7 @@
 // fin (section 4.1, Fig. 7: side, back and ventral).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -33,6 +34,10 @@ Camera look_at(const std::string& name, int width, int height, double focal_px, 
 // the right), "back" (from downstream, +x) and "ventral" (from below, -z). Each sees a square of
 // about 2.2 c around the fin with mild barrel distortion, as a macro lens would give.
 std::vector<Camera> default_rig(const std::vector<std::string>& views, double chord, int width, int height);
+
+// Validation of the calibration's influence: every principal point shifted by `px` pixels in a
+// direction drawn (uniformly) from `seed`, one draw per camera in order.
+void perturb_principal_points(std::vector<Camera>& cameras, double px, std::uint64_t seed);
 
 void write_cameras(const std::filesystem::path& yml, const std::vector<Camera>& cameras);
 std::vector<Camera> read_cameras(const std::filesystem::path& yml);

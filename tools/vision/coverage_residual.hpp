@@ -18,9 +18,8 @@
 // edge facing the other way also cuts the pixel, the two half-planes combine: a sliver (their
 // intersection) covers c1 + c2 - 1, a gap between two prongs (the complement) c1 + c2.
 // The band is the data's (pixels within band_px of the segmented outline), so the residual set
-// does not change with the pose and LM costs of candidate poses compare. Measured on the 100
-// validation frames with fin-track's defaults (tools/apps/fin-track.cpp): worst fit-vs-truth
-// coverage IoU in the back / ventral views 0.961 / 0.939 without this term, 0.976 / 0.974 with it.
+// does not change with the pose and LM costs of candidate poses compare. What the term gains, and
+// fin-track's weight, band and views: docs/studies/tracking_fit_defaults.md.
 #pragma once
 
 #include <array>

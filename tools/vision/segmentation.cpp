@@ -114,17 +114,14 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
   // of an edge-on fold up to 180), so it is read where the fin surely covers whole pixels: at the
   // nearest "core" pixel, at least core_depth_px inside the detection mask (the pre-blur and the
   // motion blur spread the detection about a pixel outwards, so the mask's first inner ring is
-  // still rim). A maximum over a disc, instead, takes a ray's contrast for the membrane beside it
-  // and cuts the membrane's rim wherever a ray reaches the outline. The test reads the unblurred
-  // frame (blurring would pull a dark rim's contrast into the pixel outside it); the sensor noise
-  // there, about 2 levels, is small against half a contrast of 15 levels or more.
-  // Where no core is near (a sliver only a few pixels thick), the largest darkening within
-  // contrast_radius_px stands in for the full contrast. The full contrast is also never less than
-  // that of the (pre-blurred) pixels touching the rim pixel: an outline darker than the interior
-  // (the stacked layers of an edge-on fold, a ray along the edge) would otherwise push the
-  // boundary a pixel outwards. Measured on the validation frames (noise 2, blur), this rule
-  // raised the mean IoU of the true silhouette against the segmentation from 0.975 / 0.977 to
-  // 0.986 / 0.984 in the back / ventral views (side 0.992 -> 0.995).
+  // still rim). The test reads the unblurred frame (blurring would pull a dark rim's contrast into
+  // the pixel outside it); the sensor noise there, about 2 levels, is small against half a
+  // contrast of 15 levels or more. Where no core is near (a sliver only a few pixels thick), the
+  // largest darkening within contrast_radius_px stands in for the full contrast. The full contrast
+  // is also never less than that of the (pre-blurred) pixels touching the rim pixel: an outline
+  // darker than the interior (the stacked layers of an edge-on fold, a ray along the edge) would
+  // otherwise push the boundary a pixel outwards. Why not a maximum over a disc everywhere (it
+  // takes a ray's contrast for the membrane beside it): docs/studies/vision_segmentation_rim.md.
   const int margin = o.contrast_radius_px + o.core_depth_px + 2;
   cv::Rect roi = cv::boundingRect(s.mask);
   if (roi.area() > 0) {
