@@ -45,10 +45,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Largest relative error of a report's graded relative metrics.
-double worst_error(const fv::Report& r) {
+// Largest relative error of a validation case's relative metrics.
+double worst_error(const finverse::Summary& r) {
   double e = 0;
-  for (const auto& m : r.metrics)
+  for (const auto& m : r.metrics())
     if (m.kind == "relative") e = std::max(e, m.error());
   return e;
 }
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
       o.nx = nx;
       o.tolerance = accuracy;
       const auto t0 = std::chrono::steady_clock::now();
-      const fv::Report r = fv::run_sze_end_shear(o);
+      const finverse::Summary r = fv::run_sze_end_shear(o);
       const double t = seconds_since(t0);
       par["finverse_sze"].push_back({{"nx", nx}, {"ny", o.ny}, {"wall_s", t}, {"max_error", worst_error(r)}});
       std::cerr << "finverse sze strip " << nx << "x" << o.ny << ": " << t << " s, max error "
@@ -122,12 +122,12 @@ int main(int argc, char** argv) {
       o.nx = o.nz = n;
       o.tolerance = accuracy;
       const auto t0 = std::chrono::steady_clock::now();
-      const fv::Report r = fv::run_hybrid_plate_static(o);
+      const finverse::Summary r = fv::run_hybrid_plate_static(o);
       const double t = seconds_since(t0);
       par["finverse_plate"].push_back({{"n", n}, {"wall_s", t}, {"max_error", worst_error(r)}});
       std::cerr << "finverse hybrid plate " << n << "x" << n << ": " << t << " s, max error "
                 << worst_error(r) << "\n";
-      for (const auto& m : r.metrics)
+      for (const auto& m : r.metrics())
         if (m.reference) std::cerr << "  " << m.name << " " << m.value << " (CalculiX " << *m.reference << ")\n";
       if (r.pass()) {
         ours_plate = t;

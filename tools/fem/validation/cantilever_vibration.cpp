@@ -56,7 +56,7 @@ double z_fraction(const Eigen::VectorXd& shape) {
 }
 }  // namespace
 
-Report run_cantilever_vibration(const VibrationOptions& opt) {
+Summary run_cantilever_vibration(const VibrationOptions& opt) {
   if (opt.elements < 3) throw InvalidInput("cantilever_vibration: --elements must be >= 3");
   const Beam beam;
   Model model;
@@ -68,27 +68,26 @@ Report run_cantilever_vibration(const VibrationOptions& opt) {
                    Vec3(0, 1, 0));
   model.fix_node(0);
 
-  Report report;
-  report.name = "cantilever_vibration";
-  report.description =
+  Summary report(
+      "validation", "cantilever_vibration",
       "Uniform cantilever: first three bending frequencies against Euler-Bernoulli (linearised "
       "eigenproblem and spectrum of a simulated free vibration), and energy drift of an undamped "
-      "free vibration over 100 periods with generalized-alpha (rho_inf = 1)";
+      "free vibration over 100 periods with generalized-alpha (rho_inf = 1)");
   const std::string eb_source =
       "Euler-Bernoulli cantilever, omega_n = (beta_n L)^2 sqrt(EI/(rho A L^4)), cos(bL)cosh(bL) = -1 "
       "(beta_n L = 1.87510407, 4.69409113, 7.85475744)";
-  report.parameters = {{"length_m", beam.L},
-                       {"width_m", beam.width},
-                       {"thickness_m", beam.thickness},
-                       {"youngs_modulus_Pa", beam.E},
-                       {"density_kg_m3", beam.rho},
-                       {"elements", ne},
-                       {"solver", to_string(opt.backend)},
-                       {"steps_per_period_spectrum", opt.steps_per_period_spectrum},
-                       {"periods_spectrum", opt.periods_spectrum},
-                       {"steps_per_period_energy", opt.steps_per_period_energy},
-                       {"periods_energy", opt.periods_energy},
-                       {"spectral_radius", 1.0}};
+  report.parameters() = {{"length_m", beam.L},
+                         {"width_m", beam.width},
+                         {"thickness_m", beam.thickness},
+                         {"youngs_modulus_Pa", beam.E},
+                         {"density_kg_m3", beam.rho},
+                         {"elements", ne},
+                         {"solver", to_string(opt.backend)},
+                         {"steps_per_period_spectrum", opt.steps_per_period_spectrum},
+                         {"periods_spectrum", opt.periods_spectrum},
+                         {"steps_per_period_energy", opt.steps_per_period_energy},
+                         {"periods_energy", opt.periods_energy},
+                         {"spectral_radius", 1.0}};
 
   // (a) Eigenproblem; keep the z-bending modes (the y-bending, torsion and axial modes of the
   // 3-D model interleave with them).

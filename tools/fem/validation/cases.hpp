@@ -1,11 +1,12 @@
-// Validation cases of the structural FEM (DESIGN.md section 6), run by `fin-fem <case>`.
+// Validation cases of the structural FEM (DESIGN.md section 6), run by `fin-fem <case>`; each returns
+// the content of its summary.json (core/summary.hpp) but for the timing, which fin-fem adds.
 #pragma once
 
 #include <filesystem>
 #include <string>
 
+#include "core/summary.hpp"
 #include "fem/sparse_solver.hpp"
-#include "fem/validation/report.hpp"
 
 namespace finverse::fem::validation {
 
@@ -18,7 +19,7 @@ struct ElasticaOptions {
   double tolerance = 0.005;
   SolverBackend backend = SolverBackend::cholmod;
 };
-Report run_elastica(const ElasticaOptions& options);
+Summary run_elastica(const ElasticaOptions& options);
 
 // Uniform cantilever: first three bending frequencies against Euler-Bernoulli, from the
 // linearised eigenproblem and from the spectrum of a simulated free vibration; energy drift of an
@@ -33,7 +34,7 @@ struct VibrationOptions {
   double energy_drift_goal = 0.001;
   SolverBackend backend = SolverBackend::cholmod;
 };
-Report run_cantilever_vibration(const VibrationOptions& options);
+Summary run_cantilever_vibration(const VibrationOptions& options);
 
 // Roots beta_n L of the Euler-Bernoulli cantilever equation cos(x) cosh(x) + 1 = 0, n = 1, 2, ...
 double cantilever_beta_l(int n);

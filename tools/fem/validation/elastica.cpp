@@ -35,7 +35,7 @@ double lookup(const nlohmann::json& table, const std::string& column, double loa
 }
 }  // namespace
 
-Report run_elastica(const ElasticaOptions& opt) {
+Summary run_elastica(const ElasticaOptions& opt) {
   const nlohmann::json ref_all = read_json(opt.reference);
   if (!ref_all.contains("elastica_tip_load"))
     throw InvalidInput(opt.reference.string() + ": missing object 'elastica_tip_load'");
@@ -58,16 +58,15 @@ Report run_elastica(const ElasticaOptions& opt) {
   // Reference load EI/L^2 in +z (bending about the thin direction): lambda = PL^2/EI.
   model.add_nodal_load(tip, 2, EI / (L * L));
 
-  Report report;
-  report.name = "elastica_beam";
-  report.description =
+  Summary report(
+      "validation", "elastica_beam",
       "Cantilever under a dead tip load perpendicular to its axis (large-deflection elastica); "
       "corotational Euler-Bernoulli beams, load-controlled Newton; tip deflection, shortening and "
-      "rotation against the shooting solution";
-  report.parameters = {{"length_m", L},          {"width_m", width},
-                       {"thickness_m", thickness}, {"youngs_modulus_Pa", E},
-                       {"elements", opt.elements}, {"load_steps_per_unit", opt.load_steps_per_unit},
-                       {"solver", to_string(opt.backend)}, {"reference", opt.reference.string()}};
+      "rotation against the shooting solution");
+  report.parameters() = {{"length_m", L},          {"width_m", width},
+                         {"thickness_m", thickness}, {"youngs_modulus_Pa", E},
+                         {"elements", opt.elements}, {"load_steps_per_unit", opt.load_steps_per_unit},
+                         {"solver", to_string(opt.backend)}, {"reference", opt.reference.string()}};
 
   StaticOptions so;
   so.backend = opt.backend;

@@ -14,7 +14,7 @@
 
 namespace finverse::fem::validation {
 
-Report run_elastica_shell(const ElasticaShellOptions& opt) {
+Summary run_elastica_shell(const ElasticaShellOptions& opt) {
   const ReferenceTable ref(opt.reference, "elastica_tip_load");
   const double L = 1.0, b = 0.05, h = 0.01, E = 1.0e9;
   const double EI = E * b * h * h * h / 12.0;
@@ -31,18 +31,17 @@ Report run_elastica_shell(const ElasticaShellOptions& opt) {
     model.add_nodal_load(tip.back(), 2, share * EI / (L * L));  // lambda = PL^2/EI
   }
 
-  Report report;
-  report.name = "elastica_shell";
-  report.description =
+  Summary report(
+      "validation", "elastica_shell",
       "Cantilever under a dead tip load perpendicular to its axis (large-deflection elastica) "
       "modelled as a shell strip; corotational OPT/DKT triangles, load-controlled Newton; tip "
-      "deflection, shortening and rotation against the shooting solution";
-  report.parameters = {{"length_m", L}, {"width_m", b}, {"thickness_m", h},
-                       {"youngs_modulus_Pa", E}, {"poisson_ratio", 0.0},
-                       {"cells_along", opt.nx}, {"cells_across", opt.ny},
-                       {"triangles", mesh.triangles.size()},
-                       {"load_steps_per_unit", opt.load_steps_per_unit},
-                       {"solver", to_string(opt.backend)}, {"reference", opt.reference.string()}};
+      "deflection, shortening and rotation against the shooting solution");
+  report.parameters() = {{"length_m", L}, {"width_m", b}, {"thickness_m", h},
+                         {"youngs_modulus_Pa", E}, {"poisson_ratio", 0.0},
+                         {"cells_along", opt.nx}, {"cells_across", opt.ny},
+                         {"triangles", mesh.triangles.size()},
+                         {"load_steps_per_unit", opt.load_steps_per_unit},
+                         {"solver", to_string(opt.backend)}, {"reference", opt.reference.string()}};
 
   StaticOptions so;
   so.backend = opt.backend;

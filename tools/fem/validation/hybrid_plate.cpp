@@ -59,31 +59,30 @@ std::pair<double, double> harmonic(const std::vector<double>& t, const std::vect
   return {2 * std::hypot(c, s) / span, std::atan2(s, c)};
 }
 
-void common_parameters(Report& r, const HybridPlateOptions& o, const HybridPlateModel& hp,
+void common_parameters(Summary& r, const HybridPlateOptions& o, const HybridPlateModel& hp,
                        const nlohmann::json& ref) {
-  r.parameters = {{"case", o.case_file.string()}, {"reference", o.reference.string()},
-                  {"cells_chord", o.nx}, {"cells_span", o.nz},
-                  {"shell_triangles", hp.shell_elements}, {"beam_elements", hp.beam_elements},
-                  {"nodes", hp.model.node_count()}, {"solver", to_string(o.backend)},
-                  {"calculix_command", ref.value("command", std::string())},
-                  {"calculix_version", ref.value("peer", std::string())}};
+  r.parameters() = {{"case", o.case_file.string()}, {"reference", o.reference.string()},
+                    {"cells_chord", o.nx}, {"cells_span", o.nz},
+                    {"shell_triangles", hp.shell_elements}, {"beam_elements", hp.beam_elements},
+                    {"nodes", hp.model.node_count()}, {"solver", to_string(o.backend)},
+                    {"calculix_command", ref.value("command", std::string())},
+                    {"calculix_version", ref.value("peer", std::string())}};
 }
 
 }  // namespace
 
-Report run_hybrid_plate_static(const HybridPlateOptions& opt) {
+Summary run_hybrid_plate_static(const HybridPlateOptions& opt) {
   const HybridPlateCase c = read_hybrid_plate_case(opt.case_file);
   const nlohmann::json ref = read_reference(opt.reference, "static");
   HybridPlateModel hp = build_hybrid_plate(c, opt.nx, opt.nz, HybridPlateLoad::pressure);
 
-  Report report;
-  report.name = "hybrid_plate_static";
-  report.description =
+  Summary report(
+      "validation", "hybrid_plate_static",
       "Hybrid plate (seed paper sec. 3.4, data/cases/hybrid_plate.json): square shell plate with "
       "three beams of different moduli on shared nodes, dead uniform pressure, leading edge "
-      "clamped; beam-tip deflections against CalculiX NLGEOM (S8R + B32R, converged mesh)";
+      "clamped; beam-tip deflections against CalculiX NLGEOM (S8R + B32R, converged mesh)");
   common_parameters(report, opt, hp, ref);
-  report.parameters["pressure"] = c.pressure;
+  report.parameters()["pressure"] = c.pressure;
 
   StaticOptions so;
   so.backend = opt.backend;
@@ -106,7 +105,7 @@ Report run_hybrid_plate_static(const HybridPlateOptions& opt) {
   return report;
 }
 
-Report run_hybrid_plate_dynamic(const HybridPlateOptions& opt) {
+Summary run_hybrid_plate_dynamic(const HybridPlateOptions& opt) {
   const HybridPlateCase c = read_hybrid_plate_case(opt.case_file);
   const nlohmann::json ref = read_reference(opt.reference, "dynamic");
   HybridPlateModel hp = build_hybrid_plate(c, opt.nx, opt.nz, HybridPlateLoad::heave);
@@ -122,24 +121,23 @@ Report run_hybrid_plate_dynamic(const HybridPlateOptions& opt) {
                          std::to_string(rd[key].get<double>()) + " differs from the case's " +
                          std::to_string(value) + " (" + opt.case_file.string() + ")");
 
-  Report report;
-  report.name = "hybrid_plate_dynamic";
-  report.description =
+  Summary report(
+      "validation", "hybrid_plate_dynamic",
       "Hybrid plate (seed paper sec. 3.4) heaved at the leading edge in vacuo from rest, "
       "generalized-alpha rho_inf = 1; tip deflection relative to the leading edge, "
       "w = u_y,tip - y_LE, over the history against CalculiX (S8R + B32R, finest mesh of its study; "
       "the reference is exact in time: ccx's eigenmodes superposed analytically, see "
       "tools/scripts/calculix_hybrid_plate.py): max history error, peak-to-peak range, and "
-      "amplitude and phase of the component at the drive frequency";
+      "amplitude and phase of the component at the drive frequency");
   common_parameters(report, opt, hp, ref);
   const double periods = opt.periods > 0 ? std::min(opt.periods, c.periods) : c.periods;
   const double t_end = periods / c.frequency;
   const double dt = opt.time_step > 0 ? opt.time_step : c.time_step;
-  report.parameters["time_step"] = dt;
-  report.parameters["periods"] = periods;
-  report.parameters["heave_amplitude"] = c.heave_amplitude;
-  report.parameters["frequency"] = c.frequency;
-  report.parameters["spectral_radius"] = 1.0;
+  report.parameters()["time_step"] = dt;
+  report.parameters()["periods"] = periods;
+  report.parameters()["heave_amplitude"] = c.heave_amplitude;
+  report.parameters()["frequency"] = c.frequency;
+  report.parameters()["spectral_radius"] = 1.0;
 
   DynamicOptions dyn;
   dyn.time_step = dt;

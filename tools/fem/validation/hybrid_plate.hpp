@@ -14,8 +14,8 @@
 
 #include <filesystem>
 
+#include "core/summary.hpp"
 #include "fem/sparse_solver.hpp"
-#include "fem/validation/report.hpp"
 
 namespace finverse::fem::validation {
 
@@ -29,7 +29,7 @@ struct HybridPlateOptions {
   std::filesystem::path history;    // dynamic: if set, CSV of t and every tip's w (ours, ccx)
   SolverBackend backend = SolverBackend::cholmod;
 };
-Report run_hybrid_plate_static(const HybridPlateOptions& options);
-Report run_hybrid_plate_dynamic(const HybridPlateOptions& options);
+Summary run_hybrid_plate_static(const HybridPlateOptions& options);
+Summary run_hybrid_plate_dynamic(const HybridPlateOptions& options);
 
 }  // namespace finverse::fem::validation

@@ -12,8 +12,8 @@
 
 #include <filesystem>
 
+#include "core/summary.hpp"
 #include "fem/sparse_solver.hpp"
-#include "fem/validation/report.hpp"
 
 namespace finverse::fem::validation {
 
@@ -24,7 +24,7 @@ struct SzeEndShearOptions {
   double tolerance = 0.01;
   SolverBackend backend = SolverBackend::cholmod;
 };
-Report run_sze_end_shear(const SzeEndShearOptions& options);
+Summary run_sze_end_shear(const SzeEndShearOptions& options);
 
 struct SzeEndMomentOptions {
   std::filesystem::path reference;
@@ -33,7 +33,7 @@ struct SzeEndMomentOptions {
   double tolerance = 0.01;
   SolverBackend backend = SolverBackend::cholmod;
 };
-Report run_sze_end_moment(const SzeEndMomentOptions& options);
+Summary run_sze_end_moment(const SzeEndMomentOptions& options);
 
 struct SzeHemisphereOptions {
   std::filesystem::path reference;
@@ -44,7 +44,7 @@ struct SzeHemisphereOptions {
   double tolerance = 0.02;
   SolverBackend backend = SolverBackend::cholmod;
 };
-Report run_sze_hemisphere(const SzeHemisphereOptions& options);
+Summary run_sze_hemisphere(const SzeHemisphereOptions& options);
 
 struct ElasticaShellOptions {
   std::filesystem::path reference;
@@ -53,6 +53,6 @@ struct ElasticaShellOptions {
   double tolerance = 0.005;
   SolverBackend backend = SolverBackend::cholmod;
 };
-Report run_elastica_shell(const ElasticaShellOptions& options);
+Summary run_elastica_shell(const ElasticaShellOptions& options);
 
 }  // namespace finverse::fem::validation

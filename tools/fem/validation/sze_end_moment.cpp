@@ -13,7 +13,7 @@
 
 namespace finverse::fem::validation {
 
-Report run_sze_end_moment(const SzeEndMomentOptions& opt) {
+Summary run_sze_end_moment(const SzeEndMomentOptions& opt) {
   const ReferenceTable ref(opt.reference, "sze_cantilever_end_moment");
   const double L = ref.scalar("L"), b = ref.scalar("b"), h = ref.scalar("h");
   const double E = ref.scalar("E"), nu = ref.scalar("nu"), M_max = ref.scalar("M_max");
@@ -38,17 +38,16 @@ Report run_sze_end_moment(const SzeEndMomentOptions& opt) {
   // same circle; the element itself does not need the restraint.)
   for (int n : id) model.fix(n, 1), model.fix(n, 3), model.fix(n, 5);
 
-  Report report;
-  report.name = "sze_end_moment";
-  report.description =
+  Summary report(
+      "validation", "sze_end_moment",
       "Cantilever strip under an end moment rolling it into a full circle (Sze, Liu & Lo 2004); "
       "corotational OPT/DKT shell triangles, load-controlled Newton; tip displacements at "
-      "M/Mmax = 0.25, 0.5, 0.75, 1";
-  report.parameters = {{"L", L}, {"b", b}, {"h", h}, {"E", E}, {"nu", nu}, {"M_max", M_max},
-                       {"cells_along", opt.nx}, {"cells_across", opt.ny},
-                       {"triangles", mesh.triangles.size()},
-                       {"steps_per_level", opt.steps_per_level},
-                       {"solver", to_string(opt.backend)}, {"reference", opt.reference.string()}};
+      "M/Mmax = 0.25, 0.5, 0.75, 1");
+  report.parameters() = {{"L", L}, {"b", b}, {"h", h}, {"E", E}, {"nu", nu}, {"M_max", M_max},
+                         {"cells_along", opt.nx}, {"cells_across", opt.ny},
+                         {"triangles", mesh.triangles.size()},
+                         {"steps_per_level", opt.steps_per_level},
+                         {"solver", to_string(opt.backend)}, {"reference", opt.reference.string()}};
 
   StaticOptions so;
   so.backend = opt.backend;

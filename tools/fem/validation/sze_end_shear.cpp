@@ -10,7 +10,7 @@
 
 namespace finverse::fem::validation {
 
-Report run_sze_end_shear(const SzeEndShearOptions& opt) {
+Summary run_sze_end_shear(const SzeEndShearOptions& opt) {
   const ReferenceTable ref(opt.reference, "sze_cantilever_end_shear");
   const double L = ref.scalar("L"), b = ref.scalar("b"), h = ref.scalar("h");
   const double E = ref.scalar("E"), nu = ref.scalar("nu"), P_max = ref.scalar("P_max");
@@ -28,17 +28,16 @@ Report run_sze_end_shear(const SzeEndShearOptions& opt) {
     model.add_nodal_load(tip.back(), 2, share * P_max);
   }
 
-  Report report;
-  report.name = "sze_end_shear";
-  report.description =
+  Summary report(
+      "validation", "sze_end_shear",
       "Cantilever strip under an end shear force (Sze, Liu & Lo 2004, sec. 3.1); corotational "
       "OPT/DKT shell triangles, load-controlled Newton; tip deflection w and shortening -u at ten "
-      "load levels";
-  report.parameters = {{"L", L}, {"b", b}, {"h", h}, {"E", E}, {"nu", nu}, {"P_max", P_max},
-                       {"cells_along", opt.nx}, {"cells_across", opt.ny},
-                       {"triangles", mesh.triangles.size()},
-                       {"steps_per_level", opt.steps_per_level},
-                       {"solver", to_string(opt.backend)}, {"reference", opt.reference.string()}};
+      "load levels");
+  report.parameters() = {{"L", L}, {"b", b}, {"h", h}, {"E", E}, {"nu", nu}, {"P_max", P_max},
+                         {"cells_along", opt.nx}, {"cells_across", opt.ny},
+                         {"triangles", mesh.triangles.size()},
+                         {"steps_per_level", opt.steps_per_level},
+                         {"solver", to_string(opt.backend)}, {"reference", opt.reference.string()}};
 
   StaticOptions so;
   so.backend = opt.backend;

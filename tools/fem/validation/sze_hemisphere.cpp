@@ -13,7 +13,7 @@
 
 namespace finverse::fem::validation {
 
-Report run_sze_hemisphere(const SzeHemisphereOptions& opt) {
+Summary run_sze_hemisphere(const SzeHemisphereOptions& opt) {
   const ReferenceTable ref(opt.reference, "sze_open_hemisphere");
   const double R = ref.scalar("R"), t = ref.scalar("t"), E = ref.scalar("E");
   const double nu = ref.scalar("nu"), P_max = ref.scalar("P_max_full_model");
@@ -35,18 +35,17 @@ Report run_sze_hemisphere(const SzeHemisphereOptions& opt) {
   model.add_nodal_load(a, 0, 0.5 * P_max);
   model.add_nodal_load(b, 1, -0.5 * P_max);
 
-  Report report;
-  report.name = "sze_hemisphere";
-  report.description =
+  Summary report(
+      "validation", "sze_hemisphere",
       "Open hemispherical shell (18 deg hole) under alternating radial point loads (Sze, Liu & "
       "Lo 2004), quarter model; corotational OPT/DKT shell triangles, load-controlled Newton; "
-      "outward and inward displacement of the loaded points";
-  report.parameters = {{"R", R}, {"t", t}, {"E", E}, {"nu", nu}, {"P_max_full_model", P_max},
-                       {"hole_deg", kHoleDeg}, {"cells_meridian", opt.n_meridian},
-                       {"cells_circumference", opt.n_circumference},
-                       {"triangles", mesh.triangles.size()},
-                       {"steps_per_level", opt.steps_per_level},
-                       {"solver", to_string(opt.backend)}, {"reference", opt.reference.string()}};
+      "outward and inward displacement of the loaded points");
+  report.parameters() = {{"R", R}, {"t", t}, {"E", E}, {"nu", nu}, {"P_max_full_model", P_max},
+                         {"hole_deg", kHoleDeg}, {"cells_meridian", opt.n_meridian},
+                         {"cells_circumference", opt.n_circumference},
+                         {"triangles", mesh.triangles.size()},
+                         {"steps_per_level", opt.steps_per_level},
+                         {"solver", to_string(opt.backend)}, {"reference", opt.reference.string()}};
 
   StaticOptions so;
   so.backend = opt.backend;

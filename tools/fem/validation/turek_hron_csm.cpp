@@ -198,7 +198,7 @@ MeanAmplitude mean_amplitude(const std::vector<double>& time, const std::vector<
   return {0.5 * (mx + mn), 0.5 * (mx - mn)};
 }
 
-Report run_turek_hron_csm_static(const CsmStaticOptions& opt) {
+Summary run_turek_hron_csm_static(const CsmStaticOptions& opt) {
   if (opt.case_number != 1 && opt.case_number != 2)
     throw InvalidInput("turek_hron_csm: case number must be 1 or 2, got " +
                        std::to_string(opt.case_number));
@@ -217,13 +217,12 @@ Report run_turek_hron_csm_static(const CsmStaticOptions& opt) {
       meshes = {{5, 1, 3.0}, {10, 1, 3.0}, {20, 2, 3.0}, {40, 4, 3.0}, {80, 8, 3.0}};
   }
 
-  Report report;
-  report.name = "turek_hron_csm" + std::to_string(opt.case_number);
-  report.description =
+  Summary report(
+      "validation", "turek_hron_csm" + std::to_string(opt.case_number),
       "Turek-Hron " + csm +
       ": static deflection of the elastic flag under gravity, St. Venant-Kirchhoff plane strain, "
       "Q9 total-Lagrangian elements, load-controlled Newton; tip (point A) displacement with a "
-      "mesh convergence study";
+      "mesh convergence study");
   nlohmann::json study = nlohmann::json::array();
 
   std::vector<double> ux, uy;
@@ -276,19 +275,19 @@ Report run_turek_hron_csm_static(const CsmStaticOptions& opt) {
     report.info("ux_A_change_last_refinement", std::abs(ux[n - 1] - ux[n - 2]) / std::abs(ux[n - 1]));
     report.info("uy_A_change_last_refinement", std::abs(uy[n - 1] - uy[n - 2]) / std::abs(uy[n - 1]));
   }
-  report.parameters = {{"case", csm},
-                       {"youngs_modulus_Pa", flag.E},
-                       {"poisson_ratio", flag.nu},
-                       {"density_kg_m3", flag.rho},
-                       {"gravity_m_s2", flag.g},
-                       {"element", "plane_strain_q9 (St. Venant-Kirchhoff, total Lagrangian, 3x3 Gauss)"},
-                       {"clamp", opt.straight_clamp ? "straight at x = xc + sqrt(r^2 - (h/2)^2)"
-                                                    : "cylinder arc"},
-                       {"coarse", opt.coarse},
-                       {"load_steps", opt.load_steps},
-                       {"solver", to_string(opt.backend)},
-                       {"reference", opt.reference.string()},
-                       {"mesh_study", study}};
+  report.parameters() = {{"case", csm},
+                         {"youngs_modulus_Pa", flag.E},
+                         {"poisson_ratio", flag.nu},
+                         {"density_kg_m3", flag.rho},
+                         {"gravity_m_s2", flag.g},
+                         {"element", "plane_strain_q9 (St. Venant-Kirchhoff, total Lagrangian, 3x3 Gauss)"},
+                         {"clamp", opt.straight_clamp ? "straight at x = xc + sqrt(r^2 - (h/2)^2)"
+                                                      : "cylinder arc"},
+                         {"coarse", opt.coarse},
+                         {"load_steps", opt.load_steps},
+                         {"solver", to_string(opt.backend)},
+                         {"reference", opt.reference.string()},
+                         {"mesh_study", study}};
   return report;
 }
 
@@ -372,7 +371,7 @@ std::string dt_name(double dt) {
 
 }  // namespace
 
-Report run_turek_hron_csm3(const Csm3Options& opt) {
+Summary run_turek_hron_csm3(const Csm3Options& opt) {
   const std::string csm = "CSM3";
   const nlohmann::json ref = read_json(opt.reference);
   const Flag flag(ref, csm, opt.reference);
@@ -393,13 +392,12 @@ Report run_turek_hron_csm3(const Csm3Options& opt) {
   for (double dt : dts)
     if (!(dt > 0)) throw InvalidInput("turek_hron_csm3: time steps must be > 0");
 
-  Report report;
-  report.name = "turek_hron_csm3";
-  report.description =
+  Summary report(
+      "validation", "turek_hron_csm3",
       "Turek-Hron CSM3: the elastic flag released from rest under gravity, undamped; St. "
       "Venant-Kirchhoff plane strain, Q9 total-Lagrangian elements, generalized-alpha with "
       "consistent mass; mean, amplitude and frequency of the tip (point A) displacement over the "
-      "last period, with a time-step study";
+      "last period, with a time-step study");
   nlohmann::json study = nlohmann::json::array();
   auto add_study = [&](const FlagMesh& m, double dt, const Csm3Run& run, const Csm3Result& r) {
     study.push_back({{"mesh", mesh_name(m)},
@@ -451,25 +449,25 @@ Report run_turek_hron_csm3(const Csm3Options& opt) {
   report.info("newton_iterations_per_step",
               static_cast<double>(graded_run.iterations) / graded_run.steps);
 
-  report.parameters = {{"case", csm},
-                       {"youngs_modulus_Pa", flag.E},
-                       {"poisson_ratio", flag.nu},
-                       {"density_kg_m3", flag.rho},
-                       {"gravity_m_s2", flag.g},
-                       {"element", "plane_strain_q9 (St. Venant-Kirchhoff, total Lagrangian, 3x3 Gauss)"},
-                       {"mesh", mesh_name(mesh)},
-                       {"grading", mesh.grading},
-                       {"time_steps_s", dts},
-                       {"graded_time_step_s", dts.back()},
-                       {"spectral_radius", opt.spectral_radius},
-                       {"newton_residual_tolerance", opt.residual_tolerance},
-                       {"end_time_s", opt.end_time},
-                       {"clamp", opt.straight_clamp ? "straight at x = xc + sqrt(r^2 - (h/2)^2)"
-                                                    : "cylinder arc"},
-                       {"coarse", opt.coarse},
-                       {"solver", to_string(opt.backend)},
-                       {"reference", opt.reference.string()},
-                       {"study", study}};
+  report.parameters() = {{"case", csm},
+                         {"youngs_modulus_Pa", flag.E},
+                         {"poisson_ratio", flag.nu},
+                         {"density_kg_m3", flag.rho},
+                         {"gravity_m_s2", flag.g},
+                         {"element", "plane_strain_q9 (St. Venant-Kirchhoff, total Lagrangian, 3x3 Gauss)"},
+                         {"mesh", mesh_name(mesh)},
+                         {"grading", mesh.grading},
+                         {"time_steps_s", dts},
+                         {"graded_time_step_s", dts.back()},
+                         {"spectral_radius", opt.spectral_radius},
+                         {"newton_residual_tolerance", opt.residual_tolerance},
+                         {"end_time_s", opt.end_time},
+                         {"clamp", opt.straight_clamp ? "straight at x = xc + sqrt(r^2 - (h/2)^2)"
+                                                      : "cylinder arc"},
+                         {"coarse", opt.coarse},
+                         {"solver", to_string(opt.backend)},
+                         {"reference", opt.reference.string()},
+                         {"study", study}};
   return report;
 }
 

@@ -18,8 +18,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "core/summary.hpp"
 #include "fem/sparse_solver.hpp"
-#include "fem/validation/report.hpp"
 
 namespace finverse::fem::validation {
 
@@ -39,7 +39,7 @@ struct CsmStaticOptions {
   double tolerance = 0.01;
   SolverBackend backend = SolverBackend::cholmod;
 };
-Report run_turek_hron_csm_static(const CsmStaticOptions& options);
+Summary run_turek_hron_csm_static(const CsmStaticOptions& options);
 
 struct Csm3Options {
   std::filesystem::path reference;  // turek_hron.json
@@ -62,7 +62,7 @@ struct Csm3Options {
   double tolerance = 0.02;
   SolverBackend backend = SolverBackend::cholmod;
 };
-Report run_turek_hron_csm3(const Csm3Options& options);
+Summary run_turek_hron_csm3(const Csm3Options& options);
 
 // Mean, amplitude and frequency of a sampled oscillation over its last full period.
 struct LastPeriod {
