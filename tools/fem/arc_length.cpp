@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "fem/errors.hpp"
+#include "fem/newton_iteration.hpp"
 #include "fem/static_solver.hpp"
 
 namespace finverse::fem {
@@ -27,9 +28,7 @@ ArcLengthSolver::ArcLengthSolver(const Model& model, ArcLengthOptions options)
       opt_(std::move(options)),
       dofs_((model.validate(), model)),
       assembler_(model_, dofs_, opt_.unsymmetric_tangent),
-      solver_(!opt_.unsymmetric_tangent ? opt_.backend
-              : opt_.backend == SolverBackend::sparse_lu ? SolverBackend::sparse_lu
-                                                          : SolverBackend::umfpack) {
+      solver_(tangent_backend(opt_.backend, opt_.unsymmetric_tangent)) {
   const auto finite_positive = [](double v) { return std::isfinite(v) && v > 0; };
   if (!(std::isfinite(opt_.initial_arc_length) && opt_.initial_arc_length >= 0))
     bad_option("initial_arc_length must be >= 0");
@@ -102,84 +101,72 @@ ArcLengthPoint ArcLengthSolver::point(const NodalState& state, double lam) const
 }
 
 Eigen::VectorXd ArcLengthSolver::residual(const NodalState& state, double lam, double& scale) {
-  AssemblyRequest req;
-  req.matrix = true;
-  req.time = opt_.time;
-  assembler_.assemble(state, req);
-  const Eigen::VectorXd f_ext = fixed_load_ + lam * q_full_;
-  const Eigen::VectorXd& f_int = assembler_.internal_force();
-  const Eigen::VectorXd f_ext_free = dofs_.gather_free(f_ext);
-  double reaction = 0;
-  for (int g = 0; g < dofs_.total(); ++g)
-    if (dofs_.is_prescribed(g)) reaction += (f_int(g) - f_ext(g)) * (f_int(g) - f_ext(g));
-  scale = std::max({f_ext_free.norm(), std::sqrt(reaction), q_free_.norm(), 1e-30});
-  return f_ext_free - dofs_.gather_free(f_int);
+  // The reference load joins the scale: a traced path crosses lambda = 0 (arc_length.hpp).
+  return out_of_balance(assembler_, state, opt_.time, fixed_load_ + lam * q_full_, q_free_.norm(), scale);
 }
 
 ArcLengthSolver::Corrector ArcLengthSolver::correct(NodalState& trial, Eigen::VectorXd& du_step,
                                                     double& lam, double arc,
                                                     Constraint constraint, double target) {
   Corrector out;
-  double r0 = 0, floor = 0;
-  for (int it = 0; it <= opt_.max_iterations; ++it) {
-    double scale = 1;
-    const Eigen::VectorXd r = residual(trial, lam, scale);
-    const double rn = r.norm() / scale;
-    out.residual = rn;
-    if (!std::isfinite(rn)) return out;
-    if (it == 0) {
-      r0 = rn;
-      floor = roundoff_force_floor(assembler_.matrix(), dofs_, model_.position_scale());
+  const NewtonOutcome newton = newton_iterations(
+      {opt_.max_iterations, opt_.residual_tolerance, opt_.increment_tolerance}, assembler_,
+      [&](double& scale) { return residual(trial, lam, scale); },
+      [&](const Eigen::VectorXd& r) {
+        return correction(r, trial, du_step, lam, arc, constraint, target, out.singular);
+      });
+  out.iterations = newton.iterations;
+  out.residual = newton.residual;
+  return out;
+}
+
+std::optional<double> ArcLengthSolver::correction(const Eigen::VectorXd& r, NodalState& trial,
+                                                  Eigen::VectorXd& du_step, double& lam, double arc,
+                                                  Constraint constraint, double target, bool& singular) {
+  try {
+    solver_.factorize(assembler_.matrix(), "tangent stiffness");
+  } catch (const SingularMatrix&) {
+    singular = true;  // exactly at a limit point: the caller cuts the step
+    return std::nullopt;
+  }
+  const Eigen::VectorXd du_r = solver_.solve(r);
+  const Eigen::VectorXd du_t = solver_.solve(q_free_);
+  double dlam = 0;
+  switch (constraint) {
+    case Constraint::arc: {
+      // |du_step + du_r + dlam du_t|_s^2 = arc^2 (Crisfield 1981).
+      const Eigen::VectorXd a = du_step + du_r;
+      const double a1 = dot_s(du_t, du_t), a2 = 2 * dot_s(du_t, a), a3 = dot_s(a, a) - arc * arc;
+      const double disc = a2 * a2 - 4 * a1 * a3;
+      if (!(disc >= 0) || !(a1 > 0)) return std::nullopt;  // complex roots: the step is cut
+      // Roots without cancellation.
+      const double qq = -0.5 * (a2 + std::copysign(std::sqrt(disc), a2));
+      const double s1 = qq / a1, s2 = qq != 0 ? a3 / qq : -s1;
+      // Smallest angle between the old and the new step increment.
+      const double c1 = dot_s(du_step, a + s1 * du_t), c2 = dot_s(du_step, a + s2 * du_t);
+      dlam = c1 >= c2 ? s1 : s2;
+      break;
     }
-    if (it > 2 && rn > 1e6 * std::max(r0, 1.0)) return out;  // diverging
-    if (it == opt_.max_iterations) return out;
-    try {
-      solver_.factorize(assembler_.matrix(), "tangent stiffness");
-    } catch (const SingularMatrix&) {
-      out.singular = true;  // exactly at a limit point: the caller cuts the step
-      return out;
-    }
-    const Eigen::VectorXd du_r = solver_.solve(r);
-    const Eigen::VectorXd du_t = solver_.solve(q_free_);
-    double dlam = 0;
-    switch (constraint) {
-      case Constraint::arc: {
-        // |du_step + du_r + dlam du_t|_s^2 = arc^2 (Crisfield 1981).
-        const Eigen::VectorXd a = du_step + du_r;
-        const double a1 = dot_s(du_t, du_t), a2 = 2 * dot_s(du_t, a), a3 = dot_s(a, a) - arc * arc;
-        const double disc = a2 * a2 - 4 * a1 * a3;
-        if (!(disc >= 0) || !(a1 > 0)) return out;  // complex roots: the step is cut
-        // Roots without cancellation.
-        const double qq = -0.5 * (a2 + std::copysign(std::sqrt(disc), a2));
-        const double s1 = qq / a1, s2 = qq != 0 ? a3 / qq : -s1;
-        // Smallest angle between the old and the new step increment.
-        const double c1 = dot_s(du_step, a + s1 * du_t), c2 = dot_s(du_step, a + s2 * du_t);
-        dlam = c1 >= c2 ? s1 : s2;
-        break;
-      }
-      case Constraint::fixed_load:
-        dlam = target - lam;
-        break;
-      case Constraint::fixed_displacement: {
-        const double now = displacement(trial, opt_.stop_dof);
-        const double t = du_t(stop_equation_);
-        if (!(std::abs(t) > 0)) return out;
-        dlam = (target - now - du_r(stop_equation_)) / t;
-        break;
-      }
-    }
-    const Eigen::VectorXd du = du_r + dlam * du_t;
-    if (!du.allFinite() || !std::isfinite(dlam)) return out;
-    const double inc = std::sqrt(dot_s(du, du));
-    trial.apply_increment(dofs_.scatter_free(du));
-    du_step += du;
-    lam += dlam;
-    if (rn <= opt_.residual_tolerance + floor / scale && inc <= opt_.increment_tolerance) {
-      out.iterations = it + 1;
-      return out;
+    case Constraint::fixed_load:
+      dlam = target - lam;
+      break;
+    case Constraint::fixed_displacement: {
+      const double now = displacement(trial, opt_.stop_dof);
+      const double t = du_t(stop_equation_);
+      if (!(std::abs(t) > 0)) return std::nullopt;
+      dlam = (target - now - du_r(stop_equation_)) / t;
+      break;
     }
   }
-  return out;
+  const Eigen::VectorXd du = du_r + dlam * du_t;
+  if (!du.allFinite() || !std::isfinite(dlam)) return std::nullopt;
+  // The increment in the constraint's own norm |.|_s (weights 1/L_char^2) rather than
+  // scaled_increment_norm (division by L_char): the same quantity, rounded differently.
+  const double inc = std::sqrt(dot_s(du, du));
+  trial.apply_increment(dofs_.scatter_free(du));
+  du_step += du;
+  lam += dlam;
+  return inc;
 }
 
 ArcLengthResult ArcLengthSolver::solve(NodalState& state, double lam0) {

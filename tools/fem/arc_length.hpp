@@ -114,6 +114,11 @@ class ArcLengthSolver {
   // Corrector iterations from trial (increment du_step, load factor lam, both updated).
   Corrector correct(NodalState& trial, Eigen::VectorXd& du_step, double& lam, double arc,
                     Constraint constraint, double target);
+  // One corrector step from the out-of-balance force r (newton_iteration.hpp): du = du_r + dlam du_t
+  // with dlam from the constraint, applied to trial, du_step and lam; returns |du|_s, or nothing
+  // when the step must be cut (singular tangent, which also sets `singular`; complex roots).
+  std::optional<double> correction(const Eigen::VectorXd& r, NodalState& trial, Eigen::VectorXd& du_step,
+                                   double& lam, double arc, Constraint constraint, double target, bool& singular);
   // Residual r = f_ext(lam) - f_int on the free DOFs after assembling at state; sets scale.
   Eigen::VectorXd residual(const NodalState& state, double lam, double& scale);
   double dot_s(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "fem/errors.hpp"
+#include "fem/newton_iteration.hpp"
 #include "fem/static_solver.hpp"
 
 namespace finverse::fem {
@@ -122,6 +123,11 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s) {
   req.mass_coefficient = (1 - am_) * c_a + (1 - af_) * aM * c_v;
   req.time = t1;
 
+  // Newton on the step's balance. Not the static iteration of newton_iteration.hpp: the residual
+  // carries inertia and damping and is measured against the largest force level seen (a free
+  // vibration passes through zero load), convergence is tested before the correction with the
+  // previous increment relative to the step's, the factorisation is kept once the residual is
+  // small (modified Newton), and a failure ends the run instead of cutting a load step.
   DynamicStepInfo info;
   Eigen::VectorXd a1, v1, w;
   double r0 = 0, floor = 0, last_inc = INFINITY, step_norm = 0;
@@ -169,13 +175,7 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s) {
       ++info.factorizations;
     }
     const Eigen::VectorXd du = solver_.solve(r);
-    double inc = 0;
-    for (int i = 0; i < dofs_.free(); ++i) {
-      const int g = dofs_.free_to_global()[i];
-      const double v = (g % kDofsPerNode) < 3 ? du(i) / lchar_ : du(i);
-      inc += v * v;
-    }
-    inc = std::sqrt(inc);
+    const double inc = scaled_increment_norm(dofs_, du, lchar_);
     if (it == 0) {
       double dn = 0;
       for (int g = 0; g < dofs_.total(); ++g) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "fem/errors.hpp"
+#include "fem/newton_iteration.hpp"
 
 namespace finverse::fem {
 
@@ -54,9 +55,7 @@ StaticSolver::StaticSolver(const Model& model, StaticOptions options)
       opt_(options),
       dofs_((model.validate(), model)),
       assembler_(model_, dofs_, options.unsymmetric_tangent),
-      solver_(!options.unsymmetric_tangent ? options.backend
-              : options.backend == SolverBackend::sparse_lu ? SolverBackend::sparse_lu
-                                                             : SolverBackend::umfpack),
+      solver_(tangent_backend(options.backend, options.unsymmetric_tangent)),
       lchar_(model.characteristic_length()) {
   if (opt_.steps < 1) throw InvalidInput("static solver: steps must be >= 1");
   solver_.set_equation_names([this](int eq) { return describe_equation(dofs_, eq); });
@@ -75,44 +74,19 @@ int StaticSolver::newton(NodalState& state, double lam, const Eigen::VectorXd* o
       }
   }
   if (offset) f_ext -= *offset;
-  const Eigen::VectorXd f_ext_free = dofs_.gather_free(f_ext);
-  AssemblyRequest req;
-  req.matrix = true;
-  req.time = lam;
-  double r0 = 0, floor = 0;
-  for (int it = 0; it <= opt_.max_iterations; ++it) {
-    assembler_.assemble(state, req);
-    const Eigen::VectorXd& f_int = assembler_.internal_force();
-    const Eigen::VectorXd r = f_ext_free - dofs_.gather_free(f_int);
-    // Reaction forces make the scale when the load is a prescribed displacement only.
-    double reaction = 0;
-    for (int g = 0; g < dofs_.total(); ++g)
-      if (dofs_.is_prescribed(g)) reaction += (f_int(g) - f_ext(g)) * (f_int(g) - f_ext(g));
-    const double scale = std::max({f_ext_free.norm(), std::sqrt(reaction), 1e-30});
-    const double rn = r.norm() / scale;
-    residual = rn;
-    if (!std::isfinite(rn)) return -1;
-    if (it == 0) {
-      r0 = rn;
-      floor = roundoff_force_floor(assembler_.matrix(), dofs_, model_.position_scale());
-    }
-    if (it > 2 && rn > 1e6 * std::max(r0, 1.0)) return -1;  // diverging
-    if (it == opt_.max_iterations) return -1;
-    solver_.factorize(assembler_.matrix(), "tangent stiffness");
-    const Eigen::VectorXd du = solver_.solve(r);
-    if (!du.allFinite()) return -1;
-    double inc = 0;
-    for (int i = 0; i < dofs_.free(); ++i) {
-      const int g = dofs_.free_to_global()[i];
-      const double v = (g % kDofsPerNode) < 3 ? du(i) / lchar_ : du(i);
-      inc += v * v;
-    }
-    inc = std::sqrt(inc);
-    state.apply_increment(dofs_.scatter_free(du));
-    if (rn <= opt_.residual_tolerance + floor / scale && inc <= opt_.increment_tolerance)
-      return it + 1;
-  }
-  return -1;
+  const NewtonOutcome out = newton_iterations(
+      {opt_.max_iterations, opt_.residual_tolerance, opt_.increment_tolerance}, assembler_,
+      [&](double& scale) { return out_of_balance(assembler_, state, lam, f_ext, 0.0, scale); },
+      [&](const Eigen::VectorXd& r) -> std::optional<double> {
+        solver_.factorize(assembler_.matrix(), "tangent stiffness");
+        const Eigen::VectorXd du = solver_.solve(r);
+        if (!du.allFinite()) return std::nullopt;
+        const double inc = scaled_increment_norm(dofs_, du, lchar_);
+        state.apply_increment(dofs_.scatter_free(du));
+        return inc;
+      });
+  residual = out.residual;
+  return out.iterations;
 }
 
 StaticResult StaticSolver::solve(NodalState& state, double lam0, double lam1,

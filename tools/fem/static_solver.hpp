@@ -2,9 +2,10 @@
 //
 // The load factor lambda goes from its start to its end value in steps; each step starts from
 // the converged configuration, applies the change of the prescribed DOFs, and iterates with the
-// (symmetrised, see assembly.hpp) consistent tangent. A step that does not converge within
-// max_iterations, or whose residual becomes non-finite or grows by 1e6, is halved and retried
-// (step cutting); after a converged step the step grows again (x1.5) up to the initial size.
+// (symmetrised, see assembly.hpp) consistent tangent: the iteration of newton_iteration.hpp. A
+// step that does not converge within max_iterations, or whose residual becomes non-finite or grows
+// by 1e6, is halved and retried (step cutting); after a converged step the step grows again (x1.5)
+// up to the initial size.
 // Converged when both
 //   |r_free| <= residual_tolerance * max(|f_ext_free|, |f_reaction|) + round-off floor
 //   |du| / L_char + |dtheta| <= increment_tolerance   (L_char: model extent)
