@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # Workflow test: runs the Snakemake DAG on the tiny case in a scratch directory and checks
-#  1. a dry run of the default case plans without error,
-#  2. the tiny case runs to completion and every summary.json is a valid finverse summary,
+#  1. dry runs of the default target (the pipeline only), `validation` and `bench` plan without
+#     error, and with nothing built they plan the same jobs (the whole DAG), each missing
+#     executable standing as one missing_executable job, which fails with one line saying how to
+#     build it,
+#  2. the tiny case runs to completion, its stage files (kinematics, mesh, motion, loads) meet their
+#     contracts (fin-contract check) and every summary.json is a valid finverse summary,
 #  3. a second run has nothing to do,
 #  4. `-R <rule>` reruns that rule only,
 #  5. a rebuilt executable (newer mtime) makes its stage rerun.
@@ -12,12 +16,42 @@ build=$(cd "$2" && pwd)
 work=$(mktemp -d "${TMPDIR:-/tmp}/finverse_workflow.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 sm=(snakemake -s "$src/Snakefile" -d "$work" -c2 --config build_dir="$build")
+# snakemake <target> in <work dir> with <build dir> [options]: the target comes before the options
+# (--config and --configfile take several values and would swallow it).
+sm_target() { local target=$1 dir=$2 build_dir=$3; shift 3; snakemake -s "$src/Snakefile" "$target" -d "$dir" -c2 "$@" --config build_dir="$build_dir"; }
 
-echo "== dry run, default case"
-"${sm[@]}" -n --quiet > "$work/dry.log" 2>&1 || { cat "$work/dry.log"; exit 1; }
+# The job table of a dry run, one "rule:count" per line, without missing_executable.
+jobs_of() { awk '/^job +count/ {t=1; next} t && /^total/ {exit} t && /^[a-z]/ && $1 != "missing_executable" {print $1":"$2}' "$1"; }
+
+echo "== dry runs: default target, validation, bench"
+for target in all validation bench; do
+  sm_target "$target" "$work" "$build" -n --quiet > "$work/dry_$target.log" 2>&1 || { cat "$work/dry_$target.log"; exit 1; }
+done
+# The default target is the pipeline on the default case, no validation case.
+if grep -qE "^validation_" "$work/dry_all.log"; then cat "$work/dry_all.log"; echo "the default target plans validation cases"; exit 1; fi
+grep -qE "^loads +1 " "$work/dry_all.log" || { cat "$work/dry_all.log"; echo "the default target does not reach loads.h5"; exit 1; }
+
+echo "== nothing built: the same DAG, and a missing executable says how to build it"
+nobuild=$work/nobuild/build
+for target in all validation bench; do
+  sm_target "$target" "$work/nobuild" "$nobuild" -n --quiet > "$work/nobuild_$target.log" 2>&1 ||
+    { cat "$work/nobuild_$target.log"; exit 1; }
+  diff <(jobs_of "$work/dry_$target.log") <(jobs_of "$work/nobuild_$target.log") ||
+    { echo "nothing built, target $target plans other jobs (< built, > nothing built)"; exit 1; }
+done
+grep -qE "^missing_executable +[0-9]+ " "$work/nobuild_all.log" || { cat "$work/nobuild_all.log"; exit 1; }
+if sm_target results/validation/taylor_green/summary.json "$work/nobuild" "$nobuild" > "$work/nobuild_run.log" 2>&1; then
+  cat "$work/nobuild_run.log"; echo "a rule ran without its executable"; exit 1
+fi
+grep -qE "^[^ ]*/bin/fin-cfd is missing: run cmake -S [^ ]+ -B [^ ]+ -G Ninja && cmake --build " "$work/nobuild_run.log" ||
+  { cat "$work/nobuild_run.log"; echo "no line saying how to build fin-cfd"; exit 1; }
 
 echo "== tiny case"
 "${sm[@]}" --configfile "$src/config/cases/tiny.yaml" > "$work/run1.log" 2>&1 || { cat "$work/run1.log"; exit 1; }
+for stage in kinematics mesh motion loads; do
+  "$build/bin/fin-contract" check "$work/results/tiny/$stage.h5" > /dev/null ||
+    { echo "results/tiny/$stage.h5 does not meet its contract"; exit 1; }
+done
 shopt -s nullglob
 summaries=("$work"/results/validation/*/summary.json)
 echo "summaries: ${#summaries[@]}"
