@@ -14,16 +14,8 @@
 //                   by name: it needs the full matrix, which only StaticOptions::unsymmetric_tangent
 //                   assembles. Singularity: a zero pivot reported by SparseLU.
 //   umfpack         UMFPACK (SuiteSparse 5.12) LU of the full matrix, same use as sparse_lu.
-// Measured (tests/unit/fem/solver_bench.cpp, Release, on a shared 2-core machine under load, so
-// +-30 %): tangent of a 90 x 90 beam lattice, 48 060 free DOFs, 7.4e5 upper nonzeros:
-//   cholmod          analyse+factor 1.01 s, numeric refactorisation 1.27 s, solve 0.039 s
-//   simplicial_ldlt  analyse+factor 3.19 s, numeric refactorisation 3.05 s, solve 0.030 s
-// (CHOLMOD here links the reference BLAS; with OpenBLAS its supernodal kernels gain more),
-// so cholmod is the default (2.4x faster per numeric factorisation).
-// LU of the full non-symmetric tangent (fem_solver_bench 70, 28 980 free DOFs, same machine and
-// load caveat): cholmod 0.50 s per refactorisation for comparison, umfpack 0.84 s, Eigen
-// SparseLU 2.1 s (analyse+factor 0.86 s vs 2.8 s) -> umfpack is the LU default, 2.5x faster than
-// SparseLU and ~1.7x the cost of the symmetric CHOLMOD factorisation.
+// Defaults: cholmod for the symmetric matrices, umfpack for the LU, the faster of each pair per
+// numeric refactorisation (timings: docs/studies/fem_sparse_solver.md).
 //
 // Singularity: a free rigid-body mode shows up as a pivot at round-off level. We test the
 // reciprocal condition estimate (min/max pivot) against 1e-13 and throw SingularMatrix naming the
@@ -54,9 +46,9 @@ class SparseSolver {
   SparseSolver(const SparseSolver&) = delete;
   SparseSolver& operator=(const SparseSolver&) = delete;
 
-  // Factorises the symmetric matrix whose upper triangle is given (sparse_lu: the full matrix). `what` names the matrix in
-  // error messages ("tangent stiffness", "effective stiffness", ...); describe(eq) names an
-  // equation ("node 3 rz").
+  // Factorises the symmetric matrix whose upper triangle is given (sparse_lu, umfpack: the full
+  // matrix). `what` names the matrix in error messages ("tangent stiffness", "effective
+  // stiffness", ...); describe(eq) names an equation ("node 3 rz").
   void factorize(const SparseMatrix& upper, const std::string& what = "stiffness matrix");
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
 

@@ -33,8 +33,8 @@ struct StaticOptions {
   SolverBackend backend = SolverBackend::cholmod;
   // Full consistent tangent (not symmetrised) factorised by LU instead of its symmetric part by
   // Cholesky/LDL^T: needed under dead end moments, whose tangent keeps a skew part at equilibrium
-  // (assembly.hpp). LU backend: umfpack, or sparse_lu if `backend` names it (umfpack measured
-  // ~2x faster per refactorisation, solver_bench.cpp).
+  // (assembly.hpp). LU backend: umfpack, or sparse_lu if `backend` names it (umfpack is ~2.5x
+  // faster per refactorisation, docs/studies/fem_sparse_solver.md).
   bool unsymmetric_tangent = false;
 };
 

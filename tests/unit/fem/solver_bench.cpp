@@ -1,5 +1,6 @@
-// Times the sparse solver backends on the tangent of a beam lattice (the numbers quoted in
-// tools/fem/sparse_solver.hpp), and sparse LU of the full matrix: fem_solver_bench [nodes per side, default 90 -> ~48k DOFs].
+// Times the sparse solver backends on the tangent of a beam lattice, and sparse LU of the full
+// matrix (the study docs/studies/fem_sparse_solver.md):
+//   fem_solver_bench [nodes per side, default 90 -> ~48k DOFs]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
