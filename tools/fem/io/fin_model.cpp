@@ -98,7 +98,8 @@ FinModel build_fin_model(const stage::Mesh& mesh, const MaterialSpec& spec, cons
     }
   }
 
-  if (mesh.root_nodes.data.empty()) throw InvalidInput(source + ": /root_nodes is empty: the fin would be unconstrained");
+  if (mesh.root_nodes.data.empty())
+    throw InvalidInput(source + ": /root_nodes is empty: the fin would be unconstrained");
   for (size_t i = 0; i < mesh.root_nodes.data.size(); ++i)
     m.fix_node(node_index(mesh.root_nodes.data[i], nv, source, "/root_nodes", i));
   return fm;
@@ -131,7 +132,8 @@ void apply_root_motion(Model& model, const stage::Mesh& mesh, const stage::Motio
   for (int n : root) X.push_back(model.reference_positions()[n]);
   std::vector<std::vector<Vec3>> positions(nf);
   for (size_t k = 0; k < nf; ++k)
-    for (int n : root) positions[k].emplace_back(motion.points(k, n, 0), motion.points(k, n, 1), motion.points(k, n, 2));
+    for (int n : root)
+      positions[k].emplace_back(motion.points(k, n, 0), motion.points(k, n, 1), motion.points(k, n, 2));
   try {
     RootMotion(root, X, motion.time.data, positions, rotation, ramp).apply(model);
   } catch (const InvalidInput& e) {

@@ -21,9 +21,9 @@ struct FinModel {
   std::map<int, int> shell_region;  // shell region id (> 0) -> model region
 };
 
-// source names the mesh file in messages. Root nodes are clamped; apply_root_motion replaces that with the tracked motion. Throws
-// InvalidInput naming the dataset for inconsistent mesh data (indices out of range, degenerate
-// elements, a shell region without a material, no root nodes).
+// source names the mesh file in messages. Root nodes are clamped; apply_root_motion replaces that
+// with the tracked motion. Throws InvalidInput naming the dataset for inconsistent mesh data
+// (indices out of range, degenerate elements, a shell region without a material, no root nodes).
 FinModel build_fin_model(const stage::Mesh& mesh, const MaterialSpec& materials,
                          const std::string& source = "mesh.h5");
 

@@ -113,7 +113,8 @@ MaterialSpec parse_material_spec(const nlohmann::json& j, const std::string& sou
       ms.modulation.amplitude = m.contains("amplitude") ? number(m["amplitude"], source, where + ".amplitude") : 0.0;
       ms.modulation.frequency = m.contains("frequency") ? number(m["frequency"], source, where + ".frequency") : 0.0;
       ms.modulation.phase = m.contains("phase") ? number(m["phase"], source, where + ".phase") : 0.0;
-      if (!(std::abs(ms.modulation.amplitude) < 1)) fail(source, where + ".amplitude", "expected |a| < 1 (E must stay > 0)");
+      if (!(std::abs(ms.modulation.amplitude) < 1))
+        fail(source, where + ".amplitude", "expected |a| < 1 (E must stay > 0)");
       if (!(ms.modulation.frequency >= 0)) fail(source, where + ".frequency", "expected >= 0");
       s.modulations.push_back(ms);
     }
