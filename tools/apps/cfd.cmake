@@ -17,8 +17,8 @@ if(MPI_C_FOUND AND HYPRE_INCLUDE_DIR AND HYPRE_LIBRARY)
 endif()
 
 # The Navier-Stokes solver's validation cases (rules/cfd.smk).
-add_executable(fin-cfd ${CMAKE_CURRENT_LIST_DIR}/fin-cfd.cpp ${CMAKE_CURRENT_LIST_DIR}/fin_cfd_fin.cpp)
-target_link_libraries(fin-cfd PRIVATE finverse_cfd_validation finverse_cfd finverse_cfd_io finverse_core finverse_vtkio finverse_warnings)
+add_executable(fin-cfd ${CMAKE_CURRENT_LIST_DIR}/fin-cfd.cpp)
+target_link_libraries(fin-cfd PRIVATE finverse_cfd_cases finverse_cfd_validation finverse_cfd finverse_cfd_io finverse_core finverse_vtkio finverse_warnings)
 
 # The flow solver's benchmark file results/bench/cfd.json (rules/bench.smk).
 add_executable(fin-cfd-bench ${CMAKE_CURRENT_LIST_DIR}/fin-cfd-bench.cpp)

@@ -10,6 +10,8 @@
 #   nlohmann-json3-dev   JSON for the provenance `config` attribute and summary.json; a complete,
 #                        tested parser/serialiser is better than a hand-written one.
 #   libsuitesparse-dev   CHOLMOD sparse Cholesky for the FEM (DESIGN.md 5.2), faster than Eigen's.
+#   libyaml-cpp-dev      the case files of `fin-cfd run CASE.yaml` (YAML like config/); a complete YAML 1.2
+#                        parser with line numbers for errors beats a hand-written subset.
 #   python3-jsonschema   Snakemake's config validation against config/config.schema.yaml.
 #   python3-numpy        array handling in the plotting and summary helpers.
 #   ninja-build          faster incremental builds than make (optional; CMake falls back to make).
@@ -21,7 +23,7 @@ if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
 pkgs=(
   build-essential cmake ninja-build pkg-config git ca-certificates
   libeigen3-dev libopencv-dev libcgal-dev libvtk9-dev libhdf5-dev
-  libpagmo-dev libcli11-dev libgtest-dev libgmock-dev nlohmann-json3-dev libsuitesparse-dev
+  libpagmo-dev libcli11-dev libgtest-dev libgmock-dev nlohmann-json3-dev libsuitesparse-dev libyaml-cpp-dev
   libomp-dev
   snakemake python3-jsonschema python3-yaml python3-numpy python3-h5py python3-matplotlib
 )

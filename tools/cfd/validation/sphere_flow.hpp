@@ -26,8 +26,8 @@ struct SphereFlowSetup {
   std::array<double, 2> core_x{-0.75, 1.75};  // uniform core in x (and [-0.75, 0.75] across)
   double core_half_width = 0.75;
   double stretch_ratio = 1.12;
-  int subdivisions = 5;     // icosphere: 20 * 4^s triangles
-  int force_every = 10;     // steps between force evaluations
+  int subdivisions = 5;  // icosphere: 20 * 4^s triangles
+  int force_every = 10;  // steps between force evaluations
   // The pressure ghosts impose the wall's momentum balance dp/dn = -nu n . curl(omega)
   // (wall_pressure_gradient_3d.hpp) instead of dp/dn = 0 (FlowOptions::viscous_wall_pressure).
   bool viscous_wall_pressure = false;
@@ -39,8 +39,8 @@ struct SphereFlowSetup {
 
 struct SphereFlowResult {
   double cd = 0, cd_pressure = 0, cd_viscous = 0, cl = 0;  // at t_end (cl: |lateral| coefficient)
-  double cd_drift = 0;  // |CD(t_end) - CD(t_end - 5)| (steadiness)
-  double cd_control_volume = 0;  // at t_end, from the momentum balance of the control volume
+  double cd_drift = 0;                                     // |CD(t_end) - CD(t_end - 5)| (steadiness)
+  double cd_control_volume = 0;                            // at t_end, from the momentum balance of the control volume
   std::vector<double> time, cd_history;
   std::array<int, 3> cells{};
   long ghost_cells = 0, surface_samples = 0, triangles = 0, steps = 0;
@@ -49,5 +49,11 @@ struct SphereFlowResult {
 };
 
 SphereFlowResult run_sphere_flow(const SphereFlowSetup& setup);
+
+// The set-up as a data-driven flow case (cases/flow_case.hpp), which run_sphere_flow runs.
+namespace cases {
+struct FlowCaseSpec;
+}
+cases::FlowCaseSpec sphere_flow_case(const SphereFlowSetup& setup);
 
 }  // namespace finverse::cfd

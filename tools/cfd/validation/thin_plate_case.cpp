@@ -104,4 +104,10 @@ ThinPlateFiles make_thin_plate(const ThinPlateSetup& s) {
   return f;
 }
 
+nlohmann::json describe(const ThinPlateSetup& p) {
+  return {{"chord", p.chord},         {"span", p.span},     {"nx", p.nx},        {"nz", p.nz},
+          {"thickness", p.thickness}, {"heave", p.heave},   {"pitch", p.pitch},  {"phase", p.phase},
+          {"pivot", p.pivot},         {"period", p.period}, {"frames", p.frames}};
+}
+
 }  // namespace finverse::cfd::io

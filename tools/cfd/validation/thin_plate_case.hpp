@@ -8,6 +8,8 @@
 // its exact velocity.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include "core/stage_files.hpp"
 
 namespace finverse::cfd::io {
@@ -30,5 +32,8 @@ struct ThinPlateFiles {
 };
 
 ThinPlateFiles make_thin_plate(const ThinPlateSetup& s);
+
+// The set-up as recorded in the files' provenance (config attribute "plate").
+nlohmann::json describe(const ThinPlateSetup& s);
 
 }  // namespace finverse::cfd::io

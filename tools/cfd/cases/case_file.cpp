@@ -1,0 +1,278 @@
+// Reading case files; see case_file.hpp for the format.
+#include "cfd/cases/case_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <map>
+#include <numbers>
+
+#include "cfd/cases/surface_file.hpp"
+#include "cfd/immersed/surface_shapes.hpp"
+#include "core/error.hpp"
+
+namespace finverse::cfd::cases {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Reader {
+  fs::path file;
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& what) const {
+    const int line = n.Mark().line;
+    throw Error(file.string() + (line >= 0 ? ":" + std::to_string(line + 1) : std::string()) + ": " + key + ": " +
+                what);
+  }
+  template <class T>
+  T scalar(const YAML::Node& n, const std::string& key, const char* expected) const {
+    if (!n.IsScalar()) fail(n, key, std::string("expected ") + expected);
+    try {
+      return n.as<T>();
+    } catch (const YAML::Exception&) {
+      fail(n, key, "'" + n.Scalar() + "', expected " + expected);
+    }
+  }
+  double number(const YAML::Node& n, const std::string& key) const { return scalar<double>(n, key, "a number"); }
+  template <std::size_t N>
+  std::array<double, N> numbers(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsSequence() || n.size() != N) fail(n, key, "expected a list of " + std::to_string(N) + " numbers");
+    std::array<double, N> a{};
+    for (std::size_t i = 0; i < N; ++i) a[i] = number(n[i], key);
+    return a;
+  }
+  fs::path path(const YAML::Node& n, const std::string& key) const {
+    const fs::path p = scalar<std::string>(n, key, "a file name");
+    return p.is_absolute() ? p : (file.parent_path() / p).lexically_normal();
+  }
+  // Every key of `map` must be one of `known`: a misspelt key must not be silently ignored.
+  void only(const YAML::Node& map, const std::string& where, std::initializer_list<const char*> known) const {
+    if (!map.IsMap()) fail(map, where, "expected a section of keys");
+    for (const auto& kv : map) {
+      const std::string k = kv.first.as<std::string>();
+      bool ok = false;
+      for (const char* q : known) ok = ok || k == q;
+      if (!ok) fail(kv.first, where.empty() ? k : where + "." + k, "unknown key");
+    }
+  }
+};
+
+// A validation case's options: every scalar leaf as a flag, coarse: applied on request.
+void collect_flags(const Reader& r, const YAML::Node& map, const std::string& where,
+                   std::map<std::string, std::string>& flags) {
+  for (const auto& kv : map) {
+    const std::string key = kv.first.as<std::string>();
+    const std::string at = where.empty() ? key : where + "." + key;
+    if (where.empty() && (key == "case" || key == "description" || key == "coarse")) continue;
+    if (kv.second.IsMap()) {
+      collect_flags(r, kv.second, at, flags);
+      continue;
+    }
+    std::string flag = "--" + key;
+    for (char& c : flag)
+      if (c == '_') c = '-';
+    // null (in coarse:): back to the case's own default.
+    if (kv.second.IsNull()) {
+      flags.erase(flag);
+      continue;
+    }
+    if (!kv.second.IsScalar()) r.fail(kv.second, at, "expected a value or a section");
+    std::string value = kv.second.Scalar();
+    if (key == "reference" || key == "restart") value = r.path(kv.second, at).string();
+    flags[flag] = value;
+  }
+}
+
+FlowBcType side_type(const Reader& r, const YAML::Node& n, const std::string& key) {
+  static const std::map<std::string, FlowBcType> types = {{"inlet", FlowBcType::Inlet},
+                                                          {"convective_outlet", FlowBcType::ConvectiveOutlet},
+                                                          {"zero_gradient_outlet", FlowBcType::ZeroGradientOutlet},
+                                                          {"slip", FlowBcType::Slip},
+                                                          {"no_slip", FlowBcType::NoSlip},
+                                                          {"periodic", FlowBcType::Periodic}};
+  const std::string t = r.scalar<std::string>(n, key, "a boundary type");
+  const auto it = types.find(t);
+  if (it == types.end())
+    r.fail(n, key, "'" + t + "', expected inlet, convective_outlet, zero_gradient_outlet, slip, no_slip or periodic");
+  return it->second;
+}
+
+CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
+  r.only(n, at, {"name", "surface", "shape", "centre", "radius", "subdivisions", "lo", "hi", "scale", "translate"});
+  CaseBody b;
+  b.name = n["name"] ? r.scalar<std::string>(n["name"], at + ".name", "a name") : "body";
+  if (n["surface"] && n["shape"]) r.fail(n, at, "give either surface: (a file) or shape:, not both");
+  if (n["surface"]) {
+    const fs::path p = r.path(n["surface"], at + ".surface");
+    b.surface = read_surface_file(p);
+    b.source = p.filename().string();
+  } else if (n["shape"]) {
+    const std::string shape = r.scalar<std::string>(n["shape"], at + ".shape", "sphere or box");
+    if (shape == "sphere") {
+      if (!n["radius"]) r.fail(n, at, "a sphere needs radius:");
+      const auto c = n["centre"] ? r.numbers<3>(n["centre"], at + ".centre") : std::array<double, 3>{0, 0, 0};
+      const int level = n["subdivisions"] ? r.scalar<int>(n["subdivisions"], at + ".subdivisions", "an integer") : 4;
+      b.surface = icosphere(c, r.number(n["radius"], at + ".radius"), level, true);
+      b.source = "icosphere, " + std::to_string(level) + " subdivisions";
+    } else if (shape == "box") {
+      if (!n["lo"] || !n["hi"]) r.fail(n, at, "a box needs lo: and hi:");
+      b.surface = box_surface(r.numbers<3>(n["lo"], at + ".lo"), r.numbers<3>(n["hi"], at + ".hi"));
+      b.source = "box";
+    } else {
+      r.fail(n["shape"], at + ".shape", "'" + shape + "', expected sphere or box");
+    }
+  } else {
+    r.fail(n, at, "expected surface: (a .stl, .obj, .vtp or mesh .h5 file) or shape:");
+  }
+  if (n["scale"] || n["translate"])
+    transform(b.surface, n["scale"] ? r.number(n["scale"], at + ".scale") : 1.0,
+              n["translate"] ? r.numbers<3>(n["translate"], at + ".translate") : std::array<double, 3>{0, 0, 0});
+  return b;
+}
+
+// `over` merged into a copy of `base`: maps key by key, anything else replaced.
+YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
+  if (!base.IsMap() || !over.IsMap()) return YAML::Clone(over);
+  YAML::Node out = YAML::Clone(base);
+  for (const auto& kv : over) {
+    const std::string k = kv.first.as<std::string>();
+    out[k] = out[k] ? merged(out[k], kv.second) : YAML::Clone(kv.second);
+  }
+  return out;
+}
+
+FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
+  // The coarse (CI) variant: its coarse: section is merged over the file.
+  if (root["coarse"]) {
+    if (!root["coarse"].IsMap()) r.fail(root["coarse"], "coarse", "expected a section of keys");
+    if (coarse) {
+      const YAML::Node c = root["coarse"];
+      root = merged(root, c);
+    }
+  }
+  r.only(root, "",
+         {"case", "name", "description", "domain", "grid", "fluid", "boundaries", "initial", "bodies", "time", "solver",
+          "outputs", "coarse"});
+  FlowCaseSpec s;
+  const auto need = [&](const char* key) -> YAML::Node {
+    if (!root[key]) r.fail(root, key, "missing");
+    return root[key];
+  };
+  s.name = root["name"] ? r.scalar<std::string>(root["name"], "name", "a name") : r.file.stem().string();
+  if (root["description"]) s.description = r.scalar<std::string>(root["description"], "description", "text");
+  const YAML::Node d = need("domain");
+  r.only(d, "domain", {"x", "y", "z"});
+  const YAML::Node g = need("grid");
+  r.only(g, "grid", {"h", "core", "stretch_ratio"});
+  if (!g["core"]) r.fail(g, "grid.core", "missing");
+  r.only(g["core"], "grid.core", {"x", "y", "z"});
+  const char* axes[] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) {
+    if (!d[axes[a]]) r.fail(d, std::string("domain.") + axes[a], "missing");
+    if (!g["core"][axes[a]]) r.fail(g["core"], std::string("grid.core.") + axes[a], "missing");
+    const auto dx = r.numbers<2>(d[axes[a]], std::string("domain.") + axes[a]);
+    const auto cx = r.numbers<2>(g["core"][axes[a]], std::string("grid.core.") + axes[a]);
+    if (!(dx[0] < cx[0] && cx[0] < cx[1] && cx[1] < dx[1]))
+      r.fail(g["core"][axes[a]], std::string("grid.core.") + axes[a], "expected a core strictly inside the domain");
+    s.domain[2 * a] = dx[0];
+    s.domain[2 * a + 1] = dx[1];
+    s.core[2 * a] = cx[0];
+    s.core[2 * a + 1] = cx[1];
+  }
+  if (!g["h"]) r.fail(g, "grid.h", "missing");
+  s.h = r.number(g["h"], "grid.h");
+  if (g["stretch_ratio"]) s.stretch_ratio = r.number(g["stretch_ratio"], "grid.stretch_ratio");
+  const YAML::Node f = need("fluid");
+  r.only(f, "fluid", {"nu", "rho"});
+  if (!f["nu"]) r.fail(f, "fluid.nu", "missing");
+  s.nu = r.number(f["nu"], "fluid.nu");
+  if (f["rho"]) s.rho = r.number(f["rho"], "fluid.rho");
+  const YAML::Node b = need("boundaries");
+  r.only(b, "boundaries", {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo", "z_hi"});
+  const char* sides[] = {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo", "z_hi"};
+  for (int k = 0; k < 6; ++k) {
+    const std::string at = std::string("boundaries.") + sides[k];
+    if (!b[sides[k]]) r.fail(b, at, "missing");
+    const YAML::Node side = b[sides[k]];
+    r.only(side, at, {"type", "velocity"});
+    if (!side["type"]) r.fail(side, at + ".type", "missing");
+    s.sides[k].type = side_type(r, side["type"], at + ".type");
+    if (side["velocity"]) s.sides[k].velocity = r.numbers<3>(side["velocity"], at + ".velocity");
+  }
+  if (root["initial"]) {
+    r.only(root["initial"], "initial", {"velocity"});
+    s.initial_velocity = r.numbers<3>(root["initial"]["velocity"], "initial.velocity");
+  }
+  const YAML::Node bodies = need("bodies");
+  if (!bodies.IsSequence() || bodies.size() == 0) r.fail(bodies, "bodies", "expected a list of bodies");
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    s.bodies.push_back(body(r, bodies[i], "bodies[" + std::to_string(i) + "]"));
+  const YAML::Node t = need("time");
+  r.only(t, "time", {"t_end", "cfl", "dt_max"});
+  if (!t["t_end"]) r.fail(t, "time.t_end", "missing");
+  s.t_end = r.number(t["t_end"], "time.t_end");
+  if (t["cfl"]) s.cfl = r.number(t["cfl"], "time.cfl");
+  if (t["dt_max"]) s.dt_max = r.number(t["dt_max"], "time.dt_max");
+  if (const YAML::Node sv = root["solver"]) {
+    r.only(sv, "solver", {"helmholtz_rtol", "poisson_rtol", "wall_momentum_balance"});
+    if (sv["helmholtz_rtol"]) s.helmholtz_rtol = r.number(sv["helmholtz_rtol"], "solver.helmholtz_rtol");
+    if (sv["poisson_rtol"]) s.poisson_rtol = r.number(sv["poisson_rtol"], "solver.poisson_rtol");
+    if (sv["wall_momentum_balance"])
+      s.wall_momentum_balance =
+          r.scalar<bool>(sv["wall_momentum_balance"], "solver.wall_momentum_balance", "true or false");
+  }
+  if (const YAML::Node o = root["outputs"]) {
+    r.only(o, "outputs", {"force_every", "reference_speed", "reference_area", "control_volume"});
+    if (o["force_every"]) s.force_every = r.scalar<int>(o["force_every"], "outputs.force_every", "an integer");
+    if (o["reference_speed"]) s.reference_speed = r.number(o["reference_speed"], "outputs.reference_speed");
+    if (o["reference_area"]) s.reference_area = r.number(o["reference_area"], "outputs.reference_area");
+    if (const YAML::Node cv = o["control_volume"]) {
+      r.only(cv, "outputs.control_volume", {"x", "y", "z"});
+      for (int a = 0; a < 3; ++a) {
+        const auto box = r.numbers<2>(cv[axes[a]], std::string("outputs.control_volume.") + axes[a]);
+        s.control_volume_box[2 * a] = box[0];
+        s.control_volume_box[2 * a + 1] = box[1];
+      }
+      s.control_volume = true;
+    }
+  }
+  if (!(s.h > 0)) r.fail(g["h"], "grid.h", "expected > 0");
+  if (!(s.t_end > 0)) r.fail(t["t_end"], "time.t_end", "expected > 0");
+  if (!(s.nu > 0)) r.fail(f["nu"], "fluid.nu", "expected > 0");
+  return s;
+}
+
+}  // namespace
+
+CaseFile read_case_file(const std::filesystem::path& file, bool coarse) {
+  const Reader r{file};
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file.string());
+  } catch (const YAML::BadFile&) {
+    throw Error(file.string() + ": cannot read the case file");
+  } catch (const YAML::Exception& e) {
+    throw Error(file.string() + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw Error(file.string() + ": expected a YAML map with a 'case' key");
+  if (!root["case"]) throw Error(file.string() + ": case: missing (a validation case's name, or flow)");
+  CaseFile c;
+  c.kind = r.scalar<std::string>(root["case"], "case", "a case name");
+  if (c.kind == "flow") {
+    c.flow = flow_case(r, root, coarse);
+    return c;
+  }
+  std::map<std::string, std::string> flags;
+  collect_flags(r, root, "", flags);
+  if (coarse && root["coarse"]) {
+    if (!root["coarse"].IsMap()) r.fail(root["coarse"], "coarse", "expected a section of keys");
+    collect_flags(r, root["coarse"], "coarse", flags);
+  }
+  for (const auto& [flag, value] : flags) {
+    if (value == "false") continue;
+    c.arguments.push_back(flag);
+    if (value != "true") c.arguments.push_back(value);
+  }
+  return c;
+}
+
+}  // namespace finverse::cfd::cases

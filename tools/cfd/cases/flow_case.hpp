@@ -1,0 +1,76 @@
+// A user's own 3-D flow, described by data instead of C++ (`fin-cfd run CASE.yaml` with
+// `case: flow`; case_file.hpp reads the file): a box domain on a stretched grid around a uniform
+// core, the fluid, a boundary condition per side, fixed closed triangulated bodies (a built-in
+// sphere or box, or the user's own surface file: STL, OBJ, VTK .vtp, or a mesh.h5's closed thin
+// body; surface_file.hpp), the time span, and what to record: the force on each body and its
+// coefficients C = F / (1/2 rho U^2 A) from the surface traction (DESIGN.md 5.1), and optionally
+// the independent control-volume force. The sphere at Re 100 of the validation set is such a case
+// (data/cases/cfd/sphere_re100_stl.yaml gives it as an STL file).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cfd/flow/flow_solver.hpp"
+#include "cfd/flow/velocity_boundary.hpp"
+#include "cfd/immersed/triangulated_surface.hpp"
+
+namespace finverse::cfd::cases {
+
+struct SideCondition {
+  FlowBcType type = FlowBcType::Slip;
+  std::array<double, 3> velocity{};  // inlet: the uniform inflow velocity [m/s]
+};
+
+struct CaseBody {
+  std::string name;
+  TriangulatedSurface surface;  // closed, outward-oriented, in the domain's coordinates [m]
+  std::string source;           // where it came from (file name or built-in shape), for the record
+};
+
+struct FlowCaseSpec {
+  std::string name = "flow";  // results go to <out_dir>/<name>/
+  std::string description;
+  std::array<double, 6> domain{};        // x0, x1, y0, y1, z0, z1 [m]
+  std::array<double, 6> core{};          // the uniform core of cell width h, inside the domain
+  double h = 0;                          // core cell width [m]
+  double stretch_ratio = 1.1;            // largest neighbouring cell-width ratio outside the core
+  double nu = 1e-6, rho = 1000;          // kinematic viscosity [m^2/s], density [kg/m^3]
+  std::array<SideCondition, 6> sides{};  // XLo, XHi, YLo, YHi, ZLo, ZHi
+  std::array<double, 3> initial_velocity{};
+  std::vector<CaseBody> bodies;
+  double t_end = 0;   // simulated time [s]
+  double cfl = 0.5;   // target convective CFL number
+  double dt_max = 0;  // [s]; 0: cfl h / reference_speed
+  double helmholtz_rtol = 1e-8, poisson_rtol = 1e-7;
+  bool wall_momentum_balance = false;  // dp/dn from the wall's momentum balance instead of 0
+  int force_every = 10;                // steps between force evaluations (and the last step)
+  double reference_speed = 1;          // U of the coefficients [m/s]
+  double reference_area = 1;           // A of the coefficients [m^2]
+  bool control_volume = false;         // also the control-volume force (all bodies together)
+  std::array<double, 6> control_volume_box{};
+};
+
+struct FlowCaseResult {
+  std::vector<double> time;                                  // force evaluations [s]
+  std::vector<std::vector<std::array<double, 3>>> force;     // [evaluation][body] traction force [N]
+  std::vector<std::vector<std::array<double, 3>>> pressure;  // its pressure part [N]
+  std::vector<std::vector<std::array<double, 3>>> viscous;   // its viscous part [N]
+  std::vector<std::array<double, 3>> control_volume_force;   // [evaluation] (when asked) [N]
+  std::array<int, 3> cells{};
+  long steps = 0, ghost_cells = 0, triangles = 0, surface_samples = 0;
+  double mean_poisson_iterations = 0, mean_momentum_iterations = 0, max_divergence = 0, cpu_seconds = 0;
+};
+
+// The stretched grid of the case: per axis a uniform core of width h, geometric growth outside,
+// cell counts rounded to multiples of 8 (three multigrid halvings).
+StretchedGrid flow_case_grid(const FlowCaseSpec& spec);
+
+// Runs the case; `progress` is called after every step with the first body's drag coefficient at
+// the latest force evaluation.
+FlowCaseResult run_flow_case(const FlowCaseSpec& spec,
+                             const std::function<void(const StepStats&, double cx)>& progress = {});
+
+}  // namespace finverse::cfd::cases

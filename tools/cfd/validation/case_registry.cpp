@@ -1,0 +1,140 @@
+// The table of the flow solver's validation cases and the options each takes (cases.hpp): one
+// place for a case's name, description, flags and case-file keys, so that the command line and the
+// case files (case_file.hpp) cannot drift apart.
+#include <algorithm>
+
+#include "cfd/validation/cases.hpp"
+
+namespace finverse::cfd::validation {
+
+const std::vector<ValidationCase>& validation_cases() {
+  static const std::vector<ValidationCase> cases = {
+      {"taylor_green", "order of accuracy in space and time (2-D Taylor-Green vortex)", run_taylor_green},
+      {"channel", "inlet/outlet channel: Poiseuille profile and pressure gradient", run_channel},
+      {"ib_couette", "Couette flow between two immersed circles: observed order", run_ib_couette},
+      {"cylinder_towed", "towed cylinder against the fixed cylinder in a stream (Re 20)", run_cylinder_towed},
+      {"cylinder_oscillating", "in-line oscillating cylinder (KC 5, Re 100): force spikes", run_cylinder_oscillating},
+      {"dfg_2d1", "DFG 2D-1 cylinder benchmark (Re 20, steady), immersed boundary", run_dfg_2d1,
+       "data/reference/schaefer_turek.json"},
+      {"dfg_2d2", "DFG 2D-2 cylinder benchmark (Re 100, periodic), immersed boundary", run_dfg_2d2,
+       "data/reference/schaefer_turek.json"},
+      {"dfg_2d3", "DFG 2D-3 cylinder benchmark (sine inflow over 8 s), immersed boundary", run_dfg_2d3,
+       "data/reference/schaefer_turek.json"},
+      {"turek_hron_cfd2", "Turek-Hron CFD2 (Re 100, steady, rigid flag), immersed boundary", run_turek_hron_cfd2,
+       "data/reference/turek_hron.json"},
+      {"turek_hron_cfd3", "Turek-Hron CFD3 (Re 200, periodic, rigid flag), immersed boundary", run_turek_hron_cfd3,
+       "data/reference/turek_hron.json"},
+      {"sphere_re100", "sphere at Re 100 (3-D triangulated immersed boundary): drag", run_sphere_re100,
+       "data/reference/sphere.json"},
+      {"dfg_3d1z", "DFG 3D-1Z cylinder benchmark (Re 20, steady, 3-D), immersed boundary", run_dfg_3d1z,
+       "data/reference/schaefer_turek.json"},
+  };
+  return cases;
+}
+
+const ValidationCase* find_case(const std::string& name) {
+  const auto& cases = validation_cases();
+  const auto it = std::find_if(cases.begin(), cases.end(), [&](const ValidationCase& c) { return c.name == name; });
+  return it == cases.end() ? nullptr : &*it;
+}
+
+namespace {
+
+bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+
+// Grid, time-step and wall options of the 2-D channel benchmarks (DFG, Turek-Hron).
+void add_channel_grid_options(std::vector<CaseOption>& v, CaseOptions& o, bool dfg) {
+  v.push_back({"--wake-box", &o.wake_box,
+               dfg ? "grid: downstream end x of the uniform box [m] (default 0.6)"
+                   : "grid: uniform box's length behind the flag's tip [diameters] (default 1)",
+               0, 0, true});
+  v.push_back(
+      {"--stretch-ratio", &o.stretch_ratio, "grid: largest cell-width ratio outside the uniform box", 1.0, 1.5});
+  v.push_back({"--wall-stretch-ratio", &o.wall_stretch_ratio,
+               "grid: the same between the box and the channel walls (default: --stretch-ratio, but 0.97 on "
+               "dfg_2d2's and 0.98 on turek_hron_cfd3's default grids; 1: the box's spacing out to the walls; "
+               "below 1, with a core: cells shrinking towards the walls)",
+               0.8, 1.5});
+  v.push_back({"--core-cells-per-diameter", &o.core_cells_per_diameter,
+               "grid: a finer core of h = D / N around the body (boundary layers), joined to the box by "
+               "ratio-1.1 growth (0: none)",
+               0, 1000});
+  v.push_back({"--core-wake", &o.core_wake,
+               "grid: the core's length behind the body [diameters] (DFG: behind the cylinder, default 0.75; "
+               "Turek-Hron: behind the flag's tip, default 0.5)",
+               0, 0, true});
+  // The time step's share of an error: halve the CFL number and compare.
+  v.push_back({"--cfl", &o.cfl, "time step: target convective CFL number (default 0.5)", 0.01, 1.0});
+  v.push_back({"--staircase-balance", &o.staircase_balance,
+               "mass balance: close the faces of every non-fluid cell (the staircase balance) instead of the "
+               "default cut-cell balance (Seo & Mittal 2011), to compare"});
+  v.push_back({"--zero-wall-pressure-gradient", &o.zero_wall_pressure_gradient,
+               "pressure on the body: dp/dn = 0 (Mittal et al. 2008) instead of the default wall momentum "
+               "balance dp/dn = -nu d(omega)/ds, to compare"});
+}
+
+// Grid, duration and reference file of the immersed-body benchmarks.
+void add_body_case_options(std::vector<CaseOption>& v, CaseOptions& o, const ValidationCase& c,
+                           const std::string& t_unit) {
+  v.push_back({"--cells-per-diameter", &o.cells_per_diameter, "grid: h = D / N in the box around the body", 4, 1000});
+  v.push_back({"--t-end", &o.t_end, "simulated time [" + t_unit + "]", 0, 0, true});
+  v.push_back({"--reference", &o.reference, "reference values (JSON; default " + c.reference + ")"});
+}
+
+}  // namespace
+
+std::vector<CaseOption> case_options(const ValidationCase& c, CaseOptions& o) {
+  std::vector<CaseOption> v;
+  const std::string& n = c.name;
+  if (n == "channel") {
+    CaseOption every{"--checkpoint-every", &o.checkpoint_every,
+                     "write <out>/channel/checkpoint.h5 every N steps (0: never)"};
+    every.show_default = true;
+    v.push_back(every);
+    CaseOption restart{"--restart", &o.restart, "continue from this checkpoint file"};
+    restart.existing_file = true;
+    v.push_back(restart);
+    v.push_back({"--vtk", &o.vtk, "also write <out>/channel/flow.pvd (ParaView)"});
+  } else if (n == "cylinder_towed") {
+    v.push_back({"--staircase-balance", &o.staircase_balance,
+                 "the towed body without the cut-cell mass balance (to measure what it changes)"});
+  } else if (starts_with(n, "dfg_2d")) {
+    add_body_case_options(v, o, c, "s");
+    add_channel_grid_options(v, o, true);
+    CaseOption e{"--wall-extrapolation", &o.wall_extrapolation,
+                 "surface traction and dp: extrapolation from the probes at d, 2d to the wall (linear), or with a "
+                 "third probe at 3d (quadratic), to compare"};
+    e.choices = {"linear", "quadratic"};
+    e.show_default = true;
+    v.push_back(e);
+  } else if (starts_with(n, "turek_hron")) {
+    add_body_case_options(v, o, c, "s");
+    add_channel_grid_options(v, o, false);
+    if (n == "turek_hron_cfd3")
+      v.push_back({"--kick-velocity", &o.kick_velocity,
+                   "start-up: transverse velocity [m/s] a brief push at t = 2 s gives the near wake to start the "
+                   "shedding (default 2; 0: none, the instability grows from round-off)",
+                   0.0, 10.0});
+  } else if (n == "sphere_re100") {
+    add_body_case_options(v, o, c, "D/U");
+    v.push_back({"--wall-momentum-balance", &o.wall_momentum_balance,
+                 "pressure on the body: the wall momentum balance dp/dn = -nu n . curl(omega) instead of the "
+                 "default dp/dn = 0, to compare (on bodies of about 28 cells per diameter or more; the default "
+                 "D/20 keeps dp/dn = 0; at D/32 CD 1.0748 against 1.0919, control volume 1.0830 against 1.0878)"});
+  } else if (n == "dfg_3d1z") {
+    add_body_case_options(v, o, c, "s");
+    v.push_back({"--wall-momentum-balance", &o.wall_momentum_balance,
+                 "pressure on the body: the wall momentum balance dp/dn = -nu n . curl(omega) instead of the "
+                 "default dp/dn = 0, to compare (on bodies of about 28 cells per diameter or more; the default "
+                 "D/12 keeps dp/dn = 0)"});
+    v.push_back({"--span-cells", &o.span_cells, "cells along z (0: mid-span width about h; a multiple of 8)", 0, 4096});
+  }
+  return v;
+}
+
+int run_case(const ValidationCase& c, CaseOptions o) {
+  if (o.reference.empty()) o.reference = c.reference;
+  return c.run(o);
+}
+
+}  // namespace finverse::cfd::validation

@@ -1,0 +1,54 @@
+// Shared pieces of the validation cases; see case_support.hpp.
+#include "cfd/validation/case_support.hpp"
+
+#include <cstdio>
+#include <fstream>
+
+#include "core/cli.hpp"
+#include "core/error.hpp"
+#include "core/log.hpp"
+
+namespace finverse::cfd::validation {
+
+std::string fmt(const char* format, double value) {
+  char b[64];
+  std::snprintf(b, sizeof b, format, value);
+  return b;
+}
+
+nlohmann::json read_reference(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error("--reference: cannot read " + path);
+  try {
+    nlohmann::json ref;
+    in >> ref;
+    return ref;
+  } catch (const std::exception&) {
+    throw Error("--reference: " + path + " is not valid JSON");
+  }
+}
+
+std::string csv_row(std::initializer_list<double> values) {
+  std::string row;
+  char b[32];
+  for (double v : values) {
+    std::snprintf(b, sizeof b, "%.9g", v);
+    if (!row.empty()) row += ',';
+    row += b;
+  }
+  return row + '\n';
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+int finish(Summary& s, const std::filesystem::path& dir, double wall_seconds) {
+  s.set_timing(wall_seconds, cli::threads_in_use());
+  std::filesystem::create_directories(dir);
+  s.write(dir / "summary.json");
+  log::info("wrote " + (dir / "summary.json").string() + (s.pass() ? " (all metrics pass)" : " (a metric FAILED)"));
+  return s.pass() ? kExitOk : kExitDifferent;
+}
+
+}  // namespace finverse::cfd::validation

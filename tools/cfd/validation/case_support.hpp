@@ -1,0 +1,41 @@
+// Pieces every validation case of the flow solver shares (cases.hpp): the reference file, the
+// force-history CSV rows, the summary's last step and the log's number format.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/summary.hpp"
+
+namespace finverse::cfd::validation {
+
+std::string fmt(const char* format, double value);
+
+// The --reference file of a case (literature numbers, data/reference/*.json); one-line errors.
+nlohmann::json read_reference(const std::string& path);
+
+// One CSV row of a force history: the values in %.9g, comma-separated, newline-terminated.
+std::string csv_row(std::initializer_list<double> values);
+
+double seconds_since(std::chrono::steady_clock::time_point t0);
+
+// Writes <dir>/summary.json with the run's timing; 0 when every graded metric passes, else 1.
+int finish(Summary& s, const std::filesystem::path& dir, double wall_seconds);
+
+// The run statistics both 3-D body cases (sphere, DFG 3D-1Z) report.
+template <class Result>
+void solver_statistics_3d(Summary& s, const Result& r) {
+  s.info("steps", static_cast<double>(r.steps));
+  s.info("cells", static_cast<double>(r.cells[0]) * r.cells[1] * r.cells[2]);
+  s.info("ghost_cells", static_cast<double>(r.ghost_cells));
+  s.info("surface_samples", static_cast<double>(r.surface_samples));
+  s.info("mean_poisson_iterations", r.mean_poisson_iterations);
+  s.info("mean_momentum_iterations", r.mean_momentum_iterations);
+  s.info("max_divergence_end", r.max_divergence, "1/s");
+  s.info("solver_seconds", r.cpu_seconds, "s");
+}
+
+}  // namespace finverse::cfd::validation

@@ -1,0 +1,50 @@
+// The fin run's nodal-load check and coefficient report; see fin_loads_check.hpp.
+#include "cfd/validation/fin_loads_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cfd/io/loads_record.hpp"
+#include "cfd/validation/case_support.hpp"
+#include "core/log.hpp"
+
+namespace finverse::cfd::validation {
+
+Summary fin_loads_summary(const std::string& name, const std::string& inputs, const stage::Loads& back,
+                          const io::FinFlowStats& st, double body_thickness, const nlohmann::json& parameters) {
+  const auto err = io::nodal_sum_relative_error(back);
+  const double worst = err.empty() ? 0.0 : *std::max_element(err.begin(), err.end());
+  const std::size_t nt = back.time.size();
+  double ct = 0, cy = 0, cz = 0, ct_max = -1e300, cy_amp = 0;
+  for (std::size_t k = 0; k < nt; ++k) {
+    ct += back.thrust(k) / nt;
+    cy += back.lateral(k) / nt;
+    cz += back.vertical(k) / nt;
+    ct_max = std::max(ct_max, back.thrust(k));
+    cy_amp = std::max(cy_amp, std::abs(back.lateral(k)));
+  }
+  Summary s("validation", name,
+            "fin-cfd fin on " + inputs +
+                ": the nodal loads of loads.h5 sum to the force integrated from the surface traction at every output "
+                "time; force coefficients for information");
+  s.at_most("max_relative_nodal_sum_error", worst, 0.005,
+            "issue 4: nodal loads sum to the integrated force within 0.5%");
+  s.info("CT_mean", ct);
+  s.info("CT_max", ct_max);
+  s.info("CY_mean", cy);
+  s.info("CY_max_abs", cy_amp);
+  s.info("CZ_mean", cz);
+  s.info("output_times", static_cast<double>(nt));
+  s.info("steps", static_cast<double>(st.steps));
+  s.info("cells", static_cast<double>(st.grid.cells()));
+  s.info("body_thickness_over_h", body_thickness / st.h);
+  s.info("max_cfl", st.max_cfl);
+  s.info("mean_poisson_iterations", st.steps ? static_cast<double>(st.poisson_iterations) / st.steps : 0.0);
+  s.info("solver_seconds", st.wall_seconds, "s");
+  s.parameters() = parameters;
+  log::info("nodal loads vs integrated force: max relative difference " + fmt("%.3e", worst) + " over " +
+            std::to_string(nt) + " output times; C_T mean " + fmt("%.4f", ct) + ", C_Y mean " + fmt("%.4f", cy));
+  return s;
+}
+
+}  // namespace finverse::cfd::validation
