@@ -35,8 +35,11 @@ std::vector<std::string> expand_case_file(
   const auto known = flags_of(cf.kind);
   if (!known) throw Error(file.string() + ": case: '" + cf.kind + "' is neither flow nor a validation case");
   for (const std::string& a : cf.arguments)
-    if (a.rfind("--", 0) == 0 && std::find(known->begin(), known->end(), a) == known->end())
-      throw Error(file.string() + ": " + a.substr(2) + ": not an option of case " + cf.kind);
+    if (a.rfind("--", 0) == 0 && std::find(known->begin(), known->end(), a) == known->end()) {
+      std::string key = a.substr(2);  // as the file writes it
+      std::replace(key.begin(), key.end(), '-', '_');
+      throw Error(file.string() + ": " + key + ": not an option of case " + cf.kind);
+    }
   std::vector<std::string> out(args.begin(), run);
   out.push_back(cf.kind);
   out.insert(out.end(), cf.arguments.begin(), cf.arguments.end());
@@ -49,7 +52,8 @@ int run_flow_case_file(const fs::path& file, bool coarse, const fs::path& out_di
   const auto& spec = cf.flow;
   const auto grid = flow_case_grid(spec);
   log::Progress progress(spec.name + " step",
-                         static_cast<std::size_t>(std::ceil(spec.t_end / (spec.cfl * spec.h / spec.reference_speed))));
+                         // dt ~ cfl h / (1.6 U): the fastest flow past a bluff body
+                         static_cast<std::size_t>(std::ceil(1.6 * spec.t_end / (spec.cfl * spec.h / spec.reference_speed))));
   const auto r = run_flow_case(spec, [&](const StepStats& st, double cx) {
     progress.update(static_cast<std::size_t>(st.step), "t " + fmt("%.4f", st.time) + "  C_x " + fmt("%.4f", cx) +
                                                            "  Poisson " + std::to_string(st.poisson_iterations) +

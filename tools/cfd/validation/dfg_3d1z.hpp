@@ -21,8 +21,7 @@
 // z(s) = H [(1 - b) s + b (1 - cos(pi s)) / 2], b = 1/2, s in [0, 1] (wall cells half, mid-span cells
 // 1.29 times the mean width), with span_cells chosen so that the mid-span width is about h: the
 // traction's probe length is the largest local cell width (surface_traction_3d.hpp), so a coarser
-// span lengthens the probes of the whole cylinder. Measured at D/12 and t = 2.0 s: span 48 cells
-// (mid-span 1.32 h, probes 1.32 h) cD 6.082, span 64 (0.99 h) 6.133, span 96 (0.66 h) 6.133.
+// span lengthens the probes of the whole cylinder (docs/studies/dfg_3d1z_span.md).
 //
 // Coefficients: cD = 2 Fx / (rho Ubar^2 D H), cL = 2 Fy / (rho Ubar^2 D H) from the surface traction;
 // dp = p(0.45, 0.2, 0.205) - p(0.55, 0.2, 0.205), the wall pressures at the front and back of the

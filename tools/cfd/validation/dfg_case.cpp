@@ -31,14 +31,7 @@ int run_dfg_2d(int variant, const CaseOptions& a) {
   const std::string name = variant == 1 ? "dfg_2d1" : variant == 2 ? "dfg_2d2" : "dfg_2d3";
   DfgSetup ds;
   ds.variant = variant;
-  // 2D-1 by default at D/64 with the wall momentum balance on the cylinder: CD +0.02 %, CL +0.29 %,
-  // dp -0.26 % of the bound midpoints (D/48: -0.23 %, -1.91 %, +0.25 %; D/48 with dp/dn = 0:
-  // +0.53 %, +0.06 %, +1.02 %). The lift, 1/500 of the drag, is the last to converge. dp, 0.11710,
-  // stays 0.0001 under the lower bound 0.1172 (high precision 0.11752), and refining does not lift it
-  // there: a D/96 core in a D/48 box (98 560 cells, 659 s against 309 s) gives dp 0.11718, CD
-  // +0.06 %, CL -0.31 %. A third probe in the extrapolation to the wall (--wall-extrapolation
-  // quadratic) puts dp inside (0.11738) but CD outside (5.5926, +0.23 % of the high-precision value,
-  // against +0.03 % here and -0.07 % for the control-volume drag): the default keeps the linear one.
+  // 2D-1 at D/64 by default (why, and why dp stays 0.0001 under its bound: docs/studies/dfg_2d1.md).
   ds.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : (coarse ? 12 : variant == 1 ? 64 : 24);
   if (variant == 3 && a.t_end > 0) throw Error("dfg_2d3: --t-end is fixed by the benchmark (8 s)");
   ds.t_end = a.t_end > 0 ? a.t_end : variant == 1 ? (coarse ? 4.0 : 8.0) : variant == 2 ? (coarse ? 2.0 : 10.0) : 8.0;
@@ -52,44 +45,9 @@ int run_dfg_2d(int variant, const CaseOptions& a) {
   ds.viscous_wall_pressure = !a.zero_wall_pressure_gradient;
   ds.wall_extrapolation =
       a.wall_extrapolation == "quadratic" ? WallExtrapolation::Quadratic : WallExtrapolation::Linear;
-  // 2D-2 by default: a D/48 core over the boundary layer in a D/24 box, the cells shrinking towards
-  // the channel walls (ratio 0.97: the Stokes layers that the passing vortices drive there), and the
-  // cut-cell balance and the wall momentum balance (measured: CD_max -0.16 %, St +0.81 % of the
-  // bound midpoints, CL_max -1.59 %, lift between -1.0183 and 0.9841; with dp/dn = 0 on the
-  // cylinder +0.23 %, +0.80 %, -1.31 %; the former default, staircase balance, walls 1.05 and a D/64
-  // core: -0.56 %, +0.88 %, -3.1 %). With dp/dn = 0, a D/96 core added nothing to the lift (CD_max
-  // +0.40 %, CL_max -1.26 %, St +0.80 %; lift amplitude 1.0046 against 1.0040) at 4x the cost, nor
-  // did half the time step (--cfl 0.25: CD_max +0.29 %, CL_max -1.39 %, St +0.80 %).
-  // With today's default (--t-end 7, lift amplitude / CL_max over [6, 7) s, one thread each): this
-  // grid 1.0001 / 0.9831; a D/96 core 1.0026 / 0.9854 (1661 s); the core 3 D into the wake
-  // 0.9986 / 0.9817; a D/32 box with its spacing out to the walls 0.9983 / 0.9814; walls 1
-  // 0.9977 / 0.9807, 0.965 1.0002 / 0.9832; no stretching at all outside the core 0.9982 / 0.9812;
-  // a fixed step of 3.6e-4 s 1.0001 / 0.9831. But [6, 7) s is not yet the periodic state on every
-  // grid: the lift's per-period maxima still grow there, by about half as much each period (this
-  // grid: 0.98314 at 6.8 s, 0.98406 from 9.5 s on), and finer cores start shedding later. With
-  // their maxima extrapolated that way: D/64 core 0.9819 (run to 7.8 s, 2144 s; amplitude 0.9990,
-  // CD_max 3.2207) and D/96 0.9864 (amplitude 1.0036), against 0.98406 here: no monotone trend, a
-  // spread of 0.5 %, all 1.4-1.8 % below the bound midpoint. The walls matter more than the core: a
-  // D/64 core with the cells growing towards the walls (ratio 1.05) saturates at only 0.9693. On
-  // this same grid DFG 2D-3 (dfg_2d3) meets the high-precision CL_max of John (2004) within +0.38 %
-  // and its time within 0.001 s. Half the step (--cfl 0.25, to t = 10) moves this grid's 2D-2
-  // numbers little: CL_max 0.98349 (-0.06 %), CL_min -1.01755, CD_max 3.22893 (+0.13 %), St 0.30243.
-  // OpenFOAM's do not (tools/scripts/openfoam_dfg.py, pimpleFoam, t_end 7): at 48 cells per cylinder
-  // quarter CL_max 1.00642 / 0.98254 / 0.97076 at Courant 0.5 / 0.25 / 0.125 (first order in its
-  // step: the change halves with it; at 0.25 CL_min -1.01744, CD_max 3.22792, St 0.29994, within
-  // 0.1 % of this grid but for St), at 32 cells 0.99471 / 0.96205 at 0.5 / 0.25. Extrapolated in the
-  // step, about 0.959 at 48 cells and 0.929 at 32: the peer's lift maximum falls with its step and
-  // rises with its mesh by several % each at these meshes, so neither its 1.008 at 64 cells and
-  // Courant 0.5 nor its small-step values tell where the converged value lies. Its step error is
-  // PISO's splitting: with 3 PIMPLE outer iterations (converged in the step at Courant 0.5; 32
-  // cells: 0.92609 at 0.5, 0.92807 at 0.25) it gives 0.92609 / 0.94618 / 0.95861 at 32 / 40 / 48
-  // cells (St 0.29828 / 0.29980 / 0.30051), which extrapolate to 0.987 at second order and to
-  // 1.002 at the observed order 1.4: the peer converged in time points at a lift 0.3-2 % above ours.
-  // Nor is the deficit the surface evaluation's: with a third probe (--wall-extrapolation quadratic,
-  // t_end 7, over [6.3, 7] s) the lift amplitude is 0.9987 against 1.0001 (CL_max 0.98199 against
-  // 0.98314), while CD_max rises by 1.1 % (3.2607 against 3.2244) away from the control-volume drag
-  // 3.2238, which the linear extrapolation matches within 0.02 %.
-  // 2D-3 on the same grid as 2D-2 (the same Reynolds number at the sine's peak).
+  // 2D-2 and 2D-3 (the same Reynolds number at the sine's peak) by default: a D/48 core in a D/24
+  // box, cells shrinking towards the channel walls (0.97: the Stokes layers the passing vortices
+  // drive there); the grid and time-step studies: docs/studies/dfg_2d2_lift_maximum.md.
   const bool default_grid = variant >= 2 && !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
   ds.core_cells_per_diameter = default_grid ? 48 : a.core_cells_per_diameter;
   if (default_grid && a.wall_stretch_ratio == 0) ds.wall_stretch_ratio = 0.97;

@@ -16,15 +16,12 @@
 // with zero motion, so that both sides have the same discretisation of the body and only the motion
 // differs (the staircase balance of a fixed body gives a drag that differs by the discretisation
 // error of the two balances).
-// The case is sensitive to the time level of the body position in each term of the step: with
-// u^n's ghost values re-imposed for the body's t^{n+1} position before the explicit terms, the
-// towed drag was 3.8% low at 16 cells per diameter, the viscous part 8-13% low on the coarse grid,
-// in proportion to U dt / h (flow_solver.hpp). The averaging window makes the towed drag an
-// average over the body's sub-cell positions, while a fixed cylinder sits at one: its drag depends
-// on that position (measured at 16 cells per diameter, t = 8: CD 2.2319, 2.2162, 2.1917 with the
-// centre on a grid vertex and shifted by 1/4 and 1/2 cell along the stream), so the towed drag is
-// compared with the fixed cylinder's averaged over fixed_offsets equally spaced positions across
-// one cell (the first on the vertex); the vertex-centred run alone is reported as well.
+// The case is sensitive to the time level of the body position in each term of the step
+// (flow_solver.hpp). The averaging window makes the towed drag an average over the body's sub-cell
+// positions, while a fixed cylinder's drag depends on where it sits in its cell, so the towed drag
+// is compared with the fixed cylinder's averaged over fixed_offsets equally spaced positions across
+// one cell (the first on a vertex); the vertex-centred run alone is reported as well. The
+// measurements behind both: docs/studies/cut_cell_balance.md, section 1.
 //
 // Oscillating cylinder: in-line harmonic motion x(t) = -A sin(2 pi t / T) in fluid at rest
 // (Duetsch, Durst, Becker & Melling 1998, J. Fluid Mech. 360:249: KC = U_m T / D = 5,

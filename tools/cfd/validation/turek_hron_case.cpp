@@ -31,38 +31,17 @@ int run_turek_hron(int variant, const CaseOptions& a) {
   const std::string name = variant == 2 ? "turek_hron_cfd2" : "turek_hron_cfd3";
   TurekHronSetup ts;
   ts.variant = variant;
-  // Default grids (measured against the reference, cut-cell balance and the wall momentum balance;
-  // in brackets the older variants, all with dp/dn = 0 on the body):
-  //   CFD2: D/24 box + D/48 core: drag -0.11 %, lift +1.24 % (dp/dn = 0: +0.33 %, +1.36 %;
-  //         staircase: -0.35 %, +1.4 %; uniform D/32: -2.8 %, +0.7 %); steady to 0.003 N/m per
-  //         second by t = 6 s.
-  //   CFD3: D/32 box reaching 2 D behind the tip + D/64 core, cells shrinking towards the walls
-  //         (0.98, below): drag mean -1.55 %, drag amplitude +1.31 %, lift amplitude -1.71 %,
-  //         frequency +1.09 %; control-volume drag mean -0.35 % (dp/dn = 0: -1.27 %, +1.33 %,
-  //         -1.72 %, +1.10 %; walls 1.05: -1.4 %, -3.6 %, -8.1 %, +1.1 %; and the staircase
-  //         balance: -2.3 %, -9.5 %, -12.5 %, +0.9 %; uniform D/32: -7.4 %, -49 %, -42 %, 0.0 %).
-  //   CFD3's lift amplitude (mostly the flag's) depends on where the flag's straight edges fall in
-  //   their cells, more than on h: the core's faces are symmetric about y = 0.2, so an edge cell
-  //   holds a fluid fraction 1 - frac(0.1 N_core). Measured (t_end 7, window [6, 7), walls 0.98,
-  //   box N_core / 2, wake box 2): D/48 (fraction 0.2, the cell's centre inside the flag) 402.7
-  //   N/m, 4.432 Hz; D/56 (0.4) 409.8, 4.431; D/44 (0.6, centre in the fluid) 410.9, 4.442; the
-  //   default D/64 (0.6) 430.3, 4.444. Within one alignment (D/44 -> D/64) the amplitude rises by
-  //   19 N/m, so the default's -1.7 % is a grid error of the flag's edges, not converged, and no
-  //   evidence of a lift deficit elsewhere (walls 0.97 instead of 0.98: +0.3 %; half the step:
-  //   -0.25 %; wake box 1 -> 2: +0.05 %, all at D/48).
+  // Default grids: CFD2 a D/24 box + D/48 core, CFD3 a D/32 box reaching 2 D behind the tip + a D/64
+  // core; what each choice changes: docs/studies/turek_hron_cfd3_grid.md.
   const bool default_grid = !coarse && a.cells_per_diameter == 0 && a.core_cells_per_diameter == 0;
   ts.cells_per_diameter = a.cells_per_diameter > 0 ? a.cells_per_diameter : coarse ? 12 : variant == 2 ? 24 : 32;
   ts.core_cells_per_diameter = default_grid ? (variant == 2 ? 48 : 64) : a.core_cells_per_diameter;
   if (default_grid && variant == 3) ts.wake_box = 2;
-  // CFD3's shedding drives unsteady Stokes layers on the channel walls, sqrt(2 nu / omega) ~ D/12
-  // thick, which cells growing by 1.05 from the box do not resolve: cells shrinking towards the walls
-  // raise the lift amplitude (D/24 box + D/48 core, cut cells, t in [4.5, 5] s: 397.0 -> 419.8 N/m
-  // with ratio 0.97). From a D/32 box a 0.97 series sums to 0.10 m of the 0.11 m to the upper wall,
-  // so the default grid takes 0.98.
+  // CFD3's shedding drives Stokes layers on the channel walls (~D/12 thick) that cells growing
+  // from the box do not resolve; from a D/32 box 0.98 is the steepest shrinking that fits.
   if (default_grid && variant == 3 && a.wall_stretch_ratio == 0) ts.wall_stretch_ratio = 0.98;
-  // CFD3 from rest saturates only after t ~ 12 s (measured at 32 cells/D); the push on the wake
-  // at the end of the ramp (TurekHronSetup::kick_*) starts the shedding at once: with it the lift
-  // amplitude is saturated from t ~ 5 s (default grid: 430.26 N/m over [5, 6), 430.29 over [6, 7)).
+  // CFD3 from rest saturates only after t ~ 12 s; the push on the wake at the end of the ramp
+  // starts the shedding at once (saturated from t ~ 5 s; same study).
   if (variant == 3) ts.kick_velocity = a.kick_velocity >= 0 ? a.kick_velocity : 2.0;
   ts.t_end = a.t_end > 0 ? a.t_end : variant == 2 ? (coarse ? 2.0 : 6.0) : (coarse ? 1.0 : 7.0);
   ts.window = variant == 3 ? std::min(1.0, 0.4 * ts.t_end) : 0.0;
