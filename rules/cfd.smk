@@ -11,47 +11,50 @@
 THREADS_2D = 1
 
 _CFD_REFERENCE = os.path.join(REPO, "data", "reference")
+_CFD_CASE_FILES = os.path.join(REPO, "data", "cases", "cfd")
 _FORCES = {"forces": "forces.csv"}
 
-# case -> (description, reference file in data/reference or None, flags after the case name,
-#          threads, mem_mb, outputs besides summary.json)
-# Every case runs as
-#   fin-cfd --threads T --out-dir results/validation [--coarse] <case> [--reference FILE] [flags]
+# case -> (description, reference file in data/reference or None, threads, mem_mb, outputs besides
+#          summary.json). Every case runs from its case file, data/cases/cfd/<case>.yaml (grids,
+#          times, flags and the coarse variant are there):
+#   fin-cfd --threads T --out-dir results/validation [--coarse] run data/cases/cfd/<case>.yaml
 # DFG 2-D: graded against 1 % of each bound interval's midpoint (Schaefer & Turek 1996) on the full
-# grid (48 cells per diameter); the coarse variant (12 cells per diameter, short runs) reports them
-# as information only.
+# grid; the coarse variant (12 cells per diameter, short runs) reports them as information only.
 _CFD_CASES = {
     "taylor_green": ("2-D Taylor-Green vortex: observed order of accuracy in space and time",
-                     None, "", THREADS_2D, 300, {}),
+                     None, THREADS_2D, 300, {}),
     "channel": ("inlet/outlet channel: developed Poiseuille profile and pressure gradient",
-                None, " --checkpoint-every 100 --vtk", THREADS_2D, 300,
+                None, THREADS_2D, 300,
                 {"checkpoint": "checkpoint.h5", "pvd": "flow.pvd"}),
     "dfg_2d1": ("DFG 2D-1 (Re 20): CD, CL, dp of the ghost-cell immersed cylinder",
-                "schaefer_turek.json", "", THREADS_2D, 500, _FORCES),
+                "schaefer_turek.json", THREADS_2D, 500, _FORCES),
     "dfg_2d2": ("DFG 2D-2 (Re 100): CD_max, CL_max, St of the ghost-cell immersed cylinder",
-                "schaefer_turek.json", "", THREADS_2D, 500, _FORCES),
+                "schaefer_turek.json", THREADS_2D, 500, _FORCES),
     # Graded against John (2004) on 2D-2's default grid; the coarse variant runs the whole 8 s.
     "dfg_2d3": ("DFG 2D-3 (sine inflow, 8 s): CD_max, CL_max and their times against John (2004)",
-                "schaefer_turek.json", "", THREADS_2D, 500, _FORCES),
+                "schaefer_turek.json", THREADS_2D, 500, _FORCES),
     "turek_hron_cfd2": ("Turek-Hron CFD2 (Re 100, rigid flag): drag and lift of the ghost-cell immersed body",
-                        "turek_hron.json", "", THREADS_2D, 500, _FORCES),
+                        "turek_hron.json", THREADS_2D, 500, _FORCES),
     "turek_hron_cfd3": ("Turek-Hron CFD3 (Re 200, rigid flag): drag/lift mean and amplitude, frequency",
-                        "turek_hron.json", "", THREADS_2D, 500, _FORCES),
+                        "turek_hron.json", THREADS_2D, 500, _FORCES),
     "ib_couette": ("Couette flow between two immersed circles: observed L2 order of the velocity",
-                   None, "", THREADS_2D, 300, {}),
+                   None, THREADS_2D, 300, {}),
     "cylinder_towed": ("towed cylinder vs fixed cylinder in a stream (Re 20): moving-body drag",
-                       None, "", THREADS_2D, 300, _FORCES),
+                       None, THREADS_2D, 300, _FORCES),
     "cylinder_oscillating": ("in-line oscillating cylinder (KC 5, Re 100): force spikes from cleared cells",
-                             None, "", THREADS_2D, 300, _FORCES),
+                             None, THREADS_2D, 300, _FORCES),
     "sphere_re100": ("sphere at Re 100 (3-D triangulated ghost-cell boundary): drag vs Johnson & Patel 1999",
-                     "sphere.json", "", THREADS, 3000, _FORCES),
+                     "sphere.json", THREADS, 3000, _FORCES),
+    # A user's own flow: the same sphere from an STL file (case: flow), reported beside sphere_re100.
+    "sphere_re100_stl": ("sphere at Re 100 from an STL file (fin-cfd run, case: flow): drag, reported",
+                         None, THREADS, 3000, _FORCES),
     # Graded: cD within 2 % of 6.18533, run to steady state; grids and times in
     # docs/studies/cfd_run_cost.md.
     "dfg_3d1z": ("DFG 3D-1Z (Re 20, wall-to-wall cylinder, 3-D triangulated body crossing the walls): drag",
-                 "schaefer_turek.json", "", THREADS, 3000, _FORCES),
+                 "schaefer_turek.json", THREADS, 3000, _FORCES),
 }
 
-for _case, (_description, _ref, _flags, _threads, _mem_mb, _outputs) in _CFD_CASES.items():
+for _case, (_description, _ref, _threads, _mem_mb, _outputs) in _CFD_CASES.items():
     register_validation(_case, _description)
     _reference = os.path.join(_CFD_REFERENCE, _ref) if _ref else None
 
@@ -60,6 +63,7 @@ for _case, (_description, _ref, _flags, _threads, _mem_mb, _outputs) in _CFD_CAS
             f"validation_{_case}"
         input:
             exe=EXE("fin-cfd"),
+            case=os.path.join(_CFD_CASE_FILES, _case + ".yaml"),
             **({"reference": _reference} if _reference else {}),
         output:
             summary=f"results/validation/{_case}/summary.json",
@@ -71,10 +75,9 @@ for _case, (_description, _ref, _flags, _threads, _mem_mb, _outputs) in _CFD_CAS
             mem_mb=_mem_mb,
         params:
             coarse="--coarse" if COARSE else "",
-            case=_case + (f" --reference {_reference}" if _reference else "") + _flags,
         shell:
             "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} --out-dir results/validation {params.coarse}"
-            " {params.case} > {log} 2>&1 " + METRIC_MISSED_IS_A_RESULT
+            " run {input.case} > {log} 2>&1 " + METRIC_MISSED_IS_A_RESULT
 
 
 # The fin's loads path on a heaving and pitching rigid thin plate: fin-cfd thin_plate writes a
