@@ -15,7 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
+#include <functional>
 #include <optional>
 #include <string>
 #include <variant>
@@ -24,6 +24,7 @@
 #include "cfd/cases/run_case_file.hpp"
 #include "cfd/io/fin_flow_case.hpp"
 #include "cfd/io/fin_input.hpp"
+#include "cfd/io/fin_run_log.hpp"
 #include "cfd/io/flow_snapshots.hpp"
 #include "cfd/validation/cases.hpp"
 #include "cfd/validation/fin_loads_check.hpp"
@@ -54,59 +55,24 @@ struct FinArgs {
 
 int run_fin(const FinArgs& a, const CLI::App& app) {
   const auto in = cfd::io::read_fin_input(a.mesh, a.motion);
-  const auto& body = in.motion->body();
-  log::info(a.mesh.string() + ": " + std::to_string(in.rest.size()) + " nodes, " +
-            std::to_string(in.mid_triangles.size()) + " shell triangles; closed thin body " +
-            std::to_string(body.source_node.size()) + " vertices, " + std::to_string(body.triangles.size()) +
-            " triangles, thickness " + fmt("%.4g m", body.thickness) + " (rest surface reproduced to " +
-            fmt("%.1e m", in.rest_mismatch) + ")");
-  log::info(a.motion.string() + ": " + std::to_string(in.frame_time.size()) + " frames, " +
-            (in.layout.wrap ? "periodic, spline period " + fmt("%.6g s", *in.layout.wrap)
-                            : "not periodic" + (in.layout.note.empty() ? std::string() : " (" + in.layout.note + ")")));
+  cfd::io::log_fin_input(in, a.mesh, a.motion);
   cfd::io::FinFlowStats st;
   cfd::io::FinCheckpointing ck;
   ck.every = a.checkpoint_every;
   ck.file = !a.checkpoint.empty() ? a.checkpoint : a.out.parent_path() / (a.out.stem().string() + ".checkpoint.h5");
   ck.restart = a.restart;
-  // Progress counts the steps of this run (a restart's ETA from its own rate); the line names the step.
-  std::unique_ptr<log::Progress> progress;
-  long first = 0;
-  const auto report = [&](long n, long total, const cfd::StepStats& s) {
-    if (!progress) {
-      first = n - 1;
-      progress =
-          std::make_unique<log::Progress>(first ? "fin-cfd fin steps since the restart at step " + std::to_string(first)
-                                                : std::string("fin-cfd fin step"),
-                                          static_cast<std::size_t>(total - first));
-    }
-    progress->update(static_cast<std::size_t>(n - first),
-                     (first ? "step " + std::to_string(n) + "/" + std::to_string(total) + "  " : std::string()) + "t " +
-                         fmt("%.5f s", s.time) + "  CFL " + fmt("%.3f", s.cfl) + "  Poisson " +
-                         std::to_string(s.poisson_iterations) + " it  div " + fmt("%.1e", s.max_divergence));
-  };
   cfd::io::FlowSnapshots snapshots(a.out.parent_path() / (a.out.stem().string() + ".flow.pvd"), a.snapshot_every,
                                    !ck.restart.empty());
   if (a.snapshot_every > 0)
     ck.at_output = [&](long output, double t, const cfd::FlowSolver& s) { snapshots.at_output(output, t, st.dt, s); };
   if (!ck.restart.empty()) log::info("restarting from " + ck.restart.string());
-  stage::Loads loads = cfd::io::run_fin_flow(in, a.flow, st, report, ck);
-  if (progress) progress->finish("t " + fmt("%.5f s", st.t_end));
+  cfd::io::FinProgress progress;
+  stage::Loads loads = cfd::io::run_fin_flow(in, a.flow, st, std::ref(progress), ck);
+  progress.finish(st.t_end);
   if (snapshots.size())
     log::info("wrote " + std::to_string(snapshots.size()) + " flow snapshots to " + snapshots.pvd().string());
-  if (st.checkpoints > 0)
-    log::info("wrote " + std::to_string(st.checkpoints) + " checkpoints to " + ck.file.string() + " (" +
-              fmt("%.2f s", st.checkpoint_seconds) + " in all)");
+  cfd::io::log_fin_run(in, st, ck.file);
   const auto& g = st.grid;
-  log::info("grid " + std::to_string(g.nx()) + " x " + std::to_string(g.ny()) + " x " + std::to_string(g.nz()) +
-            " (h = c/" + fmt("%.3g", st.chord / st.h) + ", body thickness " + fmt("%.2f", body.thickness / st.h) +
-            " h), U " + fmt("%.4g m/s", st.U) + ", nu " + fmt("%.4g m2/s", st.nu) + ", dt " + fmt("%.4g s", st.dt) +
-            ", " + std::to_string(st.steps) + " steps, max CFL " + fmt("%.3f", st.max_cfl) +
-            ", mean Poisson iterations " +
-            fmt("%.2f", st.steps ? static_cast<double>(st.poisson_iterations) / st.steps : 0.0) + ", " +
-            fmt("%.1f s", st.wall_seconds));
-  if (body.thickness < 2 * st.h)
-    log::warn("the closed thin body is " + fmt("%.2f", body.thickness / st.h) +
-              " cells thick (fewer than 2): raise --cells-per-chord or mesh.h5's ibm_thickness");
   Provenance prov{"fin-cfd", cli::effective_config(app), {a.mesh, a.motion}};
   prov.config["achieved"] = {{"grid", {g.nx(), g.ny(), g.nz()}},
                              {"h", st.h},
@@ -124,7 +90,7 @@ int run_fin(const FinArgs& a, const CLI::App& app) {
   const std::string name = a.summary.parent_path().filename().string();
   Summary s = val::fin_loads_summary(name.empty() ? "fin_loads" : name,
                                      a.mesh.filename().string() + " + " + a.motion.filename().string(),
-                                     stage::read<stage::Loads>(a.out), st, body.thickness, prov.config);
+                                     stage::read<stage::Loads>(a.out), st, in.motion->body().thickness, prov.config);
   s.set_timing(st.wall_seconds, cli::threads_in_use());
   s.write(a.summary);
   log::info("wrote " + a.summary.string() + (s.pass() ? " (all metrics pass)" : " (a metric FAILED)"));
@@ -234,12 +200,11 @@ int main(int argc, char** argv) {
   std::vector<std::string> args;
   try {
     args = cfd::cases::expand_case_file(std::vector<std::string>(argv, argv + argc),
-                                        [](const std::string& name) -> std::optional<std::vector<std::string>> {
-                                          const val::ValidationCase* c = val::find_case(name);
-                                          if (!c) return std::nullopt;
-                                          val::CaseOptions scratch;
+                                        [&](const std::string& name) -> std::optional<std::vector<std::string>> {
+                                          if (name != "fin" && !val::find_case(name)) return std::nullopt;
                                           std::vector<std::string> flags;
-                                          for (const auto& o : val::case_options(*c, scratch)) flags.push_back(o.flag);
+                                          for (const CLI::Option* o : app.get_subcommand(name)->get_options())
+                                            for (const std::string& l : o->get_lnames()) flags.push_back("--" + l);
                                           return flags;
                                         });
   } catch (const std::exception& e) {

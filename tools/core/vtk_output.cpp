@@ -182,15 +182,18 @@ void GridSeries::resume(double t_max) {
 void GridSeries::add(double t, const GridFrame& frame) {
   const std::string where = pvd_.string();
   const std::size_t ncells = (x_.size() - 1) * (y_.size() - 1) * std::max<std::size_t>(z_.size() - 1, 1);
-  auto coords = [](const std::vector<double>& f) {
+  // Named, so that the file does not carry VTK's default name, the array's memory address, and the
+  // same frame gives the same bytes.
+  auto coords = [](const std::vector<double>& f, const char* name) {
     vtkNew<vtkDoubleArray> c;
+    c->SetName(name);
     c->SetNumberOfTuples(static_cast<vtkIdType>(f.size()));
     std::copy(f.begin(), f.end(), c->GetPointer(0));
     return c;
   };
-  auto xc = coords(x_);
-  auto yc = coords(y_);
-  auto zc = coords(z_);
+  auto xc = coords(x_, "x");
+  auto yc = coords(y_, "y");
+  auto zc = coords(z_, "z");
   vtkNew<vtkRectilinearGrid> grid;
   grid->SetDimensions(static_cast<int>(x_.size()), static_cast<int>(y_.size()), static_cast<int>(z_.size()));
   grid->SetXCoordinates(xc);

@@ -77,7 +77,9 @@ void collect_flags(const Reader& r, const YAML::Node& map, const std::string& wh
     }
     if (!kv.second.IsScalar()) r.fail(kv.second, at, "expected a value or a section");
     std::string value = kv.second.Scalar();
-    if (key == "reference" || key == "restart") value = r.path(kv.second, at).string();
+    // Input files are found beside the case file; outputs (out, summary, checkpoint) where fin-cfd runs.
+    if (key == "reference" || key == "restart" || key == "mesh" || key == "motion")
+      value = r.path(kv.second, at).string();
     flags[flag] = value;
   }
 }

@@ -1,6 +1,7 @@
 // Case files (`fin-cfd run CASE.yaml`): a flow as a parameter file, as CaNS does, so that another
 // geometry needs no new C++. YAML, with the key `case` naming what the file describes:
-//   - a validation case (`case: dfg_2d2`, ...; tools/cfd/validation/cases.hpp): every other key,
+//   - a validation case (`case: dfg_2d2`, ...; tools/cfd/validation/cases.hpp) or the fin's loads
+//     (`case: fin`, the flags of fin-cfd fin: mesh, motion, out, reynolds, ...): every other key,
 //     at any depth (sections such as grid: or time: only group them), is that case's option
 //     (`cells_per_diameter: 24` is --cells-per-diameter 24; true/false switch a flag), and a
 //     `coarse:` section holds what the coarse (CI) variant changes (null: the case's own default);
