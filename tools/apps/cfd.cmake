@@ -8,12 +8,16 @@ find_package(MPI COMPONENTS C)
 find_path(HYPRE_INCLUDE_DIR HYPRE_struct_ls.h PATH_SUFFIXES hypre)
 find_library(HYPRE_LIBRARY HYPRE)
 if(MPI_C_FOUND AND HYPRE_INCLUDE_DIR AND HYPRE_LIBRARY)
-  add_executable(fin-poisson-hypre ${CMAKE_CURRENT_LIST_DIR}/fin-poisson-hypre.cpp)
-  target_include_directories(fin-poisson-hypre SYSTEM PRIVATE ${HYPRE_INCLUDE_DIR})
+  # finverse_cfd_hypre: the benchmark problem solved by hypre (tools/cfd/validation/hypre_poisson.hpp).
+  add_library(finverse_cfd_hypre ${CMAKE_CURRENT_LIST_DIR}/../cfd/validation/hypre_poisson.cpp)
+  target_include_directories(finverse_cfd_hypre SYSTEM PUBLIC ${HYPRE_INCLUDE_DIR})
   # The C API only: keep Open MPI's deprecated C++ bindings out.
-  target_compile_definitions(fin-poisson-hypre PRIVATE OMPI_SKIP_MPICXX MPICH_SKIP_MPICXX)
-  target_link_libraries(fin-poisson-hypre PRIVATE finverse_cfd_validation finverse_cfd ${HYPRE_LIBRARY} MPI::MPI_C CLI11::CLI11
-                        nlohmann_json::nlohmann_json finverse_warnings)
+  target_compile_definitions(finverse_cfd_hypre PUBLIC OMPI_SKIP_MPICXX MPICH_SKIP_MPICXX)
+  target_link_libraries(finverse_cfd_hypre PUBLIC finverse_cfd ${HYPRE_LIBRARY} MPI::MPI_C
+                        PRIVATE finverse_cfd_validation finverse_warnings)
+  add_executable(fin-poisson-hypre ${CMAKE_CURRENT_LIST_DIR}/fin-poisson-hypre.cpp)
+  target_link_libraries(fin-poisson-hypre PRIVATE finverse_cfd_hypre CLI11::CLI11 nlohmann_json::nlohmann_json
+                        finverse_warnings)
 endif()
 
 # The Navier-Stokes solver's validation cases (rules/cfd.smk).
