@@ -30,6 +30,8 @@ std::vector<std::string> expand_case_file(
   if (run == args.end() || run + 1 == args.end()) return args;
   const bool coarse = std::find(args.begin(), run, "--coarse") != run;
   const fs::path file = *(run + 1);
+  // Not a file (a flag's value that reads "run", or a missing file): the parser reports it.
+  if (!fs::is_regular_file(file)) return args;
   const CaseFile cf = read_case_file(file, coarse);
   if (cf.kind == "flow") return args;
   const auto known = flags_of(cf.kind);
@@ -50,10 +52,9 @@ std::vector<std::string> expand_case_file(
 int run_flow_case_file(const fs::path& file, bool coarse, const fs::path& out_dir) {
   const CaseFile cf = read_case_file(file, coarse);
   const auto& spec = cf.flow;
-  const auto grid = flow_case_grid(spec);
-  log::Progress progress(spec.name + " step",
-                         // dt ~ cfl h / (1.6 U): the fastest flow past a bluff body
-                         static_cast<std::size_t>(std::ceil(1.6 * spec.t_end / (spec.cfl * spec.h / spec.reference_speed))));
+  // Expected steps: dt ~ cfl h / (1.6 U), the fastest flow past a bluff body.
+  const double steps = 1.6 * spec.t_end / (spec.cfl * spec.h / spec.reference_speed);
+  log::Progress progress(spec.name + " step", static_cast<std::size_t>(std::ceil(steps)));
   const auto r = run_flow_case(spec, [&](const StepStats& st, double cx) {
     progress.update(static_cast<std::size_t>(st.step), "t " + fmt("%.4f", st.time) + "  C_x " + fmt("%.4f", cx) +
                                                            "  Poisson " + std::to_string(st.poisson_iterations) +
@@ -67,8 +68,8 @@ int run_flow_case_file(const fs::path& file, bool coarse, const fs::path& out_di
   s.parameters()["case_file"] = file.string();
   s.set_timing(r.cpu_seconds, cli::threads_in_use());
   s.write(dir / "summary.json");
-  log::info(spec.name + ": " + std::to_string(grid.nx()) + " x " + std::to_string(grid.ny()) + " x " +
-            std::to_string(grid.nz()) + " cells, " + std::to_string(r.steps) + " steps; wrote " +
+  log::info(spec.name + ": " + std::to_string(r.cells[0]) + " x " + std::to_string(r.cells[1]) + " x " +
+            std::to_string(r.cells[2]) + " cells, " + std::to_string(r.steps) + " steps; wrote " +
             (dir / "summary.json").string() + " and forces.csv");
   return kExitOk;
 }
