@@ -48,6 +48,8 @@ _CFD_CASES = {
     # A user's own flow: the same sphere from an STL file (case: flow), reported beside sphere_re100.
     "sphere_re100_stl": ("sphere at Re 100 from an STL file (fin-cfd run, case: flow): drag, reported",
                          None, THREADS, 3000, _FORCES),
+    "cylinder_channel_2d": ("the DFG 2D-1 geometry as a plane flow case (case: flow): drag and lift, reported",
+                            None, THREADS_2D, 500, _FORCES),
     # Graded: cD within 2 % of 6.18533, run to steady state; grids and times in
     # docs/studies/cfd_run_cost.md.
     "dfg_3d1z": ("DFG 3D-1Z (Re 20, wall-to-wall cylinder, 3-D triangulated body crossing the walls): drag",

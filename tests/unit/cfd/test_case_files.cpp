@@ -128,12 +128,36 @@ TEST(CaseFile, MisspeltOrMissingKeysNameTheFileTheKeyAndTheLine) {
   EXPECT_EQ(error_of(p), p.string() + ":3: gridd: unknown key");
   write(p, "grid: 1\n");
   EXPECT_EQ(error_of(p), p.string() + ": case: missing (a validation case's name, or flow)");
-  write(p, "case: flow\ndomain: {x: [0, 1], y: [0, 1], z: [0]}\ngrid: {h: 0.1, core: {x: [0.2, 0.8], y: [0.2, 0.8], "
-           "z: [0.2, 0.8]}}\n");
+  write(p,
+        "case: flow\ndomain: {x: [0, 1], y: [0, 1], z: [0]}\ngrid: {h: 0.1, core: {x: [0.2, 0.8], y: [0.2, 0.8], "
+        "z: [0.2, 0.8]}}\n");
   EXPECT_EQ(error_of(p), p.string() + ":2: domain.z: expected a list of 2 numbers");
   write(p, "case: [flow\n");
   EXPECT_NE(error_of(p).find(p.string() + ":"), std::string::npos);
   EXPECT_NE(error_of(p).find("not valid YAML"), std::string::npos);
+}
+
+TEST(CaseFile, PlaneFlowTakesAnOutlineFileAndHasNoZSides) {
+  test::ScratchDir dir;
+  write(dir / "flap.txt", "# x y\n0 0\n0.1 0\n0.1 0.02\n\n0 0.02\n");
+  const std::string head =
+      "case: flow\ndomain: {x: [-1, 2], y: [-1, 1]}\ngrid: {h: 0.05, core: {x: [-0.2, 0.4], y: [-0.2, 0.2]}}\n"
+      "fluid: {nu: 0.01}\nboundaries:\n  x_lo: {type: inlet, profile: parabolic, velocity: [1, 0, 0], "
+      "ramp_time: 0.5}\n  x_hi: {type: convective_outlet}\n  y_lo: {type: no_slip}\n  y_hi: {type: no_slip}\n";
+  write(dir / "p.yaml", head + "bodies: [{name: flap, outline_file: flap.txt, scale: 2}]\ntime: {t_end: 1}\n");
+  const FlowCaseSpec s = read_case_file(dir / "p.yaml", false).flow;
+  EXPECT_EQ(s.dim, 2);
+  ASSERT_EQ(s.bodies.size(), 1u);
+  EXPECT_EQ(s.bodies[0].outline, (std::vector<std::array<double, 2>>{{0, 0}, {0.2, 0}, {0.2, 0.04}, {0, 0.04}}));
+  EXPECT_TRUE(s.sides[0].parabolic);
+  EXPECT_EQ(s.sides[0].ramp_time, 0.5);
+  EXPECT_EQ(flow_case_grid(s).dim(), 2);
+  write(dir / "z.yaml", head + "  z_lo: {type: slip}\nbodies: [{outline_file: flap.txt}]\ntime: {t_end: 1}\n");
+  EXPECT_EQ(error_of(dir / "z.yaml"), (dir / "z.yaml").string() +
+                                          ":10: boundaries.z_lo: a plane flow (no domain.z) "
+                                          "has no z sides");
+  write(dir / "flap.txt", "0 0\n0.1 zero\n");
+  EXPECT_EQ(error_of(dir / "p.yaml"), (dir / "flap.txt").string() + ":2: expected two numbers, x y");
 }
 
 // A closed box as 12 triangles with every corner repeated per triangle, as STL stores it.

@@ -3,10 +3,13 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <fstream>
 #include <map>
 #include <numbers>
+#include <sstream>
 
 #include "cfd/cases/surface_file.hpp"
+#include "cfd/immersed/immersed_polygon.hpp"
 #include "cfd/immersed/surface_shapes.hpp"
 #include "core/error.hpp"
 
@@ -142,6 +145,49 @@ YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
   return out;
 }
 
+// A plane flow's body: its outline as vertices, a two-column file (x y per line, # comments), or
+// a circle (a regular polygon with its vertices on the circle).
+CaseBody plane_body(const Reader& r, const YAML::Node& n, const std::string& at) {
+  r.only(n, at, {"name", "outline", "outline_file", "shape", "centre", "radius", "vertices", "scale", "translate"});
+  CaseBody b;
+  b.name = n["name"] ? r.scalar<std::string>(n["name"], at + ".name", "a name") : "body";
+  if (n["outline"]) {
+    const YAML::Node o = n["outline"];
+    if (!o.IsSequence() || o.size() < 3) r.fail(o, at + ".outline", "expected a list of at least 3 [x, y] vertices");
+    for (std::size_t i = 0; i < o.size(); ++i) b.outline.push_back(r.numbers<2>(o[i], at + ".outline"));
+    b.source = "outline";
+  } else if (n["outline_file"]) {
+    const fs::path p = r.path(n["outline_file"], at + ".outline_file");
+    std::ifstream in(p);
+    if (!in) r.fail(n["outline_file"], at + ".outline_file", "cannot read " + p.string());
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+      if (line.find_first_not_of(" \t\r") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
+      std::istringstream row(line);
+      double x = 0, y = 0;
+      if (!(row >> x >> y)) throw Error(p.string() + ":" + std::to_string(number) + ": expected two numbers, x y");
+      b.outline.push_back({x, y});
+    }
+    if (b.outline.size() < 3) throw Error(p.string() + ": an outline needs at least 3 vertices");
+    b.source = p.filename().string();
+  } else if (n["shape"]) {
+    const std::string shape = r.scalar<std::string>(n["shape"], at + ".shape", "circle");
+    if (shape != "circle") r.fail(n["shape"], at + ".shape", "'" + shape + "', expected circle (a plane flow)");
+    if (!n["radius"] || !n["centre"]) r.fail(n, at, "a circle needs centre: and radius:");
+    const auto c = r.numbers<2>(n["centre"], at + ".centre");
+    const int vertices = n["vertices"] ? r.scalar<int>(n["vertices"], at + ".vertices", "an integer") : 256;
+    const Polygon circle = Polygon::circle(c[0], c[1], r.number(n["radius"], at + ".radius"), vertices);
+    b.outline = circle.vertices();
+    b.source = "circle, " + std::to_string(vertices) + " vertices";
+  } else {
+    r.fail(n, at, "a plane flow's body needs outline:, outline_file: or shape: circle");
+  }
+  const double scale = n["scale"] ? r.number(n["scale"], at + ".scale") : 1.0;
+  const auto shift = n["translate"] ? r.numbers<2>(n["translate"], at + ".translate") : std::array<double, 2>{0, 0};
+  for (auto& v : b.outline) v = {scale * v[0] + shift[0], scale * v[1] + shift[1]};
+  return b;
+}
+
 FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
   // The coarse (CI) variant: its coarse: section is merged over the file.
   if (root["coarse"]) {
@@ -168,7 +214,9 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
   if (!g["core"]) r.fail(g, "grid.core", "missing");
   r.only(g["core"], "grid.core", {"x", "y", "z"});
   const char* axes[] = {"x", "y", "z"};
-  for (int a = 0; a < 3; ++a) {
+  // No z in the domain: a plane flow.
+  s.dim = d["z"] ? 3 : 2;
+  for (int a = 0; a < s.dim; ++a) {
     if (!d[axes[a]]) r.fail(d, std::string("domain.") + axes[a], "missing");
     if (!g["core"][axes[a]]) r.fail(g["core"], std::string("grid.core.") + axes[a], "missing");
     const auto dx = r.numbers<2>(d[axes[a]], std::string("domain.") + axes[a]);
@@ -193,12 +241,23 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
   const char* sides[] = {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo", "z_hi"};
   for (int k = 0; k < 6; ++k) {
     const std::string at = std::string("boundaries.") + sides[k];
+    if (k >= 2 * s.dim) {
+      if (b[sides[k]]) r.fail(b[sides[k]], at, "a plane flow (no domain.z) has no z sides");
+      continue;
+    }
     if (!b[sides[k]]) r.fail(b, at, "missing");
     const YAML::Node side = b[sides[k]];
-    r.only(side, at, {"type", "velocity"});
+    r.only(side, at, {"type", "velocity", "profile", "ramp_time"});
     if (!side["type"]) r.fail(side, at + ".type", "missing");
     s.sides[k].type = side_type(r, side["type"], at + ".type");
     if (side["velocity"]) s.sides[k].velocity = r.numbers<3>(side["velocity"], at + ".velocity");
+    if (side["profile"]) {
+      const std::string p = r.scalar<std::string>(side["profile"], at + ".profile", "uniform or parabolic");
+      if (p != "uniform" && p != "parabolic")
+        r.fail(side["profile"], at + ".profile", "'" + p + "', expected uniform or parabolic");
+      s.sides[k].parabolic = p == "parabolic";
+    }
+    if (side["ramp_time"]) s.sides[k].ramp_time = r.number(side["ramp_time"], at + ".ramp_time");
   }
   if (root["initial"]) {
     r.only(root["initial"], "initial", {"velocity"});
@@ -207,7 +266,8 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
   const YAML::Node bodies = need("bodies");
   if (!bodies.IsSequence() || bodies.size() == 0) r.fail(bodies, "bodies", "expected a list of bodies");
   for (std::size_t i = 0; i < bodies.size(); ++i)
-    s.bodies.push_back(body(r, bodies[i], "bodies[" + std::to_string(i) + "]"));
+    s.bodies.push_back(s.dim == 3 ? body(r, bodies[i], "bodies[" + std::to_string(i) + "]")
+                                  : plane_body(r, bodies[i], "bodies[" + std::to_string(i) + "]"));
   const YAML::Node t = need("time");
   r.only(t, "time", {"t_end", "cfl", "dt_max"});
   if (!t["t_end"]) r.fail(t, "time.t_end", "missing");
@@ -215,7 +275,8 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
   if (t["cfl"]) s.cfl = r.number(t["cfl"], "time.cfl");
   if (t["dt_max"]) s.dt_max = r.number(t["dt_max"], "time.dt_max");
   if (const YAML::Node sv = root["solver"]) {
-    r.only(sv, "solver", {"helmholtz_rtol", "poisson_rtol", "wall_momentum_balance"});
+    r.only(sv, "solver", {"helmholtz_rtol", "poisson_rtol", "wall_momentum_balance", "cut_cells"});
+    if (sv["cut_cells"]) s.cut_cells = r.scalar<bool>(sv["cut_cells"], "solver.cut_cells", "true or false");
     if (sv["helmholtz_rtol"]) s.helmholtz_rtol = r.number(sv["helmholtz_rtol"], "solver.helmholtz_rtol");
     if (sv["poisson_rtol"]) s.poisson_rtol = r.number(sv["poisson_rtol"], "solver.poisson_rtol");
     if (sv["wall_momentum_balance"])
@@ -229,7 +290,7 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
     if (o["reference_area"]) s.reference_area = r.number(o["reference_area"], "outputs.reference_area");
     if (const YAML::Node cv = o["control_volume"]) {
       r.only(cv, "outputs.control_volume", {"x", "y", "z"});
-      for (int a = 0; a < 3; ++a) {
+      for (int a = 0; a < s.dim; ++a) {
         const auto box = r.numbers<2>(cv[axes[a]], std::string("outputs.control_volume.") + axes[a]);
         s.control_volume_box[2 * a] = box[0];
         s.control_volume_box[2 * a + 1] = box[1];

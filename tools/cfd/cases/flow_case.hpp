@@ -1,8 +1,9 @@
-// A user's own 3-D flow, described by data instead of C++ (`fin-cfd run CASE.yaml` with
-// `case: flow`; case_file.hpp reads the file): a box domain on a stretched grid around a uniform
-// core, the fluid, a boundary condition per side, fixed closed triangulated bodies (a built-in
+// A user's own flow, described by data instead of C++ (`fin-cfd run CASE.yaml` with `case: flow`;
+// case_file.hpp reads the file): a box domain (a rectangle in 2-D) on a stretched grid around a
+// uniform core, the fluid, a boundary condition per side, fixed closed bodies (3-D: a built-in
 // sphere or box, or the user's own surface file: STL, OBJ, VTK .vtp, or a mesh.h5's closed thin
-// body; surface_file.hpp), the time span, and what to record: the force on each body and its
+// body, surface_file.hpp; 2-D: one polygon, given by its vertices, a two-column file or as a
+// circle), the time span, and what to record: the force on each body and its
 // coefficients C = F / (1/2 rho U^2 A) from the surface traction (DESIGN.md 5.1), and optionally
 // the independent control-volume force. The sphere at Re 100 of the validation set is such a case
 // (data/cases/cfd/sphere_re100_stl.yaml gives it as an STL file).
@@ -21,18 +22,22 @@ namespace finverse::cfd::cases {
 
 struct SideCondition {
   FlowBcType type = FlowBcType::Slip;
-  std::array<double, 3> velocity{};  // inlet: the uniform inflow velocity [m/s]
+  std::array<double, 3> velocity{};  // inlet: the inflow velocity [m/s] (parabolic: at the centre)
+  bool parabolic = false;            // inlet: a parabola across the side instead of a uniform stream
+  double ramp_time = 0;              // inlet: (1 - cos(pi t / ramp)) / 2 for t < ramp [s]
 };
 
 struct CaseBody {
   std::string name;
-  TriangulatedSurface surface;  // closed, outward-oriented, in the domain's coordinates [m]
-  std::string source;           // where it came from (file name or built-in shape), for the record
+  TriangulatedSurface surface;                 // 3-D: closed, outward-oriented, in the domain's coordinates [m]
+  std::vector<std::array<double, 2>> outline;  // 2-D: the body's outline, a simple polygon [m]
+  std::string source;                          // where it came from (file name or built-in shape), for the record
 };
 
 struct FlowCaseSpec {
   std::string name = "flow";  // results go to <out_dir>/<name>/
   std::string description;
+  int dim = 3;                           // 2: a plane flow (no z); forces per unit depth [N/m]
   std::array<double, 6> domain{};        // x0, x1, y0, y1, z0, z1 [m]
   std::array<double, 6> core{};          // the uniform core of cell width h, inside the domain
   double h = 0;                          // core cell width [m]
@@ -46,9 +51,10 @@ struct FlowCaseSpec {
   double dt_max = 0;  // [s]; 0: cfl h / reference_speed
   double helmholtz_rtol = 1e-8, poisson_rtol = 1e-7;
   bool wall_momentum_balance = false;  // dp/dn from the wall's momentum balance instead of 0
+  bool cut_cells = true;               // 2-D: the cut-cell mass balance of the fixed body (else staircase)
   int force_every = 10;                // steps between force evaluations (and the last step)
   double reference_speed = 1;          // U of the coefficients [m/s]
-  double reference_area = 1;           // A of the coefficients [m^2]
+  double reference_area = 1;           // A of the coefficients [m^2]; 2-D: a length [m]
   bool control_volume = false;         // also the control-volume force (all bodies together)
   std::array<double, 6> control_volume_box{};
 };

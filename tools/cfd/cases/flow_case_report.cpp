@@ -46,7 +46,7 @@ Summary flow_case_summary(const FlowCaseSpec& s, const FlowCaseResult& r) {
     for (int c = 0; c < 3; ++c) {
       sum.info(s.bodies[b].name + "_C" + kAxis[c], scale * f[c]);
       sum.info(s.bodies[b].name + "_C" + kAxis[c] + "_pressure", scale * p[c]);
-      sum.info(s.bodies[b].name + "_F" + kAxis[c], f[c], "N");
+      sum.info(s.bodies[b].name + "_F" + kAxis[c], f[c], s.dim == 2 ? "N/m" : "N");
     }
   }
   if (!r.control_volume_force.empty())
