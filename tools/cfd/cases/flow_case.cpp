@@ -48,6 +48,35 @@ std::vector<std::array<double, 3>> per_body(const std::vector<std::array<double,
   return out;
 }
 
+// The time loop both dimensions share: steps to t_end; at every force_every-th step and the last,
+// record(t) appends the forces (and the control-volume sample) and returns the first body's C_x.
+template <class Record>
+void march(FlowSolver& solver, const FlowCaseSpec& s, FlowCaseResult& r,
+           const std::function<void(const StepStats&, double)>& progress, Record record) {
+  long poisson = 0, momentum = 0;
+  double cx = 0;
+  while (solver.time() < s.t_end - 1e-12) {
+    const StepStats st = solver.step();
+    poisson += st.poisson_iterations;
+    momentum += st.helmholtz_iterations;
+    r.max_divergence = st.max_divergence;
+    ++r.steps;
+    const bool last = solver.time() >= s.t_end - 1e-12;
+    if (r.steps % std::max(1, s.force_every) == 0 || last) cx = record(st.time);
+    if (progress) progress(st, cx);
+  }
+  r.mean_poisson_iterations = static_cast<double>(poisson) / static_cast<double>(r.steps);
+  r.mean_momentum_iterations = static_cast<double>(momentum) / static_cast<double>(r.steps);
+}
+
+// The control-volume force from its samples (at least two, for the time derivative) and the run's time.
+void finish(const FlowCaseSpec& s, const std::vector<ControlVolumeSample>& cv, FlowCaseResult& r,
+            std::chrono::steady_clock::time_point t0) {
+  if (cv.size() >= 2)
+    for (const auto& f : control_volume_forces(cv, s.rho)) r.control_volume_force.push_back(f);
+  r.cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 // The plane flow past one polygon: the 2-D traction (surface_traction.hpp) and control volume.
 FlowCaseResult run_plane(const FlowCaseSpec& s, const StretchedGrid& grid, FlowSolver& solver,
                          const std::function<void(const StepStats&, double)>& progress,
@@ -68,36 +97,20 @@ FlowCaseResult run_plane(const FlowCaseSpec& s, const StretchedGrid& grid, FlowS
   r.surface_samples = static_cast<long>(traction.samples().size());
   const double scale = 2 / (s.reference_speed * s.reference_speed * s.reference_area);
   const double nu = s.nu;
-  long poisson = 0, momentum = 0;
-  double cx = 0;
-  while (solver.time() < s.t_end - 1e-12) {
-    const StepStats st = solver.step();
-    poisson += st.poisson_iterations;
-    momentum += st.helmholtz_iterations;
-    r.max_divergence = st.max_divergence;
-    ++r.steps;
-    const bool last = solver.time() >= s.t_end - 1e-12;
-    if (r.steps % std::max(1, s.force_every) == 0 || last) {
-      const SurfaceLoads L = traction.evaluate(solver.u(0), solver.u(1), solver.p(), nu, 1.0);
-      if (control_volume)
-        cv.push_back(
-            control_volume->evaluate(st.time, solver.u(0), solver.u(1), solver.face_velocity(), solver.p(), nu));
-      cx = scale * L.force[0];
-      const auto per_depth = [&](const std::array<double, 2>& f) {
-        return std::vector<std::array<double, 3>>{{s.rho * f[0], s.rho * f[1], 0.0}};
-      };
-      r.time.push_back(st.time);
-      r.force.push_back(per_depth(L.force));
-      r.pressure.push_back(per_depth(L.pressure_force));
-      r.viscous.push_back(per_depth(L.viscous_force));
-    }
-    if (progress) progress(st, cx);
-  }
-  if (control_volume && cv.size() >= 2)
-    for (const auto& f : control_volume_forces(cv, s.rho)) r.control_volume_force.push_back(f);
-  r.mean_poisson_iterations = static_cast<double>(poisson) / static_cast<double>(r.steps);
-  r.mean_momentum_iterations = static_cast<double>(momentum) / static_cast<double>(r.steps);
-  r.cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  march(solver, s, r, progress, [&](double t) {
+    const SurfaceLoads L = traction.evaluate(solver.u(0), solver.u(1), solver.p(), nu, 1.0);
+    if (control_volume)
+      cv.push_back(control_volume->evaluate(t, solver.u(0), solver.u(1), solver.face_velocity(), solver.p(), nu));
+    const auto per_depth = [&](const std::array<double, 2>& f) {
+      return std::vector<std::array<double, 3>>{{s.rho * f[0], s.rho * f[1], 0.0}};
+    };
+    r.time.push_back(t);
+    r.force.push_back(per_depth(L.force));
+    r.pressure.push_back(per_depth(L.pressure_force));
+    r.viscous.push_back(per_depth(L.viscous_force));
+    return scale * L.force[0];
+  });
+  finish(s, cv, r, t0);
   return r;
 }
 
@@ -163,45 +176,30 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
   r.surface_samples = static_cast<long>(traction.samples().size());
   const double U = s.reference_speed;
   const double scale = 2 / (U * U * s.reference_area);
-  long poisson = 0, momentum = 0;
-  double cx = 0;
-  while (solver.time() < s.t_end - 1e-12) {
-    const StepStats st = solver.step();
-    poisson += st.poisson_iterations;
-    momentum += st.helmholtz_iterations;
-    r.max_divergence = st.max_divergence;
-    ++r.steps;
-    const bool last = solver.time() >= s.t_end - 1e-12;
-    if (r.steps % std::max(1, s.force_every) == 0 || last) {
-      // Per unit density (the solver's pressure is kinematic); times rho below.
-      const SurfaceForces F = traction.evaluate(solver.u(0), solver.u(1), solver.u(2), solver.p(), opt.nu, 1.0);
-      if (control_volume)
-        cv.push_back(control_volume->evaluate(st.time, solver.u(0), solver.u(1), solver.u(2), solver.face_velocity(),
-                                              solver.p(), opt.nu));
-      std::vector<std::array<double, 3>> force(F.pressure.size());
-      for (std::size_t t = 0; t < force.size(); ++t)
-        for (int c = 0; c < 3; ++c) force[t][c] = F.pressure[t][c] + F.viscous[t][c];
-      auto bodies = first.size() == 2 ? std::vector<std::array<double, 3>>{F.total} : per_body(force, first);
-      auto pressure =
-          first.size() == 2 ? std::vector<std::array<double, 3>>{F.pressure_total} : per_body(F.pressure, first);
-      auto viscous =
-          first.size() == 2 ? std::vector<std::array<double, 3>>{F.viscous_total} : per_body(F.viscous, first);
-      cx = scale * bodies[0][0];
-      for (auto* set : {&bodies, &pressure, &viscous})
-        for (auto& f : *set)
-          for (double& c : f) c *= s.rho;
-      r.time.push_back(st.time);
-      r.force.push_back(bodies);
-      r.pressure.push_back(pressure);
-      r.viscous.push_back(viscous);
-    }
-    if (progress) progress(st, cx);
-  }
-  if (control_volume && cv.size() >= 2)
-    for (const auto& f : control_volume_forces(cv, s.rho)) r.control_volume_force.push_back(f);
-  r.mean_poisson_iterations = static_cast<double>(poisson) / static_cast<double>(r.steps);
-  r.mean_momentum_iterations = static_cast<double>(momentum) / static_cast<double>(r.steps);
-  r.cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  march(solver, s, r, progress, [&](double t) {
+    // Per unit density (the solver's pressure is kinematic); times rho below.
+    const SurfaceForces F = traction.evaluate(solver.u(0), solver.u(1), solver.u(2), solver.p(), opt.nu, 1.0);
+    if (control_volume)
+      cv.push_back(control_volume->evaluate(t, solver.u(0), solver.u(1), solver.u(2), solver.face_velocity(),
+                                            solver.p(), opt.nu));
+    std::vector<std::array<double, 3>> force(F.pressure.size());
+    for (std::size_t k = 0; k < force.size(); ++k)
+      for (int c = 0; c < 3; ++c) force[k][c] = F.pressure[k][c] + F.viscous[k][c];
+    auto bodies = first.size() == 2 ? std::vector<std::array<double, 3>>{F.total} : per_body(force, first);
+    auto pressure =
+        first.size() == 2 ? std::vector<std::array<double, 3>>{F.pressure_total} : per_body(F.pressure, first);
+    auto viscous = first.size() == 2 ? std::vector<std::array<double, 3>>{F.viscous_total} : per_body(F.viscous, first);
+    const double cx = scale * bodies[0][0];
+    for (auto* set : {&bodies, &pressure, &viscous})
+      for (auto& f : *set)
+        for (double& c : f) c *= s.rho;
+    r.time.push_back(t);
+    r.force.push_back(bodies);
+    r.pressure.push_back(pressure);
+    r.viscous.push_back(viscous);
+    return cx;
+  });
+  finish(s, cv, r, t0);
   return r;
 }
 
