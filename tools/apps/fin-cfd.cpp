@@ -103,27 +103,7 @@ void add_fin_options(CLI::App* f, FinArgs& a) {
   f->add_option("--motion", a.motion, "motion.h5 (fin-mesh)")->required()->check(CLI::ExistingFile);
   f->add_option("--out", a.out, "output loads.h5")->required();
   f->add_option("--summary", a.summary, "also write a validation summary.json (nodal loads sum check)");
-  const std::vector<std::tuple<const char*, double*, const char*>> numbers = {
-      {"--reynolds", &o.reynolds, "chord Reynolds number U c / nu"},
-      {"--speed", &o.speed, "free-stream speed U [m/s]; 0: U = Re nu / c"},
-      {"--viscosity", &o.viscosity, "kinematic viscosity [m2/s] used when --speed is 0"},
-      {"--rho", &o.rho, "fluid density [kg/m3]"},
-      {"--chord", &o.chord, "chord c [m]; 0: mesh.h5 attribute chord"},
-      {"--cells-per-chord", &o.cells_per_chord, "core cell width h = c / N; 0: min(c/16, ibm_thickness/2)"},
-      {"--core-margin", &o.core_margin, "uniform core beyond the swept box [c]"},
-      {"--wake", &o.wake, "uniform core extension downstream [c]"},
-      {"--upstream", &o.upstream, "domain inlet distance from the swept box [c]"},
-      {"--downstream", &o.downstream, "domain outlet distance from the swept box [c]"},
-      {"--lateral", &o.lateral, "domain half-width beyond the swept box in y [c]"},
-      {"--spanwise", &o.spanwise, "domain extent beyond the swept box in z [c]"},
-      {"--stretch-ratio", &o.stretch_ratio, "largest neighbouring cell-width ratio"},
-      {"--cfl", &o.cfl, "target convective CFL number (sets the fixed time step)"},
-      {"--cfl-limit", &o.cfl_limit, "blow-up guard: stop when the CFL number exceeds this"},
-      {"--periods", &o.periods, "periodic motion: periods simulated"},
-      {"--output-periods", &o.output_periods, "periodic motion: last periods written (0: all)"},
-      {"--output-interval", &o.output_interval, "time between outputs [s]; 0: the motion's frame spacing"},
-      {"--poisson-rtol", &o.poisson_rtol, "pressure Poisson relative tolerance"}};
-  for (const auto& [flag, value, help] : numbers) f->add_option(flag, *value, help)->capture_default_str();
+  for (const auto& n : cfd::io::fin_flow_flags(o)) f->add_option(n.flag, *n.value, n.help)->capture_default_str();
   f->add_flag("--staircase-balance{false}", o.cut_cells,
               "mass balance: close the faces of every non-fluid cell, moving with the wall (the staircase "
               "balance), instead of the cut-cell one (Seo & Mittal 2011; on the default fin 2.3x less noise in "

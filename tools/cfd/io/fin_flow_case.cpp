@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <limits>
 
+#include "cfd/forces/nodal_loads.hpp"
 #include "cfd/io/fin_flow_checkpoint.hpp"
 #include "cfd/io/loads_record.hpp"
-#include "cfd/forces/nodal_loads.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd::io {
@@ -18,7 +18,8 @@ namespace {
 
 // Cell counts that are multiples of 8 keep three multigrid halvings.
 Axis axis(double lo, double hi, double ulo, double uhi, double h, double ratio) {
-  const int n = std::max(8, 8 * static_cast<int>(std::lround(Axis::stretched(lo, hi, ulo, uhi, h, ratio).size() / 8.0)));
+  const int n =
+      std::max(8, 8 * static_cast<int>(std::lround(Axis::stretched(lo, hi, ulo, uhi, h, ratio).size() / 8.0)));
   return Axis::stretched_count(lo, hi, ulo, uhi, n, ratio);
 }
 
@@ -58,10 +59,10 @@ StretchedGrid fin_flow_grid(const Vec3& lo, const Vec3& hi, double c, double h, 
                 num(o.core_margin + o.wake) + " c)");
   if (!(h > 0 && o.stretch_ratio >= 1)) throw Error("--cells-per-chord, --stretch-ratio: expected h > 0, ratio >= 1");
   const double m = o.core_margin * c;
-  return StretchedGrid(axis(lo[0] - o.upstream * c, hi[0] + o.downstream * c, lo[0] - m, hi[0] + m + o.wake * c, h,
-                            o.stretch_ratio),
-                       axis(lo[1] - o.lateral * c, hi[1] + o.lateral * c, lo[1] - m, hi[1] + m, h, o.stretch_ratio),
-                       axis(lo[2] - o.spanwise * c, hi[2] + o.spanwise * c, lo[2] - m, hi[2] + m, h, o.stretch_ratio));
+  return StretchedGrid(
+      axis(lo[0] - o.upstream * c, hi[0] + o.downstream * c, lo[0] - m, hi[0] + m + o.wake * c, h, o.stretch_ratio),
+      axis(lo[1] - o.lateral * c, hi[1] + o.lateral * c, lo[1] - m, hi[1] + m, h, o.stretch_ratio),
+      axis(lo[2] - o.spanwise * c, hi[2] + o.spanwise * c, lo[2] - m, hi[2] + m, h, o.stretch_ratio));
 }
 
 stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowStats& st,
@@ -217,6 +218,28 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   }
   st.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return rec.to_stage(o.rho, U, in.reference_area, periodic ? in.period : std::nullopt);
+}
+
+std::vector<FinFlowFlag> fin_flow_flags(FinFlowOptions& o) {
+  return {{"--reynolds", &o.reynolds, "chord Reynolds number U c / nu"},
+          {"--speed", &o.speed, "free-stream speed U [m/s]; 0: U = Re nu / c"},
+          {"--viscosity", &o.viscosity, "kinematic viscosity [m2/s] used when --speed is 0"},
+          {"--rho", &o.rho, "fluid density [kg/m3]"},
+          {"--chord", &o.chord, "chord c [m]; 0: mesh.h5 attribute chord"},
+          {"--cells-per-chord", &o.cells_per_chord, "core cell width h = c / N; 0: min(c/16, ibm_thickness/2)"},
+          {"--core-margin", &o.core_margin, "uniform core beyond the swept box [c]"},
+          {"--wake", &o.wake, "uniform core extension downstream [c]"},
+          {"--upstream", &o.upstream, "domain inlet distance from the swept box [c]"},
+          {"--downstream", &o.downstream, "domain outlet distance from the swept box [c]"},
+          {"--lateral", &o.lateral, "domain half-width beyond the swept box in y [c]"},
+          {"--spanwise", &o.spanwise, "domain extent beyond the swept box in z [c]"},
+          {"--stretch-ratio", &o.stretch_ratio, "largest neighbouring cell-width ratio"},
+          {"--cfl", &o.cfl, "target convective CFL number (sets the fixed time step)"},
+          {"--cfl-limit", &o.cfl_limit, "blow-up guard: stop when the CFL number exceeds this"},
+          {"--periods", &o.periods, "periodic motion: periods simulated"},
+          {"--output-periods", &o.output_periods, "periodic motion: last periods written (0: all)"},
+          {"--output-interval", &o.output_interval, "time between outputs [s]; 0: the motion's frame spacing"},
+          {"--poisson-rtol", &o.poisson_rtol, "pressure Poisson relative tolerance"}};
 }
 
 }  // namespace finverse::cfd::io

@@ -26,35 +26,36 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
+#include "cfd/flow/flow_solver.hpp"
 #include "cfd/grid/stretched_grid.hpp"
 #include "cfd/io/fin_input.hpp"
-#include "cfd/flow/flow_solver.hpp"
 #include "core/flow_scales.hpp"
 #include "core/stage_files.hpp"
 
 namespace finverse::cfd::io {
 
 struct FinFlowOptions {
-  double reynolds = 1000;        // U c / nu (the seed paper's trout caudal fin)
-  double speed = 0;              // U [m/s]; 0: U = reynolds * viscosity / chord
+  double reynolds = 1000;                       // U c / nu (the seed paper's trout caudal fin)
+  double speed = 0;                             // U [m/s]; 0: U = reynolds * viscosity / chord
   double viscosity = kWaterKinematicViscosity;  // nu [m^2/s] when speed = 0
-  double rho = 1000;             // [kg/m^3]
-  double cells_per_chord = 0;    // h = c / this; 0: h = min(c / 16, ibm_thickness / 2)
-  double core_margin = 0.25;     // [c]
-  double wake = 1.0;             // [c]
+  double rho = 1000;                            // [kg/m^3]
+  double cells_per_chord = 0;                   // h = c / this; 0: h = min(c / 16, ibm_thickness / 2)
+  double core_margin = 0.25;                    // [c]
+  double wake = 1.0;                            // [c]
   double upstream = 3, downstream = 6, lateral = 3, spanwise = 3;  // [c]
   double stretch_ratio = 1.12;
   double cfl = 0.5;
   double cfl_limit = 2.0;
-  double periods = 2;            // periodic motion
-  double output_periods = 1;     // periodic motion: last periods written; 0: all
-  double output_interval = 0;    // [s]; 0: the motion's smallest frame spacing
+  double periods = 2;          // periodic motion
+  double output_periods = 1;   // periodic motion: last periods written; 0: all
+  double output_interval = 0;  // [s]; 0: the motion's smallest frame spacing
   double poisson_rtol = 1e-7;
   // The cut-cell mass balance (FlowOptions::cut_cell_continuity_3d, where the measurements are);
   // false: the staircase one, which blows up on fin-mesh's default fin at step 229.
   bool cut_cells = true;
-  double chord = 0;              // [m]; 0: mesh.h5 attribute chord, else the rest mesh's x extent
+  double chord = 0;  // [m]; 0: mesh.h5 attribute chord, else the rest mesh's x extent
 };
 
 struct FinFlowStats {
@@ -64,7 +65,7 @@ struct FinFlowStats {
   long steps = 0, poisson_iterations = 0;
   double max_cfl = 0, wall_seconds = 0;
   std::size_t triangles = 0;
-  long first_step = 0;  // steps already done when this run began (a restart's checkpoint)
+  long first_step = 0;   // steps already done when this run began (a restart's checkpoint)
   long checkpoints = 0;  // written by this run
   double checkpoint_seconds = 0;
 };
@@ -83,6 +84,14 @@ struct FinCheckpointing {
 
 // The swept bounding box of the body over [t0, t1] (sampled at `samples` times) and the fastest
 // vertex speed.
+// The numeric options as fin-cfd fin's flags (and `case: fin` keys), with their help texts.
+struct FinFlowFlag {
+  const char* flag;
+  double* value;
+  const char* help;
+};
+std::vector<FinFlowFlag> fin_flow_flags(FinFlowOptions& o);
+
 void swept_box(const FinSurfaceMotion& m, double t0, double t1, int samples, Vec3& lo, Vec3& hi, double& max_speed);
 
 // The grid of the header comment around the swept box [lo, hi].
