@@ -8,9 +8,8 @@
 //   fin-cfd [--coarse] run data/cases/cfd/dfg_2d2.yaml [--t-end 2]     a case file (cases/case_file.hpp):
 //   fin-cfd run data/cases/cfd/sphere_re100_stl.yaml                   a validation case or a user's flow
 //
-// The cases and their grading live in tools/cfd/validation (cases.hpp); the fin run in
-// tools/cfd/io (fin_flow_case.hpp). Each case writes <out-dir>/<case>/summary.json; exit 1 when a
-// graded metric misses its tolerance, 2 on an error.
+// Cases and grading: tools/cfd/validation (cases.hpp); the fin run: tools/cfd/io. Each case writes
+// <out-dir>/<case>/summary.json; exit 1 when a graded metric misses its tolerance, 2 on an error.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
