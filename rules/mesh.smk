@@ -5,9 +5,10 @@
 #
 #   snakemake -c2 results/<case>/motion.h5
 #
-# Default case: one flapping period. f = St U / (2 A) with U = Re nu / c = 0.1 m/s (water;
-# core/flow_scales.hpp) and A = 0.44 c gives f = 5 Hz, so T = 0.2 s = 100 frames at 500 fps,
-# three 512 x 512 views.
+# Default case: one flapping period. f = St U / A with U = Re nu / c = 0.1 m/s (water;
+# core/flow_scales.hpp) and A = 1.0 c, the trailing edge's peak-to-peak excursion
+# (fin.strouhal_excursion_over_chord; the root heaves 0.44 c half amplitude), gives f = 4.4 Hz, so
+# T = 0.2273 s = 113.6 frames at 500 fps (114 recorded), three 512 x 512 views.
 # fin.periods (if the schema has it) records more periods.
 
 _FIN = config["fin"]
@@ -37,7 +38,8 @@ rule synth:
     params:
         flags=(
             f"{_TEMPLATE_FLAGS} --reynolds {_FIN['reynolds']} --strouhal {_FIN['strouhal']}"
-            f" --heave-over-chord {_FIN['heave_amplitude_over_chord']} --fps {_FIN['fps']}"
+            f" --heave-over-chord {_FIN['heave_amplitude_over_chord']}"
+            f" --excursion-over-chord {_FIN['strouhal_excursion_over_chord']} --fps {_FIN['fps']}"
             f" --periods {_PERIODS} --views {','.join(_FIN['views'])} --seed {config['seed']}"
         ),
         out=_OUT,

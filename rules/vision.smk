@@ -23,7 +23,7 @@ _VTEMPLATE = (
 # periods: fin-track computes it from the flow scales as fin-synth does (core/flow_scales.hpp).
 _V_PERIOD = (
     f"--reynolds {_VFIN['reynolds']} --strouhal {_VFIN['strouhal']}"
-    f" --heave-over-chord {_VFIN['heave_amplitude_over_chord']}"
+    f" --excursion-over-chord {_VFIN['strouhal_excursion_over_chord']}"
     if float(_VFIN["periods"]).is_integer()
     else ""
 )

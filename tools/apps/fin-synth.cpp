@@ -1,6 +1,7 @@
 // fin-synth: the virtual experiment (DESIGN.md sections 1 and 5.5). Builds the truth fin from the
 // template, moves it with a motion source (today the prescribed trout kinematics of the seed
-// paper, section 4.4, at Re = 1000, St = 0.44, 500 fps) and renders every calibrated view.
+// paper, section 4.4, at Re = 1000, St = 0.44 on a 1.0 c trailing-edge excursion: f = 4.4 Hz,
+// 500 fps) and renders every calibrated view.
 //
 //   fin-synth --out-dir results/trout_caudal --periods 1 --views side,back,ventral
 //
@@ -44,15 +45,22 @@ int main(int argc, char** argv) {
   std::vector<std::string> views{"side", "back", "ventral"};
   app.add_option("--out-dir", out_dir, "output directory (truth.h5, cameras.yml, frames/)")->required();
   app.add_option("--reynolds", kin.reynolds, "Re = U c / nu")->capture_default_str();
-  app.add_option("--strouhal", kin.strouhal, "St = f 2A / U")->capture_default_str();
+  app.add_option("--strouhal", kin.strouhal, "St = f A / U, A the trailing edge's peak-to-peak excursion")->capture_default_str();
   app.add_option("--viscosity", kin.kinematic_viscosity, "kinematic viscosity nu (m^2/s)")->capture_default_str();
-  app.add_option("--heave-over-chord", kin.heave_over_chord, "root heave amplitude A / c")->capture_default_str();
+  app.add_option("--heave-over-chord", kin.heave_over_chord, "root heave half amplitude h0 / c")->capture_default_str();
+  app.add_option("--excursion-over-chord", kin.excursion_over_chord,
+                 "trailing-edge peak-to-peak excursion A / c that St refers to (sets f = St U / A)")
+      ->capture_default_str();
   app.add_option("--pitch-center-deg", kin.pitch_center_deg, "root pitch amplitude of the middle ray")->capture_default_str();
   app.add_option("--pitch-edge-deg", kin.pitch_edge_deg, "root pitch amplitude of the edge rays")->capture_default_str();
-  app.add_option("--pitch-phase-deg", kin.pitch_phase_deg, "mean root pitch phase lead over heave")->capture_default_str();
+  app.add_option("--pitch-phase-deg", kin.pitch_phase_deg, "mean root pitch phase relative to heave (< 0: lags)")->capture_default_str();
   app.add_option("--pitch-phase-w-deg", kin.pitch_phase_w_deg, "half swing of the W-shaped pitch phase")->capture_default_str();
   app.add_option("--chordwise-over-chord", kin.chordwise_over_chord, "chordwise bending wave tip amplitude / c")->capture_default_str();
+  app.add_option("--chordwise-wavelength", kin.chordwise_wavelength, "chordwise bending wavelength (ray lengths)")->capture_default_str();
+  app.add_option("--chordwise-phase-deg", kin.chordwise_phase_deg, "chordwise bending phase at the root relative to heave")
+      ->capture_default_str();
   app.add_option("--spanwise-over-chord", kin.spanwise_over_chord, "spanwise cupping amplitude / c")->capture_default_str();
+  app.add_option("--spanwise-phase-deg", kin.spanwise_phase_deg, "spanwise cupping phase relative to heave")->capture_default_str();
   app.add_option("--fps", fps, "camera frame rate (1/s)")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--periods", periods, "flapping periods to record")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--views", views, "camera views (side, back, ventral)")->delimiter(',')->capture_default_str();

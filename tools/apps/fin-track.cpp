@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   auto& fo = to.fit;
   fs::path frames_dir, cameras_file, out, truth_file, summary_out, bench_out, mesh_summary;
   double perturb_px = 0, viscosity = kWaterKinematicViscosity;
-  std::optional<double> period, reynolds, strouhal, heave_over_chord;
+  std::optional<double> period, reynolds, strouhal, excursion_over_chord;
   std::uint64_t seed = 1;
   std::vector<std::string> ignore_views, also_score;
   app.add_option("--frames", frames_dir, "frames directory: <view>/NNNNNN.png")->required()->check(CLI::ExistingDirectory);
@@ -48,10 +48,12 @@ int main(int argc, char** argv) {
   auto* period_opt =
       app.add_option("--period", period, "period of the motion (s), stored as the T attribute when the record is periodic");
   // Or the period from the flow scales, as fin-synth's motion has it (core/flow_scales.hpp).
-  auto* re_opt = app.add_option("--reynolds", reynolds, "periodic record: T = 2A / (St U), U = Re nu / c; Re = U c / nu")
+  auto* re_opt = app.add_option("--reynolds", reynolds, "periodic record: T = A / (St U), U = Re nu / c; Re = U c / nu")
                      ->excludes(period_opt);
-  app.add_option("--strouhal", strouhal, "periodic record: St = f 2A / U")->needs(re_opt);
-  app.add_option("--heave-over-chord", heave_over_chord, "periodic record: root heave amplitude A / c")->needs(re_opt);
+  app.add_option("--strouhal", strouhal, "periodic record: St = f A / U, A the trailing edge's peak-to-peak excursion")
+      ->needs(re_opt);
+  app.add_option("--excursion-over-chord", excursion_over_chord, "periodic record: that excursion A / c (fin-synth's flag)")
+      ->needs(re_opt);
   app.add_option("--viscosity", viscosity, "periodic record: kinematic viscosity nu (m^2/s)")->capture_default_str();
   app.add_option("--surface-subdivisions", to.surface_subdivisions, "template surface columns per gap between rays (even)")
       ->capture_default_str();
@@ -101,10 +103,10 @@ int main(int argc, char** argv) {
 
   return cli::run(app, standard, argc, argv, [&] {
     if (!summary_out.empty() && truth_file.empty()) throw Error("--summary: needs --truth");
-    if (reynolds && !(strouhal && heave_over_chord)) throw Error("--reynolds: needs --strouhal and --heave-over-chord");
+    if (reynolds && !(strouhal && excursion_over_chord)) throw Error("--reynolds: needs --strouhal and --excursion-over-chord");
     const auto fin = mesh::make_template(tmpl);
     if (reynolds)
-      period = flapping_period(*strouhal, free_stream_speed(*reynolds, fin.chord, viscosity), *heave_over_chord * fin.chord);
+      period = flapping_period(*strouhal, free_stream_speed(*reynolds, fin.chord, viscosity), *excursion_over_chord * fin.chord);
     if (period && !(*period > 0)) throw Error(reynolds ? "--reynolds ...: the period must be > 0" : "--period: expected > 0");
     to.period = period;
     auto cameras = vision::read_cameras(cameras_file);

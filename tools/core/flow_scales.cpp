@@ -5,12 +5,12 @@ namespace finverse {
 
 double free_stream_speed(double reynolds, double chord, double viscosity) { return reynolds * viscosity / chord; }
 
-double flapping_frequency(double strouhal, double speed, double heave_amplitude) {
-  return strouhal * speed / (2.0 * heave_amplitude);
+double flapping_frequency(double strouhal, double speed, double peak_to_peak_excursion) {
+  return strouhal * speed / peak_to_peak_excursion;
 }
 
-double flapping_period(double strouhal, double speed, double heave_amplitude) {
-  return 2.0 * heave_amplitude / (strouhal * speed);
+double flapping_period(double strouhal, double speed, double peak_to_peak_excursion) {
+  return peak_to_peak_excursion / (strouhal * speed);
 }
 
 }  // namespace finverse

@@ -1,6 +1,6 @@
 // Prescribed caudal-fin kinematics (seed paper sections 4.2 and 4.4, Fig. 12): heave, per-ray root
-// pitch with U-shaped amplitude and W-shaped phase across the rays, chordwise and spanwise bending
-// as inextensible rotations along every ray (arc length kept; see kinematic_model.hpp).
+// pitch with U-shaped amplitude and W-shaped phase lag across the rays, chordwise and spanwise
+// bending as inextensible rotations along every ray (arc length kept; see kinematic_model.hpp).
 #include "vision/kinematic_model.hpp"
 
 #include <algorithm>
@@ -23,10 +23,12 @@ PrescribedKinematics::PrescribedKinematics(const KinematicParams& p) : p_(p) {
   };
   require(p.chord_m > 0 && p.reynolds > 0 && p.kinematic_viscosity > 0, "chord, Re and viscosity must be > 0");
   require(p.strouhal > 0, "St must be > 0");
-  require(p.heave_over_chord > 0, "heave amplitude must be > 0 (it sets the frequency through St)");
+  require(p.heave_over_chord >= 0, "heave amplitude must be >= 0");
+  require(p.excursion_over_chord > 0, "trailing-edge excursion must be > 0 (it sets the frequency through St)");
   require(p.chordwise_wavelength > 0, "chordwise wavelength must be > 0");
   speed_ = free_stream_speed(p.reynolds, p.chord_m, p.kinematic_viscosity);
-  frequency_ = flapping_frequency(p.strouhal, speed_, p.heave_over_chord * p.chord_m);
+  // St refers to the nominal trailing-edge peak-to-peak excursion, not the root heave (flow_scales.hpp).
+  frequency_ = flapping_frequency(p.strouhal, speed_, p.excursion_over_chord * p.chord_m);
 }
 
 double PrescribedKinematics::pitch_amplitude(double eta) const {
@@ -118,6 +120,7 @@ nlohmann::json PrescribedKinematics::parameters() const {
           {"frequency_hz", frequency_},
           {"period_s", period()},
           {"heave_over_chord", p_.heave_over_chord},
+          {"excursion_over_chord", p_.excursion_over_chord},
           {"pitch_center_deg", p_.pitch_center_deg},
           {"pitch_edge_deg", p_.pitch_edge_deg},
           {"pitch_phase_deg", p_.pitch_phase_deg},
