@@ -107,6 +107,9 @@ void add_fin_options(CLI::App* f, FinArgs& a) {
               "mass balance: close the faces of every non-fluid cell, moving with the wall (the staircase "
               "balance), instead of the cut-cell one (Seo & Mittal 2011; on the default fin 2.3x less noise in "
               "the lateral force)");
+  f->add_flag("--sample-loads", o.sample_loads,
+              "loads at an output time: the one step on it instead of the mean over the output interval centred "
+              "on it (docs/studies/fin_load_noise.md)");
   f->add_option("--checkpoint-every", a.checkpoint_every, "write a checkpoint every N steps (0: never)")
       ->capture_default_str();
   f->add_option("--checkpoint", a.checkpoint, "checkpoint file (default: <out stem>.checkpoint.h5 next to --out)");

@@ -10,6 +10,7 @@
 #include "cfd/forces/nodal_loads.hpp"
 #include "cfd/io/fin_flow_checkpoint.hpp"
 #include "cfd/io/loads_record.hpp"
+#include "cfd/io/loads_window.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd::io {
@@ -93,7 +94,7 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
 
   // Duration and outputs.
   const double t0 = in.frame_time.front();
-  double t1 = in.frame_time.back();
+  double t1 = in.frame_time.back();  // the last output time
   const bool periodic = in.layout.wrap.has_value();
   if (periodic) {
     if (!(o.periods > 0)) throw Error("--periods: " + num(o.periods) + ", expected > 0");
@@ -130,7 +131,13 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   const double dt_cfl = o.cfl * h / (U + 2 * st.max_body_speed);
   const long m = std::max(1L, static_cast<long>(std::ceil(interval / dt_cfl - 1e-9)));
   st.dt = interval / static_cast<double>(m);
-  const long total = outputs * m;
+  // The loads of output k are the mean over the steps k m - m/2 .. k m + m/2 (loads_window.hpp): a
+  // periodic motion runs half an interval past the last output so its window is whole too.
+  const long last_output = outputs * m;
+  const long total = last_output + (periodic && !o.sample_loads ? m / 2 : 0);
+  st.t_end = t0 + static_cast<double>(total) * st.dt;
+  long first_output = 1;  // in intervals: the first output time after out_from
+  while (t0 + static_cast<double>(first_output) * interval <= out_from + 1e-9 * interval) ++first_output;
 
   FlowBoundary b;
   b[Side::XLo].type = FlowBcType::Inlet;
@@ -156,10 +163,11 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   }
 
   LoadsRecord rec(in.rest.size(), in.mid_triangles.size());
+  LoadsWindow window(m, in.rest.size(), in.mid_triangles.size(), first_output * m, last_output, total, o.sample_loads);
   long first = 1;
   std::string last_checkpoint = "; no checkpoint written";  // appended to a failure's message
   if (!ck.restart.empty()) {
-    const FinRunCounters c = read_fin_checkpoint(ck.restart, solver, config, rec);
+    const FinRunCounters c = read_fin_checkpoint(ck.restart, solver, config, rec, window);
     if (c.step > total)
       throw Error(ck.restart.string() + ": cannot restart: the checkpoint is at step " + std::to_string(c.step) +
                   ", beyond this run's " + std::to_string(total) + " steps");
@@ -189,21 +197,23 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
     st.poisson_iterations += s.poisson_iterations;
     st.steps = n;
     if (progress) progress(n, total, s);
-    if (n % m == 0) {
-      const double t = t0 + static_cast<double>(n / m) * interval;  // exact output time
-      if (t > out_from + 1e-9 * interval) {
-        const SurfaceForces F = solver.surface_forces(o.rho);
-        const Vec3 total_force = F.total;
-        if (!(std::isfinite(total_force[0]) && std::isfinite(total_force[1]) && std::isfinite(total_force[2])))
-          throw failure(n, "step " + std::to_string(n) + " (t = " + num(t) + " s): the surface force is not finite");
-        const SurfaceState now = motion.state(solver.time());
-        rec.add(t, nodal_forces(body, F), total_force, pressure_jump(body, in.mid_triangles, now.surface, F));
-        if (ck.at_output) ck.at_output(n / m, t, solver);
+    if (window.needs(n)) {
+      const double t = solver.time();
+      const SurfaceForces F = solver.surface_forces(o.rho);
+      const Vec3 total_force = F.total;
+      if (!(std::isfinite(total_force[0]) && std::isfinite(total_force[1]) && std::isfinite(total_force[2])))
+        throw failure(n, "step " + std::to_string(n) + " (t = " + num(t) + " s): the surface force is not finite");
+      const SurfaceState now = motion.state(t);
+      for (const auto& w : window.add(n, nodal_forces(body, F), total_force,
+                                      pressure_jump(body, in.mid_triangles, now.surface, F))) {
+        const double tw = t0 + static_cast<double>(w.step / m) * interval;  // exact output time
+        rec.add(tw, w.nodal, w.total, w.jump);
+        if (ck.at_output) ck.at_output(w.step / m, tw, solver);
       }
     }
     if (ck.every > 0 && n % ck.every == 0 && n < total) {
       const auto c0 = std::chrono::steady_clock::now();
-      write_fin_checkpoint(ck.file, solver, config, {n, st.poisson_iterations, st.max_cfl}, rec);
+      write_fin_checkpoint(ck.file, solver, config, {n, st.poisson_iterations, st.max_cfl}, rec, window);
       st.checkpoint_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
       ++st.checkpoints;
       last_checkpoint = "; last checkpoint: " + ck.file.string() + " (step " + std::to_string(n) + ")";

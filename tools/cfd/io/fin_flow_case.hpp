@@ -55,6 +55,10 @@ struct FinFlowOptions {
   // The cut-cell mass balance (FlowOptions::cut_cell_continuity_3d, where the measurements are);
   // false: the staircase one, which blows up on fin-mesh's default fin at step 229.
   bool cut_cells = true;
+  // Loads at an output time: the mean over the output interval centred on it (loads_window.hpp,
+  // the measured noise it removes: docs/studies/fin_load_noise.md); true: the one step on the
+  // output time, as before.
+  bool sample_loads = false;
   double chord = 0;  // [m]; 0: mesh.h5 attribute chord, else the rest mesh's x extent
 };
 

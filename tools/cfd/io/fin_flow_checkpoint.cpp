@@ -71,7 +71,8 @@ nlohmann::json fin_flow_config(const FinFlowOptions& o, const FinInput& in) {
                         {"--output-periods", o.output_periods},
                         {"--output-interval", o.output_interval},
                         {"--poisson-rtol", o.poisson_rtol},
-                        {"--staircase-balance", !o.cut_cells}};
+                        {"--staircase-balance", !o.cut_cells},
+                        {"--sample-loads", o.sample_loads}};
   return {{"case", "fin"}, {"options", opt}, {"input", fin_input_fingerprint(in)}};
 }
 
@@ -100,23 +101,25 @@ void check_fin_restart(const std::filesystem::path& file, const nlohmann::json& 
 }
 
 void write_fin_checkpoint(const std::filesystem::path& path, const FlowSolver& solver, const nlohmann::json& config,
-                          const FinRunCounters& c, const LoadsRecord& r) {
+                          const FinRunCounters& c, const LoadsRecord& r, const LoadsWindow& w) {
   write_checkpoint(path, solver, config.dump(),
                    {{"counters", {static_cast<double>(c.step), static_cast<double>(c.poisson_iterations), c.max_cfl}},
                     {"loads_time", r.times()},
                     {"loads_nodal_force", r.nodal()},
                     {"loads_force_total", r.totals()},
-                    {"loads_pressure_jump", r.jumps()}});
+                    {"loads_pressure_jump", r.jumps()},
+                    {"loads_window", w.state()}});
 }
 
 FinRunCounters read_fin_checkpoint(const std::filesystem::path& path, FlowSolver& solver, const nlohmann::json& config,
-                                   LoadsRecord& r) {
+                                   LoadsRecord& r, LoadsWindow& w) {
   check_fin_restart(path, config);
   std::vector<StateArray> run = {{"counters", {}},
                                  {"loads_time", {}},
                                  {"loads_nodal_force", {}},
                                  {"loads_force_total", {}},
-                                 {"loads_pressure_jump", {}}};
+                                 {"loads_pressure_jump", {}},
+                                 {"loads_window", {}}};
   read_checkpoint(path, solver, &run);
   if (run[0].values.size() != 3) throw Error(path.string() + ": dataset run/counters missing or not of 3 values");
   FinRunCounters c;
@@ -128,6 +131,7 @@ FinRunCounters read_fin_checkpoint(const std::filesystem::path& path, FlowSolver
                 std::to_string(solver.steps()));
   try {
     r.restore(std::move(run[1].values), std::move(run[2].values), std::move(run[3].values), std::move(run[4].values));
+    w.restore(run[5].values);
   } catch (const Error& e) {
     throw Error(path.string() + ": " + e.what());
   }

@@ -20,6 +20,7 @@
 #include "cfd/io/fin_flow_case.hpp"
 #include "cfd/io/fin_input.hpp"
 #include "cfd/io/loads_record.hpp"
+#include "cfd/io/loads_window.hpp"
 
 namespace finverse::cfd::io {
 
@@ -44,10 +45,10 @@ struct FinRunCounters {
 };
 
 void write_fin_checkpoint(const std::filesystem::path& path, const FlowSolver& solver, const nlohmann::json& config,
-                          const FinRunCounters& counters, const LoadsRecord& record);
-// Checks the configuration, then restores the solver (set up and initialised as the writer's)
-// and the record; returns the counters.
+                          const FinRunCounters& counters, const LoadsRecord& record, const LoadsWindow& window);
+// Checks the configuration, then restores the solver (set up and initialised as the writer's),
+// the record and the open windows of the loads (loads_window.hpp); returns the counters.
 FinRunCounters read_fin_checkpoint(const std::filesystem::path& path, FlowSolver& solver, const nlohmann::json& config,
-                                   LoadsRecord& record);
+                                   LoadsRecord& record, LoadsWindow& window);
 
 }  // namespace finverse::cfd::io

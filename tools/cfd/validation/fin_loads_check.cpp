@@ -6,6 +6,7 @@
 
 #include "cfd/io/loads_record.hpp"
 #include "cfd/validation/case_support.hpp"
+#include "cfd/validation/load_smoothness.hpp"
 #include "core/log.hpp"
 
 namespace finverse::cfd::validation {
@@ -29,6 +30,25 @@ Summary fin_loads_summary(const std::string& name, const std::string& inputs, co
                 "time; force coefficients for information");
   s.at_most("max_relative_nodal_sum_error", worst, 0.005,
             "issue 4: nodal loads sum to the integrated force within 0.5%");
+  // Issue 30's smoothness goals, over the last period (load_smoothness.hpp); a record too short
+  // or not periodic reports none.
+  if (const auto q = load_smoothness(back)) {
+    const std::string src = "issue 30: over the last period of " + std::to_string(q->outputs) + " outputs, ";
+    s.at_most("CT_energy_above_10th_harmonic", q->thrust_energy_fraction, 0.01, src + "at most 1% of C_T's energy");
+    s.at_most("CL_energy_above_10th_harmonic", q->lateral_energy_fraction, 0.01, src + "at most 1% of C_L's energy");
+    s.at_most("nodal_force_rms_above_10th_harmonic", q->nodal_rms_ratio, 0.05,
+              src + "rms above the 10th harmonic at most 5% of the smooth part's");
+    s.at_most("pressure_jump_rms_above_10th_harmonic", q->jump_rms_ratio, 0.05,
+              src + "rms above the 10th harmonic at most 5% of the smooth part's");
+    s.at_most("nodal_force_increment_ratio", q->nodal_increment_ratio, 1.5,
+              src + "raw load increments between outputs within 1.5x of the smooth loads'");
+    s.info("CT_increment_ratio", q->thrust_increment_ratio);
+    log::info("loads smoothness over the last period (" + std::to_string(q->outputs) + " outputs): energy above the " +
+              "10th harmonic C_T " + fmt("%.4f", q->thrust_energy_fraction) + ", C_L " +
+              fmt("%.4f", q->lateral_energy_fraction) + "; rms ratio nodal " + fmt("%.4f", q->nodal_rms_ratio) +
+              ", pressure jump " + fmt("%.4f", q->jump_rms_ratio) + "; increment ratio nodal " +
+              fmt("%.3f", q->nodal_increment_ratio) + ", C_T " + fmt("%.3f", q->thrust_increment_ratio));
+  }
   s.info("CT_mean", ct);
   s.info("CT_max", ct_max);
   s.info("CY_mean", cy);

@@ -1,7 +1,8 @@
 // The fin run's self-check (fin-cfd fin --summary; the thin_plate_loads validation case): the nodal
 // loads of loads.h5, read back from the file, must sum to the force integrated from the surface
 // traction at every output time (DESIGN.md 5.1: "force coefficients and nodal loads come from the
-// same traction"); the force coefficients and the run's statistics are reported beside it.
+// same traction"); over the last period of a periodic record, issue 30's smoothness goals
+// (load_smoothness.hpp); the force coefficients and the run's statistics are reported beside it.
 #pragma once
 
 #include <nlohmann/json.hpp>
