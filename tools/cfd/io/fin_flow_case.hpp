@@ -50,7 +50,7 @@ struct FinFlowOptions {
   double cfl_limit = 2.0;
   double periods = 2;          // periodic motion
   double output_periods = 1;   // periodic motion: last periods written; 0: all
-  double output_interval = 0;  // [s]; 0: the motion's smallest frame spacing
+  double output_interval = 0;  // [s]; 0: the motion's smallest frame spacing (periodic: shortened to divide T)
   double poisson_rtol = 1e-7;
   // The cut-cell mass balance (FlowOptions::cut_cell_continuity_3d, where the measurements are);
   // false: the staircase one, which blows up on fin-mesh's default fin at step 229.
