@@ -28,6 +28,8 @@ const std::vector<ValidationCase>& validation_cases() {
        "data/reference/sphere.json"},
       {"dfg_3d1z", "DFG 3D-1Z cylinder benchmark (Re 20, steady, 3-D), immersed boundary", run_dfg_3d1z,
        "data/reference/schaefer_turek.json"},
+      {"heaving_plate_garrick", "thin plate heaving in a stream (Re 1000): mean thrust against Garrick (1936)",
+       run_heaving_plate_garrick, "data/reference/garrick_heaving_plate.json"},
   };
   return cases;
 }
@@ -128,6 +130,19 @@ std::vector<CaseOption> case_options(const ValidationCase& c, CaseOptions& o) {
                  "default dp/dn = 0, to compare (on bodies of about 28 cells per diameter or more; the default "
                  "D/12 keeps dp/dn = 0)"});
     v.push_back({"--span-cells", &o.span_cells, "cells along z (0: mid-span width about h; a multiple of 8)", 0, 4096});
+  } else if (n == "heaving_plate_garrick") {
+    v.push_back({"--reynolds", &o.reynolds, "Re = U c / nu (default 1000)", 0, 0, true});
+    v.push_back({"--reduced-frequency", &o.reduced_frequency, "k = pi f c / U (default 2)", 0, 0, true});
+    v.push_back({"--amplitudes", &o.amplitudes,
+                 "heave amplitudes h0/c, comma-separated (default 0.025,0.0375,0.05; the smallest is graded)"});
+    v.push_back({"--thickness", &o.thickness, "plate thickness t/c, rounded ends (default 0.03)", 0.001, 0.5});
+    v.push_back({"--cells-per-chord", &o.cells_per_chord, "grid: h = c / N in the box around the plate's path "
+                 "(default 100)", 8, 4000});
+    v.push_back({"--periods", &o.periods, "heave periods simulated, the first a smooth start (default 6)", 1, 1000});
+    v.push_back({"--periods-averaged", &o.periods_averaged, "the last periods averaged (default 3)", 1, 1000});
+    v.push_back({"--cfl", &o.cfl, "time step: dt ~ cfl h / U, a whole number of steps per period (default 0.5)",
+                 0.01, 1.0});
+    v.push_back({"--reference", &o.reference, "reference source (JSON; default " + c.reference + ")"});
   }
   return v;
 }
