@@ -54,6 +54,10 @@ _CFD_CASES = {
     # docs/studies/cfd_run_cost.md.
     "dfg_3d1z": ("DFG 3D-1Z (Re 20, wall-to-wall cylinder, 3-D triangulated body crossing the walls): drag",
                  "schaefer_turek.json", THREADS, 3000, _FORCES),
+    # Graded: C_T within 10 % of Garrick (1936) at the smallest amplitude; grid, Re and cost in
+    # docs/studies/garrick_heaving_plate.md.
+    "heaving_plate_garrick": ("thin plate heaving at k 2, Re 1000: mean thrust per amplitude vs Garrick's linear theory",
+                              "garrick_heaving_plate.json", THREADS_2D, 500, _FORCES),
 }
 
 for _case, (_description, _ref, _threads, _mem_mb, _outputs) in _CFD_CASES.items():
