@@ -82,6 +82,28 @@ TEST(CutFaces3D, BoxInTheGridPlanesClosesEveryCell) {
   EXPECT_GT(cells, 20);
 }
 
+TEST(CutFaces3D, BoxThroughTheDomainSidesIsClippedToThem) {
+  // A box reaching through both z sides (FlowOptions::surface_crosses): its pieces are the lateral
+  // faces inside 0 < z < 0.5 only (the end caps and the parts outside belong to no cell), and every
+  // cell still closes, the boundary planes' apertures seeing the cross-section.
+  const StretchedGrid g(Axis::uniform(0, 1, 10), Axis::uniform(0, 1, 10), Axis::uniform(0, 0.5, 4));
+  const Vec3 lo{0.23, 0.352, -0.2}, hi{0.61, 0.718, 0.7};
+  const SurfaceGeometry box(box_surface(lo, hi));
+  const CutFaces cf = cut_faces(g, box);
+  const std::vector<SurfacePiece> pieces = surface_pieces(g, box);
+  double area = 0;
+  for (const SurfacePiece& p : pieces) {
+    EXPECT_NEAR(p.area_vector[2], 0, 1e-15);
+    EXPECT_GE(p.centroid[2], 0);
+    EXPECT_LE(p.centroid[2], 0.5);
+    area += std::hypot(p.area_vector[0], p.area_vector[1]);
+  }
+  EXPECT_NEAR(area, 2 * ((hi[0] - lo[0]) + (hi[1] - lo[1])) * 0.5, 1e-12);
+  int cells = 0;
+  EXPECT_LT(worst_closure(g, cf, pieces, cells), 1e-13);
+  EXPECT_GT(cells, 20);
+}
+
 TEST(CutFaces3D, SpherePiecesTileTheSurfaceAndCloseEveryCell) {
   const StretchedGrid g(Axis::stretched(0, 1, 0.3, 0.7, 0.05, 1.1), Axis::uniform(0, 1, 20), Axis::uniform(0, 1, 16));
   const SurfaceGeometry sphere(icosphere({0.47, 0.52, 0.49}, 0.19, 3));

@@ -145,6 +145,14 @@ struct FlowOptions {
   // their fluid part (cut_body_face_velocity), the staircase's closed faces the wall's
   // (body_face_velocities). Why each, with the force noise measured: docs/studies/cut_cell_balance.md.
   bool cut_cell_continuity_3d = false;
+  // Moving triangulated body (immerse(SurfaceMotion)): the axes (x, y, z) along which it may reach
+  // through both sides of the domain, which must then be slip walls. A slip wall is a symmetry
+  // plane, so a body and flow that do not vary along the axis (a plate of constant section spanning
+  // a slab between two slip walls) are the 2-D flow of the section with no periodic boundary
+  // needed. The placement then checks only the other axes, the cut-cell balance integrates only
+  // the surface inside the domain, and surface_forces() only the traction on it (SurfaceClip).
+  // Off by default: a body leaving the domain is an error.
+  std::array<bool, 3> surface_crosses{};
   // The same for fixed 2-D bodies (immerse(Polygon), immerse(regions)). Off here, so the solver's
   // own tests and the immersed-Couette order study keep the balance they were validated with; the
   // channel benchmarks (DFG, Turek-Hron) turn it on (DfgSetup, TurekHronSetup::cut_cell_continuity).
@@ -203,7 +211,8 @@ class FlowSolver {
   // volume: the net flux through the body's faces is removed (body_face_velocities), which is
   // exact only for a volume-preserving motion (rigid motion, bending of a closed thin body). A
   // placement at which the body's bounding box is not strictly inside the domain, or too close to
-  // its boundary for the ghost cells, throws a one-line finverse::Error naming the time.
+  // its boundary for the ghost cells, throws a one-line finverse::Error naming the time (except
+  // along the axes of FlowOptions::surface_crosses).
   void immerse(const SurfaceMotion& motion);
   // The triangulated body at time() (null without one) and its state (motion(time()); for a fixed
   // body the surface with no velocity).
@@ -212,6 +221,7 @@ class FlowSolver {
   // Hydrodynamic force per triangle of the triangulated body at time() from the traction on the
   // true surface (surface_traction_3d.hpp), with the density rho [kg/m^3] (the solver's pressure is
   // kinematic). Builds the sampling stencils on every call (O(samples)); throws without a body.
+  // With FlowOptions::surface_crosses, only the part inside the domain carries traction.
   SurfaceForces surface_forces(double rho = 1.0) const;
   // Cells that were cleared at the start of the last step (i, j, k; k = 0 in 2-D).
   const std::vector<std::array<int, 3>>& freshly_cleared() const { return fresh_; }

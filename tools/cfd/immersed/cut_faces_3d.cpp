@@ -214,9 +214,25 @@ std::vector<SurfacePiece> surface_pieces(const StretchedGrid& g, const SurfaceGe
           mn = std::min(mn, v[D]);
           mx = std::max(mx, v[D]);
         }
+        // A surface that reaches through the domain's sides (FlowOptions::surface_crosses) is
+        // clipped to the domain: the parts outside belong to no cell (cell_of would lump them
+        // into the outermost one). The cut edge is no mesh edge (label -1).
+        Part rest{std::move(part.p), std::move(part.label), part.cell};
+        if (mn < ax.face(0)) {
+          split(rest.p, rest.label, d, ax.face(0), below, below_label, above, above_label);
+          rest.p = above;
+          rest.label = above_label;
+          mn = ax.face(0);
+        }
+        if (mx > ax.face(ax.size()) && rest.p.size() >= 3) {
+          split(rest.p, rest.label, d, ax.face(ax.size()), below, below_label, above, above_label);
+          rest.p = below;
+          rest.label = below_label;
+          mx = ax.face(ax.size());
+        }
+        if (rest.p.size() < 3) continue;
         // Interior planes between the cells of the lowest and the highest point.
         const int c0 = cell_of(ax, mn), c1 = cell_of(ax, mx);
-        Part rest{std::move(part.p), std::move(part.label), part.cell};
         for (int c = c0; c < c1; ++c) {
           split(rest.p, rest.label, d, ax.face(c + 1), below, below_label, above, above_label);
           if (below.size() >= 3) {

@@ -64,10 +64,19 @@ void FlowSolver::place_surface(double t) {
     }
     // A body that leaves the domain is not always caught by the ghost cells (a ghost cell's image
     // point can still lie inside the grid), and one entirely outside has no cells at all.
+    // Along an axis of surface_crosses the body may reach through both sides, slip walls: there
+    // the flow is the mirror image of itself, and the parts outside carry neither flux
+    // (surface_pieces clips them) nor traction (surface_forces).
     const Vec3 lo = surface_->lower(), hi = surface_->upper();
     for (int d = 0; d < 3; ++d) {
       const Axis& ax = grid_.axis(d);
       const auto D = static_cast<std::size_t>(d);
+      if (opt_.surface_crosses[D]) {
+        for (int side = 0; side < 2; ++side)
+          if (bnd_.side[static_cast<std::size_t>(2 * d + side)].type != FlowBcType::Slip)
+            throw Error(std::string("surface_crosses along ") + "xyz"[d] + " needs slip walls on both sides");
+        continue;
+      }
       if (!(lo[D] > ax.lo() && hi[D] < ax.hi())) {
         char b[160];
         std::snprintf(b, sizeof b, "the body (%c from %.6g to %.6g m) leaves the domain (%.6g to %.6g m)", "xyz"[d],
@@ -193,7 +202,10 @@ void FlowSolver::move_surface(double t) {
 
 SurfaceForces FlowSolver::surface_forces(double rho) const {
   if (!surface_ || !ib_) throw Error("flow solver: surface_forces needs an immersed triangulated body");
-  const SurfaceTraction3D traction(grid_, *ib_, *surface_);
+  SurfaceClip clip;
+  clip.enabled = opt_.surface_crosses[0] || opt_.surface_crosses[1] || opt_.surface_crosses[2];
+  for (std::size_t s = 0; s < 6; ++s) clip.no_slip[s] = bnd_.side[s].type == FlowBcType::NoSlip;
+  const SurfaceTraction3D traction(grid_, *ib_, *surface_, clip);
   return traction.evaluate(u_[0], u_[1], u_[2], p_, opt_.nu, rho, surface_state_.velocity);
 }
 
