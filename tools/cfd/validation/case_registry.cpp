@@ -30,6 +30,8 @@ const std::vector<ValidationCase>& validation_cases() {
        "data/reference/schaefer_turek.json"},
       {"heaving_plate_garrick", "thin plate heaving in a stream (Re 1000): mean thrust against Garrick (1936)",
        run_heaving_plate_garrick, "data/reference/garrick_heaving_plate.json"},
+      {"spanwise_plate_2d3d", "heaving/pitching plate across a slab (Re 100): 3-D thin body against the 2-D section",
+       run_spanwise_plate_2d3d},
   };
   return cases;
 }
@@ -143,6 +145,18 @@ std::vector<CaseOption> case_options(const ValidationCase& c, CaseOptions& o) {
     v.push_back({"--cfl", &o.cfl, "time step: dt ~ cfl h / U, a whole number of steps per period (default 0.5)",
                  0.01, 1.0});
     v.push_back({"--reference", &o.reference, "reference source (JSON; default " + c.reference + ")"});
+  } else if (n == "spanwise_plate_2d3d") {
+    v.push_back({"--reynolds", &o.reynolds, "Re = U c / nu (default 100)", 0, 0, true});
+    v.push_back({"--cells-per-chord", &o.cells_per_chord, "grid: h = c / N around the plate's path, the plate 2 h "
+                 "thick (default 20)", 8, 4000});
+    v.push_back({"--span-cells", &o.span_cells, "slab cells along z between the slip walls (default 8)", 1, 4096});
+    v.push_back({"--periods", &o.periods, "periods simulated, the last compared (default 2)", 2, 1000});
+    v.push_back({"--cfl", &o.cfl, "time step: dt ~ cfl h / U, a whole number of steps per period (default 0.25)",
+                 0.01, 1.0});
+    v.push_back({"--thickness", &o.thickness, "closed-body thickness t/c (default 2 h)", 0.001, 0.5});
+    v.push_back({"--staircase-balance", &o.staircase_balance,
+                 "both runs with the staircase mass balance instead of the cut-cell one (to compare)"});
+    v.push_back({"--at-rest", &o.at_rest, "the plate held still: the drag alone (to compare)"});
   }
   return v;
 }

@@ -32,7 +32,7 @@ struct CaseOptions {
   bool wall_momentum_balance = false;         // sphere, DFG 3D-1Z: the wall's momentum balance for dp/dn
   std::string wall_extrapolation = "linear";  // DFG 2-D: the surface traction's extrapolation to the wall
   double kick_velocity = -1;                  // Turek-Hron CFD3: the start-up push (< 0: the default)
-  int span_cells = 0;                         // DFG 3D-1Z: cells along z
+  int span_cells = 0;                         // DFG 3D-1Z, spanwise_plate_2d3d: cells along z
   // Heaving plate against Garrick's theory (heaving_plate_garrick.hpp; also cfl above).
   double reynolds = 0;                        // U c / nu
   double reduced_frequency = 0;               // k = pi f c / U
@@ -40,6 +40,7 @@ struct CaseOptions {
   double thickness = 0;                       // t/c
   int cells_per_chord = 0;
   int periods = 0, periods_averaged = 0;
+  bool at_rest = false;                       // spanwise_plate_2d3d: the plate held still (drag alone)
   // Channel: checkpoint and restart, ParaView output.
   int checkpoint_every = 0;
   std::string restart;
@@ -91,5 +92,6 @@ int run_cylinder_oscillating(const CaseOptions& o);
 int run_sphere_re100(const CaseOptions& o);
 int run_dfg_3d1z(const CaseOptions& o);
 int run_heaving_plate_garrick(const CaseOptions& o);
+int run_spanwise_plate_2d3d(const CaseOptions& o);
 
 }  // namespace finverse::cfd::validation
