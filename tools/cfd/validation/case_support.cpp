@@ -1,6 +1,7 @@
 // Shared pieces of the validation cases; see case_support.hpp.
 #include "cfd/validation/case_support.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
@@ -14,6 +15,11 @@ std::string fmt(const char* format, double value) {
   char b[64];
   std::snprintf(b, sizeof b, format, value);
   return b;
+}
+
+Axis multigrid_axis(double lo, double hi, double ulo, double uhi, double h, double ratio) {
+  const int n = Axis::stretched(lo, hi, ulo, uhi, h, ratio).size();
+  return Axis::stretched_count(lo, hi, ulo, uhi, std::max(8, 8 * ((n + 7) / 8)), ratio);
 }
 
 nlohmann::json read_reference(const std::string& path) {

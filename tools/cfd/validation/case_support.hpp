@@ -1,5 +1,6 @@
 // Pieces every validation case of the flow solver shares (cases.hpp): the reference file, the
-// force-history CSV rows, the summary's last step and the log's number format.
+// force-history CSV rows, the summary's last step, the log's number format and the grid axes of
+// the plate cases.
 #pragma once
 
 #include <chrono>
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cfd/grid/stretched_axis.hpp"
 #include "core/summary.hpp"
 
 namespace finverse::cfd::validation {
@@ -21,6 +23,10 @@ nlohmann::json read_reference(const std::string& path);
 std::string csv_row(std::initializer_list<double> values);
 
 double seconds_since(std::chrono::steady_clock::time_point t0);
+
+// Axis::stretched from lo to hi with the uniform part [ulo, uhi] of width h, its cell count
+// rounded up to a multiple of 8 (three multigrid halvings).
+Axis multigrid_axis(double lo, double hi, double ulo, double uhi, double h, double ratio);
 
 // Writes <dir>/summary.json with the run's timing; 0 when every graded metric passes, else 1.
 int finish(Summary& s, const std::filesystem::path& dir, double wall_seconds);

@@ -7,19 +7,13 @@
 #include <numbers>
 
 #include "cfd/forces/surface_traction.hpp"
+#include "cfd/validation/case_support.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {
 
 namespace {
 constexpr double pi = std::numbers::pi;
-
-// Cell counts that are multiples of 8 keep three halvings for the multigrid.
-int round8(int n) { return std::max(8, 8 * ((n + 7) / 8)); }
-
-Axis axis(double lo, double hi, double ulo, double uhi, double h, double ratio) {
-  return Axis::stretched_count(lo, hi, ulo, uhi, round8(Axis::stretched(lo, hi, ulo, uhi, h, ratio).size()), ratio);
-}
 }  // namespace
 
 double HeavingPlateSetup::period() const { return pi / reduced_frequency; }
@@ -56,8 +50,9 @@ HeavingPlateResult run_heaving_plate(const HeavingPlateSetup& hs) {
   if (!(hs.half_height > 2 * ylim) || !(hs.upstream > 2 * hs.box_margin) || !(hs.downstream > 2 * hs.box_behind))
     throw Error("heaving plate: the domain must extend well beyond the uniform box around the plate's path");
   // One grid for every run (the plate at rest included), covering the largest amplitude's path.
-  const StretchedGrid g(axis(-hs.upstream, 1 + hs.downstream, -hs.box_margin, 1 + hs.box_behind, h, hs.stretch_ratio),
-                        axis(-hs.half_height, hs.half_height, -ylim, ylim, h, hs.stretch_ratio));
+  using validation::multigrid_axis;
+  const StretchedGrid g(multigrid_axis(-hs.upstream, 1 + hs.downstream, -hs.box_margin, 1 + hs.box_behind, h, hs.stretch_ratio),
+                        multigrid_axis(-hs.half_height, hs.half_height, -ylim, ylim, h, hs.stretch_ratio));
   HeavingPlateResult r;
   r.h = h;
   r.cells = static_cast<long>(g.cells());

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "cfd/forces/surface_traction.hpp"
+#include "cfd/validation/case_support.hpp"
 #include "cfd/io/fin_input.hpp"
 #include "cfd/validation/thin_plate_case.hpp"
 #include "core/error.hpp"
@@ -17,13 +18,6 @@ namespace finverse::cfd {
 
 namespace {
 constexpr double pi = std::numbers::pi;
-
-// Cell counts that are multiples of 8 keep three halvings for the multigrid.
-int round8(int n) { return std::max(8, 8 * ((n + 7) / 8)); }
-
-Axis axis(double lo, double hi, double ulo, double uhi, double h, double ratio) {
-  return Axis::stretched_count(lo, hi, ulo, uhi, round8(Axis::stretched(lo, hi, ulo, uhi, h, ratio).size()), ratio);
-}
 
 // Heave y and counter-clockwise pitch theta with their first two time derivatives.
 struct Pose {
@@ -101,8 +95,9 @@ SpanwisePlateResult run_spanwise_plate(const SpanwisePlateSetup& s) {
   const double ylim = s.heave + std::max(s.pivot, 1 - s.pivot) * std::sin(s.pitch) + t / 2 + s.box_margin;
   if (!(s.half_height > 1.5 * ylim)) throw Error("spanwise plate: half_height must exceed 1.5 x the plate's path");
   // One x-y grid for both runs.
-  const Axis ax = axis(-s.upstream, 1 + s.downstream, -s.box_margin, 1 + s.box_behind, h, s.stretch_ratio);
-  const Axis ay = axis(-s.half_height, s.half_height, -ylim, ylim, h, s.stretch_ratio);
+  using validation::multigrid_axis;
+  const Axis ax = multigrid_axis(-s.upstream, 1 + s.downstream, -s.box_margin, 1 + s.box_behind, h, s.stretch_ratio);
+  const Axis ay = multigrid_axis(-s.half_height, s.half_height, -ylim, ylim, h, s.stretch_ratio);
   // The plate's span runs from 0 to span + 2 overhang; the slab sits in its middle.
   const double z0 = s.overhang_cells * h;
   const Axis az = Axis::uniform(z0, z0 + r.span, s.span_cells);
