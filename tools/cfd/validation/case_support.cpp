@@ -2,8 +2,10 @@
 #include "cfd/validation/case_support.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <numbers>
 
 #include "core/cli.hpp"
 #include "core/error.hpp"
@@ -20,6 +22,17 @@ std::string fmt(const char* format, double value) {
 Axis multigrid_axis(double lo, double hi, double ulo, double uhi, double h, double ratio) {
   const int n = Axis::stretched(lo, hi, ulo, uhi, h, ratio).size();
   return Axis::stretched_count(lo, hi, ulo, uhi, std::max(8, 8 * ((n + 7) / 8)), ratio);
+}
+
+Ramp cosine_ramp(double t, double t_ramp) {
+  Ramp a;
+  if (t < t_ramp) {
+    const double q = std::numbers::pi / t_ramp;
+    a.r = (1 - std::cos(q * t)) / 2;
+    a.dr = q * std::sin(q * t) / 2;
+    a.ddr = q * q * std::cos(q * t) / 2;
+  }
+  return a;
 }
 
 nlohmann::json read_reference(const std::string& path) {

@@ -28,6 +28,14 @@ double seconds_since(std::chrono::steady_clock::time_point t0);
 // rounded up to a multiple of 8 (three multigrid halvings).
 Axis multigrid_axis(double lo, double hi, double ulo, double uhi, double h, double ratio);
 
+// The start-up ramp of the plate cases' motion amplitude, r = (1 - cos(pi t / t_ramp)) / 2 up to
+// t_ramp and 1 after, with its first two time derivatives: a plate set moving impulsively normal
+// to itself has singular edge velocities.
+struct Ramp {
+  double r = 1, dr = 0, ddr = 0;
+};
+Ramp cosine_ramp(double t, double t_ramp);
+
 // Writes <dir>/summary.json with the run's timing; 0 when every graded metric passes, else 1.
 int finish(Summary& s, const std::filesystem::path& dir, double wall_seconds);
 

@@ -88,13 +88,7 @@ HeavingPlateResult run_heaving_plate(const HeavingPlateSetup& hs) {
     // after the ramp.
     const double tr = hs.ramp_periods * T;
     s.immerse(MovingBody{plate, {0.5, 0}, [=](double t) {
-                           double ramp = 1, dramp = 0, ddramp = 0;
-                           if (t < tr) {
-                             const double q = pi / tr;
-                             ramp = (1 - std::cos(q * t)) / 2;
-                             dramp = q * std::sin(q * t) / 2;
-                             ddramp = q * q * std::cos(q * t) / 2;
-                           }
+                           const auto [ramp, dramp, ddramp] = validation::cosine_ramp(t, tr);
                            const double sn = std::sin(w * t), cs = std::cos(w * t);
                            RigidState st;
                            st.displacement = {0, h0 * ramp * sn};

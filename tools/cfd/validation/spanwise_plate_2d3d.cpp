@@ -26,13 +26,7 @@ struct Pose {
 
 Pose pose(const SpanwisePlateSetup& s, double t) {
   const double w = 2 * pi / s.period, tr = s.ramp_periods * s.period;
-  double r = 1, dr = 0, ddr = 0;
-  if (t < tr) {
-    const double q = pi / tr;
-    r = (1 - std::cos(q * t)) / 2;
-    dr = q * std::sin(q * t) / 2;
-    ddr = q * q * std::cos(q * t) / 2;
-  }
+  const auto [r, dr, ddr] = validation::cosine_ramp(t, tr);
   const double sn = std::sin(w * t), cs = std::cos(w * t);
   Pose p;
   // (r f)'' = r'' f + 2 r' f' + r f'' for f = h0 sin(wt) and f = -theta0 cos(wt).
