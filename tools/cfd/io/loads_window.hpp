@@ -1,24 +1,12 @@
-// The fin run's loads at an output time as the mean over the output interval centred on it (issue
-// 30), instead of the load of the one step that lands on the output time.
-//
-// Why: on a body two cells thick every step changes the discrete geometry somewhere (a cell is
-// covered or cleared, a ghost cell's intercept moves to another face of the closed thin body, an
-// image-point stencil changes its substitutions), and the pressure answers each change with a
-// short impulse that spreads over the whole body (docs/studies/fin_load_noise.md). The momentum
-// that the flow gives the body over an interval is what the time steps resolve; a single step's
-// force is not. Sampling one step in m aliases those impulses into the output band, so the
-// quasi-static objective (seed paper eq. (2)), which is driven by the load increments between
-// outputs, fits noise. The mean over the interval keeps every impulse's momentum and removes its
-// peak.
-//
-// The window: output k at step s = k m (m steps per output interval) is the weighted mean of the
-// per-step loads at steps s - q .. s + q, a box exactly one output interval wide (m odd: q = (m-1)/2,
-// all weights 1; m even: q = m/2, the two end steps weighted 1/2, shared with the neighbouring
-// output). It is symmetric, so it shifts no phase; its gain at harmonic n of a period of N outputs
-// is sin(pi n / N) / (pi n / N): 0.99984 at the fundamental and 0.9836 at the 10th harmonic for
-// N = 100 (the filter's whole effect below the 10th harmonic). Where the run cannot reach s + q
-// (the last output of a non-periodic motion), the window is shortened symmetrically.
-// With m = 1 (an output every step) the window is the step itself.
+// The fin run's loads at an output time: the mean of the per-step loads over the output interval
+// centred on it (issue 30), not the one step on the output time. On a body two cells thick most
+// steps re-classify some cells, and each re-classification gives the pressure a one-step impulse;
+// sampling one step in m aliases those impulses into the outputs, the interval mean keeps each
+// impulse's momentum and drops its peak (measured: docs/studies/fin_load_noise.md).
+// Output k at step s = k m averages steps s - q .. s + q, a box one interval wide (m odd: q = (m-1)/2,
+// weights 1; m even: q = m/2, end steps 1/2). Symmetric, so no phase shift; gain sinc(n/N) at
+// harmonic n of N outputs per period (0.9836 at the 10th for N = 100). Where the run ends at an
+// output (a motion that is not periodic) the window shrinks symmetrically; m = 1 is the step.
 #pragma once
 
 #include <array>

@@ -1,23 +1,10 @@
-// A thin rigid plate heaving in a uniform stream, against Garrick's linear theory (issue 30, item
-// 3b; garrick_theory.hpp): the mean thrust of a flapping body compared with a published result.
-//
-// A plate of chord c = 1 and thickness t (a stadium: straight sides and semicircular ends of
-// radius t/2, so the leading edge is rounded and has no corner for the flow to separate at) with
-// its chord along the stream U = 1, heaving as y(t) = h0 sin(omega t) (after a smooth start of the
-// amplitude), omega = 2 k U / c
-// (k = omega b / U = pi f c / U), immersed as a 2-D moving ghost-cell body (flow_solver.hpp,
-// FlowSolver::immerse(MovingBody)); Re = U c / nu, impulsive start from the uniform stream.
-// Garrick's theory is inviscid: the plate's thrust there is the leading-edge suction alone. The
-// viscous plate feels the same suction plus its skin friction and the pressure drag of its finite
-// thickness, so the thrust compared is
-//     C_T = C_D(plate at rest) - <C_X(heaving plate)>,
-// both on the same grid, time step and Re, the plate at rest being a moving body with zero motion
-// (the same discretisation: moving_cylinder.hpp), both averaged over the same last whole periods.
-// What this leaves in C_T besides the suction is the change of friction and form drag that the
-// motion itself brings (a thinner boundary layer on the side the plate moves towards, ...), of
-// order <alpha^2> C_f: a small share at small amplitude.
-// The mean power the plate puts into the fluid, C_P = <-F_y y'> / (1/2 rho U^3 c), is compared
-// with Garrick's as well (reported only).
+// A thin rigid plate (a stadium of thickness t, chord 1, rounded ends so the leading edge has no
+// corner) heaving y = h0 sin(omega t) in a stream, after a smooth start of the amplitude, as a 2-D
+// moving ghost-cell body, against Garrick's theory (issue 30, item 3b; garrick_theory.hpp).
+// The theory is inviscid, so the thrust compared is C_T = C_D(plate at rest) - <C_X(heaving)>,
+// both on the same grid, step and Re (the plate at rest a moving body with zero motion), which
+// leaves the motion's own change of friction and form drag, of order <alpha^2> C_f. The mean power
+// is compared too (reported only). Set-up and numbers: docs/studies/garrick_heaving_plate.md.
 #pragma once
 
 #include <functional>

@@ -1,22 +1,11 @@
-// A spanwise-uniform heaving and pitching plate through the 3-D thin-body path against the 2-D
-// solver on its section (issue 30, item 3a): the fin's path (make_thin_plate's mid-surface, the
-// closed thin body, FinSurfaceMotion's spline of sampled node positions, immerse(SurfaceMotion),
-// surface_forces) must give the 2-D force per unit span.
-//
-// The plate (chord c = 1, closed-body thickness t, its rim blunt: the rim wall of core/thin_body.hpp
-// is the flat end x = 0 or x = c of the section) spans a slab of span_cells uniform cells in z
-// between two slip walls and reaches beyond both (FlowOptions::surface_crosses). A slip wall is a
-// symmetry plane: a flow that is uniform in z satisfies it, so the slab holds the 2-D flow of the
-// section and no periodic boundary is needed. The 2-D reference is the section as a polygon (the
-// rectangle [0, c] x [-t/2, t/2], blunt ends as the rim), moved rigidly (immerse(MovingBody)) on
-// the same x-y grid with the same time step, Re and stream.
-//
-// Motion (both): heave y = h0 r(t) sin(omega t), pitch theta = -theta0 r(t) cos(omega t)
-// counter-clockwise about x = pivot, i.e. nose up while the plate rises: the pitch leads the heave
-// by 90 degrees in the feathering sense (it lowers the heave-induced angle of attack).
-// r(t) = (1 - cos(pi t / T_r)) / 2 for t < T_r (a smooth start), then 1.
-// Compared over the last period: mean C_T = -<C_X>, the fundamental amplitude and the mean of C_L,
-// all on (1/2) rho U^2 c per unit span.
+// A spanwise-uniform heaving and pitching plate through the fin's 3-D thin-body path against the
+// 2-D solver on its section (issue 30, item 3a). The plate spans a slab between two slip walls and
+// reaches beyond both (FlowOptions::surface_crosses): a slip wall is a symmetry plane, so the slab
+// holds the section's 2-D flow and no periodic boundary is needed. The 2-D reference is the
+// section as a polygon with the same blunt ends, the same rigid motion (pitch leading heave by 90
+// degrees, feathering, after a smooth start), x-y grid, step, Re and stream. Compared over the last
+// period per unit span: mean C_T, C_L's fundamental amplitude and mean
+// (docs/studies/spanwise_plate_2d3d.md).
 #pragma once
 
 #include <functional>
