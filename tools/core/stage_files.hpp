@@ -182,12 +182,20 @@ struct Fsi : Forces {
 struct Materials {
   static constexpr const char* kSchema = "finverse/materials";
   Strings names, units, scale;
-  NdArray<double> lower, upper, best, objective;  // objective is a scalar: shape {}, one value
-  NdArray<std::int64_t> run_seed;
+  NdArray<double> lower, upper, truth, best;  // truth: optional
+  NdArray<double> objective, sum_of_squares;  // scalars: shape {}, one value
+  NdArray<std::int64_t> evaluations;          // scalar
+  Strings run_method;
+  NdArray<std::int64_t> run_seed, run_evaluations;
   NdArray<double> run_best, run_objective;
-  NdArray<std::int32_t> run_generations;
-  NdArray<double> run_history;
-  NdArray<double> std_dev, ci95, correlation;  // optional
+  NdArray<std::int32_t> run_generations, run_converged;
+  NdArray<double> run_history, run_history_evaluations, run_history_best;
+  NdArray<double> run_polished, run_polished_objective;  // optional
+  NdArray<std::int64_t> run_polish_evaluations;          // optional
+  NdArray<double> standard_error, ci95, correlation, singular_values, residual_variance;  // optional
+  NdArray<std::int32_t> identified;  // optional
+  Strings verdict;                   // always written (string lists cannot be absent)
+  std::optional<std::string> objective_kind;
 
   template <class V> void fields(V&& v) {
     v("parameters/names", names);
@@ -195,18 +203,33 @@ struct Materials {
     v("parameters/scale", scale);
     v("parameters/lower", lower);
     v("parameters/upper", upper);
+    v("parameters/truth", truth);
     v("best", best);
     v("objective", objective);
+    v("sum_of_squares", sum_of_squares);
+    v("evaluations", evaluations);
+    v("runs/method", run_method);
     v("runs/seed", run_seed);
     v("runs/best", run_best);
     v("runs/objective", run_objective);
     v("runs/generations", run_generations);
+    v("runs/converged", run_converged);
+    v("runs/evaluations", run_evaluations);
     v("runs/history", run_history);
-    v("uncertainty/std", std_dev);
+    v("runs/history_evaluations", run_history_evaluations);
+    v("runs/history_best", run_history_best);
+    v("runs/polished", run_polished);
+    v("runs/polished_objective", run_polished_objective);
+    v("runs/polish_evaluations", run_polish_evaluations);
+    v("uncertainty/standard_error", standard_error);
     v("uncertainty/ci95", ci95);
     v("uncertainty/correlation", correlation);
+    v("uncertainty/singular_values", singular_values);
+    v("uncertainty/residual_variance", residual_variance);
+    v("uncertainty/identified", identified);
+    v("uncertainty/verdict", verdict);
   }
-  template <class A> void attributes(A&&) {}
+  template <class A> void attributes(A&& a) { a("objective_kind", objective_kind); }
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -117,22 +118,33 @@ inline stage::Kinematics sample_kinematics(std::size_t nf = 5, std::size_t nv = 
 
 inline stage::Materials sample_materials() {
   stage::Materials m;
-  m.names = {"E_membrane", "E_ray01", "nu"};
+  m.names = {"E_membrane", "E_ray1", "nu"};
   m.units = {"Pa", "Pa", "1"};
   m.scale = {"log10", "log10", "linear"};
   m.lower = NdArray<double>({3}, {1e6, 5e7, 0.15});
   m.upper = NdArray<double>({3}, {1e9, 5e10, 0.45});
   m.best = NdArray<double>({3}, {1.2e7, 3e8, 0.4});
   m.objective = NdArray<double>({}, {0.0123});
+  m.sum_of_squares = NdArray<double>({}, {0.0004});
+  m.evaluations = NdArray<std::int64_t>({}, {2345});
+  m.run_method = {"ga", "cmaes"};
   m.run_seed = NdArray<std::int64_t>({2}, {1, 2});
+  m.run_evaluations = NdArray<std::int64_t>({2}, {1200, 1100});
   m.run_best = wave({2, 3});
   m.run_objective = wave({2});
   m.run_generations = NdArray<std::int32_t>({2}, {30, 41});
+  m.run_converged = NdArray<std::int32_t>({2}, {1, 0});
   m.run_history = wave({2, 41});
+  m.run_history_evaluations = wave({2, 41});
+  m.run_history_best = wave({2, 41, 3});
   for (std::size_t g = 30; g < 41; ++g) m.run_history(0, g) = std::nan("");
-  m.std_dev = wave({3});
+  m.standard_error = wave({3});
+  m.standard_error(2) = std::numeric_limits<double>::infinity();  // a direction the data cannot fix
   m.ci95 = wave({3, 2});
   m.correlation = wave({3, 3});
+  m.identified = NdArray<std::int32_t>({3}, {1, 1, 0});
+  m.verdict = {"identified", "identified", "not identified: Jacobian rank deficient"};
+  m.objective_kind = "quasi_static";
   return m;
 }
 
