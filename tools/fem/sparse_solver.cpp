@@ -23,9 +23,10 @@ class CholmodLLT : public Eigen::CholmodBase<SparseSolver::SparseMatrix, Eigen::
   CholmodLLT() {
     m_cholmod.final_asis = 1;
     m_cholmod.supernodal = CHOLMOD_SUPERNODAL;
-    // Errors only: an indefinite tangent (past a limit point) is an expected outcome that
-    // factorize() reports through info() and the caller answers with LDL^T, not a warning to print.
-    m_cholmod.print = 1;
+    // Silent: an indefinite tangent (past a limit point) is an expected outcome that factorize()
+    // reports through info() and the caller answers with LDL^T; every other failure also comes
+    // back through info() and is thrown with a message. CHOLMOD must not write to stdout.
+    m_cholmod.print = 0;
   }
   double rcond() const { return cholmod_rcond(m_cholmodFactor, &m_cholmod); }
 };

@@ -264,3 +264,16 @@ TEST_F(FileRun, NewtonThatDoesNotConvergeIsReported) {
   o_.run.analysis = Analysis::static_equilibrium;
   expect_failure<NotConverged>("did not converge");
 }
+
+TEST_F(FileRun, ForceOnARootNodeIsReportedNotDroppedSilently) {
+  // ramp_loads pushes every node, the clamped root ones included: apply_loads measures what goes
+  // into the support, and the file run says so once.
+  io::FinModel fm = io::build_fin_model(mesh_, io::read_material_spec(o_.materials));
+  const double dropped = io::apply_loads(fm.model, stage::read<stage::Loads>(*o_.loads), o_.ramp, "loads.h5");
+  EXPECT_DOUBLE_EQ(dropped, 2e-3);
+  o_.run.analysis = Analysis::quasi_static;
+  ::testing::internal::CaptureStderr();
+  io::run_from_files(o_, {});
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("prescribed root nodes go into the support"), std::string::npos) << err;
+}

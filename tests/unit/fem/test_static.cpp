@@ -154,3 +154,27 @@ TEST(StaticSolver, NonConvergenceIsReportedAfterStepCutting) {
   NodalState s2 = m.reference_state();
   EXPECT_NO_THROW(ok.solve(s2, 0, 1));
 }
+
+TEST(SparseSolverOutput, IndefiniteMatrixFallsBackWithoutPrintingAnything) {
+  // An indefinite tangent (past a limit point) is an expected event: CHOLMOD reports it through
+  // info(), the solver falls back to LDL^T, and nothing reaches stdout (issue 31: "CHOLMOD error:
+  // matrix not positive definite" used to appear during valid runs).
+  SparseSolver::SparseMatrix A(3, 3);
+  A.insert(0, 0) = 2.0;
+  A.insert(0, 1) = 1.0;
+  A.insert(1, 1) = -3.0;
+  A.insert(2, 2) = 1.0;
+  A.makeCompressed();
+  SparseSolver solver(SolverBackend::cholmod);
+  ::testing::internal::CaptureStdout();
+  ::testing::internal::CaptureStderr();
+  solver.factorize(A);
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(solver.used_fallback());
+  EXPECT_EQ(out, "");
+  EXPECT_EQ(err, "");
+  const Eigen::Vector3d x = solver.solve(Eigen::Vector3d(1, 1, 1));
+  EXPECT_NEAR(2 * x(0) + x(1), 1, 1e-12);
+  EXPECT_NEAR(x(0) - 3 * x(1), 1, 1e-12);
+}

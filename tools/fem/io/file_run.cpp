@@ -31,7 +31,15 @@ FileRunSummary run_from_files(const FileRunOptions& o, const nlohmann::json& con
   if (!(ramp > 0)) throw InvalidInput("fin-fem run: --ramp must be > 0");
 
   FinModel fm = build_fin_model(mesh, spec, o.mesh.string());
-  if (loads) apply_loads(fm.model, *loads, ramp, o.loads->string());
+  if (loads) {
+    const double dropped = apply_loads(fm.model, *loads, ramp, o.loads->string());
+    if (dropped > 0) {
+      std::ostringstream m;
+      m << o.loads->string() << ": /nodal_force: forces on the prescribed root nodes go into the support, "
+        << "not the structure (largest component " << dropped << " N)";
+      log::warn(m.str());
+    }
+  }
   if (motion) apply_root_motion(fm.model, mesh, *motion, o.root_rotation, ramp, o.motion->string());
   fm.model.set_gravity(Vec3(o.gravity[0], o.gravity[1], o.gravity[2]));
 

@@ -1,6 +1,7 @@
 // Fin model from mesh.h5, the materials file, loads.h5 and motion.h5 (see fin_model.hpp).
 #include "fem/io/fin_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -105,7 +106,7 @@ FinModel build_fin_model(const stage::Mesh& mesh, const MaterialSpec& spec, cons
   return fm;
 }
 
-void apply_loads(Model& model, const stage::Loads& loads, double ramp, const std::string& source) {
+double apply_loads(Model& model, const stage::Loads& loads, double ramp, const std::string& source) {
   const size_t nt = loads.time.data.size(), nv = static_cast<size_t>(model.node_count());
   if (loads.nodal_force.dim(1) != nv)
     throw InvalidInput(source + ": /nodal_force has " + std::to_string(loads.nodal_force.dim(1)) +
@@ -114,11 +115,18 @@ void apply_loads(Model& model, const stage::Loads& loads, double ramp, const std
   for (size_t k = 0; k < nt; ++k)
     for (size_t i = 0; i < nv; ++i)
       for (int d = 0; d < 3; ++d) f[k](kDofsPerNode * i + d) = loads.nodal_force(k, i, d);
+  // A force on a prescribed DOF is taken up by the support, not by the structure: measured here
+  // so that the caller can say so (once) instead of dropping it silently.
+  double dropped = 0;
+  for (const auto& p : model.prescribed())
+    if (p.dof < 3)
+      for (size_t k = 0; k < nt; ++k) dropped = std::max(dropped, std::abs(f[k](kDofsPerNode * p.node + p.dof)));
   try {
     model.set_load_history(LoadHistory(loads.time.data, std::move(f), ramp));
   } catch (const InvalidInput& e) {
     throw InvalidInput(source + ": " + e.what());
   }
+  return dropped;
 }
 
 void apply_root_motion(Model& model, const stage::Mesh& mesh, const stage::Motion& motion,

@@ -28,8 +28,9 @@ FinModel build_fin_model(const stage::Mesh& mesh, const MaterialSpec& materials,
                          const std::string& source = "mesh.h5");
 
 // Nodal forces of loads.h5 as the model's load history (ramping up over `ramp` s before the
-// first sample). The node count must match the mesh.
-void apply_loads(Model& model, const stage::Loads& loads, double ramp, const std::string& source);
+// first sample). The node count must match the mesh. Returns the largest force component on a
+// prescribed (root) DOF: such forces go into the support, not the structure (0 when none).
+double apply_loads(Model& model, const stage::Loads& loads, double ramp, const std::string& source);
 
 // Root-node positions of motion.h5 as prescribed root displacements and rotations.
 void apply_root_motion(Model& model, const stage::Mesh& mesh, const stage::Motion& motion,
