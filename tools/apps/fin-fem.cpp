@@ -15,6 +15,7 @@
 // node positions over time in the finverse/motion schema plus a ParaView series; exit 0 or 2.
 //   fin-fem run --mesh mesh.h5 --materials materials.json --loads loads.h5 --motion motion.h5
 //       --analysis quasi_static --out response.h5 [--pvd response.pvd]
+// (--loads also takes nodal_loads.h5: a structural load case without flow fields)
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -151,7 +152,7 @@ int main(int argc, char** argv) {
   auto* rn = app.add_subcommand("run", "structural run from stage files (mesh, materials, loads, motion)");
   rn->add_option("--mesh", mesh_path, "mesh.h5 (finverse/mesh)")->required();
   rn->add_option("--materials", materials_path, "materials JSON (tools/fem/io/material_spec.hpp)")->required();
-  rn->add_option("--loads", loads_path, "loads.h5 (finverse/loads): nodal forces over time");
+  rn->add_option("--loads", loads_path, "loads.h5 of fin-cfd, or nodal_loads.h5 (times and nodal forces only): forces over time");
   rn->add_option("--motion", motion_path, "motion.h5 (finverse/motion): root-node motion over time");
   rn->add_option("--out", out_path, "response file, finverse/motion schema")->required();
   rn->add_option("--pvd", pvd_path, "ParaView series of the shell surface (default: none)");

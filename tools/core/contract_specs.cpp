@@ -122,6 +122,15 @@ std::vector<FileSpec> build() {
     specs.push_back(s);
   }
 
+  specs.push_back({"finverse/nodal_loads", 1, "nodal_loads.h5", "a user's structural load case",
+                   "Nodal forces on a structure without a flow (fin-fem run --loads): point loads, a "
+                   "pressure lumped to nodes, a test rig. The loads.h5 of fin-cfd is also accepted there.",
+                   {
+                       {"time", f64, {"nt"}, "s", "sample times (linear in between, held after the last)"},
+                       {"nodal_force", f64, {"nt", "nv", "3"}, "N", "force on each mesh node"},
+                   },
+                   {}});
+
   specs.push_back({"finverse/materials", 1, "materials.h5", "fin-fit",
                    "Inverse-fit result (issue 31): the parameters and their bounds, the best values, every "
                    "optimiser run with its history per generation and its Levenberg-Marquardt polish, and the "

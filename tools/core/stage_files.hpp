@@ -163,6 +163,18 @@ struct Loads : Forces {
   }
 };
 
+// Nodal forces without a flow (structural load cases); fin-fem run reads it like loads.h5.
+struct NodalLoads {
+  static constexpr const char* kSchema = "finverse/nodal_loads";
+  NdArray<double> time, nodal_force;
+
+  template <class V> void fields(V&& v) {
+    v("time", time);
+    v("nodal_force", nodal_force);
+  }
+  template <class A> void attributes(A&&) {}
+};
+
 struct Fsi : Forces {
   static constexpr const char* kSchema = "finverse/fsi";
   NdArray<double> time, points, velocity;

@@ -79,6 +79,10 @@ TEST(StageFiles, EveryContractTypeRoundTrips) {
   expect_round_trip(test::sample_motion(), dir / "motion.h5");
   expect_round_trip(test::sample_loads(), dir / "loads.h5");
   expect_round_trip(test::sample_materials(), dir / "materials.h5");
+  stage::NodalLoads nodal;
+  nodal.time = NdArray<double>({2}, {0.0, 0.5});
+  nodal.nodal_force = NdArray<double>({2, 3, 3}, 0.25);
+  expect_round_trip(nodal, dir / "nodal_loads.h5");
   expect_round_trip(test::sample_fsi(), dir / "fsi.h5");
   EXPECT_EQ(stage::read<stage::Motion>(dir / "motion.h5").period, 0.016);
   EXPECT_EQ(stage::read<stage::Truth>(dir / "truth.h5").effects, R"({"damping": 0.02})");
@@ -103,8 +107,9 @@ TEST(StageFiles, EveryContractIsCovered) {
   EXPECT_EQ(sorted(names(stage::Motion{})), sorted(spec_names(stage::Motion::kSchema)));
   EXPECT_EQ(sorted(names(stage::Loads{})), sorted(spec_names(stage::Loads::kSchema)));
   EXPECT_EQ(sorted(names(stage::Materials{})), sorted(spec_names(stage::Materials::kSchema)));
+  EXPECT_EQ(sorted(names(stage::NodalLoads{})), sorted(spec_names(stage::NodalLoads::kSchema)));
   EXPECT_EQ(sorted(names(stage::Fsi{})), sorted(spec_names(stage::Fsi::kSchema)));
-  EXPECT_EQ(contract::all().size(), 7u);
+  EXPECT_EQ(contract::all().size(), 8u);
 }
 
 TEST(StageFiles, OptionalDatasetMayBeAbsent) {

@@ -277,3 +277,20 @@ TEST_F(FileRun, ForceOnARootNodeIsReportedNotDroppedSilently) {
   const std::string err = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("prescribed root nodes go into the support"), std::string::npos) << err;
 }
+
+TEST_F(FileRun, StructuralLoadCaseNeedsNoFlowFields) {
+  // The same forces as nodal_loads.h5 (times and nodal forces only) give the same response as
+  // the loads.h5 of a flow solver.
+  o_.run.analysis = Analysis::quasi_static;
+  io::run_from_files(o_, {});
+  const auto with_flow = stage::read<stage::Motion>(o_.out);
+  const auto full = stage::read<stage::Loads>(*o_.loads);
+  stage::NodalLoads nodal;
+  nodal.time = full.time;
+  nodal.nodal_force = full.nodal_force;
+  o_.loads = dir_ / "nodal_loads.h5";
+  stage::write(*o_.loads, nodal, Provenance{"test", {}, {}});
+  o_.out = dir_ / "response_nodal.h5";
+  io::run_from_files(o_, {});
+  EXPECT_EQ(stage::read<stage::Motion>(o_.out).points, with_flow.points);
+}

@@ -17,7 +17,18 @@ FileRunSummary run_from_files(const FileRunOptions& o, const nlohmann::json& con
   const MaterialSpec spec = read_material_spec(o.materials);
   std::optional<stage::Loads> loads;
   std::optional<stage::Motion> motion;
-  if (o.loads) loads = stage::read<stage::Loads>(*o.loads);
+  if (o.loads) {
+    // A structural load case needs no flow: nodal_loads.h5 carries only times and nodal forces.
+    const auto schema = h5::File::open_read(*o.loads).attr_string(".", "schema");
+    if (schema && *schema == stage::NodalLoads::kSchema) {
+      auto nodal = stage::read<stage::NodalLoads>(*o.loads);
+      loads.emplace();
+      loads->time = std::move(nodal.time);
+      loads->nodal_force = std::move(nodal.nodal_force);
+    } else {
+      loads = stage::read<stage::Loads>(*o.loads);
+    }
+  }
   if (o.motion) motion = stage::read<stage::Motion>(*o.motion);
   if (!loads && !motion) throw InvalidInput("fin-fem run: give --loads and/or --motion (they define the output times)");
 
