@@ -1,0 +1,154 @@
+// Uncertainty at the optimum: the Gauss-Newton covariance of a linear model equals
+// s^2 (J^T J)^-1; a parameter the residuals ignore, one at its bound, one whose interval spans
+// decades, and the scale direction of a ratio-only model are all reported not identified.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <Eigen/Dense>
+
+#include "fit/levenberg_marquardt.hpp"
+#include "fit/uncertainty.hpp"
+
+namespace fit = finverse::fit;
+
+namespace {
+
+fit::Parameter param(const std::string& name, double lo, double hi, fit::Scale s) {
+  fit::Parameter p;
+  p.name = name;
+  p.lower = lo;
+  p.upper = hi;
+  p.scale = s;
+  return p;
+}
+
+// A linear model r = A z - b with fixed pseudo-random A and b (m = 60 residuals, n = 3).
+struct Linear {
+  Eigen::MatrixXd a;
+  Eigen::VectorXd b;
+  Linear(int m, int n, unsigned seed) : a(m, n), b(m) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> normal;
+    for (int i = 0; i < m; ++i) {
+      for (int j = 0; j < n; ++j) a(i, j) = normal(rng);
+      b(i) = normal(rng);
+    }
+  }
+};
+
+}  // namespace
+
+TEST(Uncertainty, LinearModelCovarianceIsAnalytic) {
+  const Linear lin(60, 3, 5);
+  const fit::ParameterSpace space({param("x", -10, 10, fit::Scale::linear), param("y", -10, 10, fit::Scale::linear),
+                                   param("z", -10, 10, fit::Scale::linear)});
+  const Eigen::VectorXd z = lin.a.colPivHouseholderQr().solve(lin.b);
+  const Eigen::VectorXd r = lin.a * z - lin.b;
+  const fit::Uncertainty u = fit::compute_uncertainty(space, z, r, lin.a);
+
+  const double s2 = r.squaredNorm() / (60 - 3);
+  const Eigen::MatrixXd cov = s2 * (lin.a.transpose() * lin.a).inverse();
+  EXPECT_EQ(u.degrees_of_freedom, 57);
+  EXPECT_NEAR(u.residual_variance, s2, 1e-14 * s2);
+  const double t = 2.0024654593;  // Student t, 57 degrees of freedom, 97.5 %
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_NEAR(u.standard_error(j), std::sqrt(cov(j, j)), 1e-12 * std::sqrt(cov(j, j)));
+    EXPECT_NEAR(u.lower95(j), z(j) - t * std::sqrt(cov(j, j)), 1e-8);
+    EXPECT_NEAR(u.upper95(j), z(j) + t * std::sqrt(cov(j, j)), 1e-8);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(u.correlation(j, k), cov(j, k) / std::sqrt(cov(j, j) * cov(k, k)), 1e-12);
+    EXPECT_EQ(u.identified[j], 1) << u.verdict[j];
+  }
+  const Eigen::VectorXd sv = lin.a.jacobiSvd().singularValues();
+  EXPECT_NEAR((u.singular_values - sv).norm(), 0, 1e-12 * sv(0));
+}
+
+TEST(Uncertainty, InsensitiveParameterIsNotIdentified) {
+  Linear lin(40, 3, 6);
+  lin.a.col(2).setZero();  // the residuals ignore z
+  const fit::ParameterSpace space({param("x", -10, 10, fit::Scale::linear), param("y", -10, 10, fit::Scale::linear),
+                                   param("z", -10, 10, fit::Scale::linear)});
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(3);
+  z.head(2) = lin.a.leftCols(2).colPivHouseholderQr().solve(lin.b);
+  const fit::Uncertainty u = fit::compute_uncertainty(space, z, lin.a * z - lin.b, lin.a);
+  EXPECT_EQ(u.identified[0], 1);
+  EXPECT_EQ(u.identified[1], 1);
+  EXPECT_EQ(u.identified[2], 0);
+  EXPECT_TRUE(std::isinf(u.standard_error(2)));
+  EXPECT_NE(u.verdict[2].find("singular"), std::string::npos) << u.verdict[2];
+  EXPECT_EQ(u.singular_values(2), 0);
+}
+
+TEST(Uncertainty, ScaleOfARatioOnlyModelIsNotIdentified) {
+  // Residuals that depend on log10(E1) - log10(E2) only (the displacement-driven quasi-static
+  // trap): the common scale is a null direction, so neither modulus is identified.
+  const fit::ParameterSpace space({param("E1", 1e5, 1e8, fit::Scale::log10), param("E2", 1e5, 1e8, fit::Scale::log10)});
+  Eigen::MatrixXd j(30, 2);
+  for (int i = 0; i < 30; ++i) {
+    j(i, 0) = 0.1 * (i + 1);
+    j(i, 1) = -0.1 * (i + 1);
+  }
+  Eigen::VectorXd z(2);
+  z << 6.5, 6.0;
+  Eigen::VectorXd r = Eigen::VectorXd::Constant(30, 1e-3);
+  const fit::Uncertainty u = fit::compute_uncertainty(space, z, r, j);
+  EXPECT_EQ(u.identified[0], 0);
+  EXPECT_EQ(u.identified[1], 0);
+  EXPECT_EQ(u.lower95(0), 0);  // 10^-inf
+  EXPECT_TRUE(std::isinf(u.upper95(0)));
+}
+
+TEST(Uncertainty, ParameterAtItsBoundIsFlagged) {
+  const fit::ParameterSpace space({param("E", 1e5, 1e8, fit::Scale::log10), param("nu", 0.15, 0.49, fit::Scale::linear)});
+  const Linear lin(20, 2, 7);
+  Eigen::VectorXd z(2);
+  z << 8.0 - 1e-4, 0.3;  // within 1e-3 of the 3-decade range
+  const fit::Uncertainty u = fit::compute_uncertainty(space, z, 1e-6 * lin.b, lin.a);
+  EXPECT_EQ(u.identified[0], 0);
+  EXPECT_EQ(u.verdict[0], "at bound");
+  EXPECT_EQ(u.identified[1], 1) << u.verdict[1];
+}
+
+TEST(Uncertainty, WideIntervalsAreNotIdentified) {
+  const fit::ParameterSpace space({param("E", 1e5, 1e8, fit::Scale::log10), param("nu", 0.15, 0.49, fit::Scale::linear)});
+  Linear lin(20, 2, 8);
+  lin.a *= 0.05;  // weak sensitivity against unit-size residuals
+  Eigen::VectorXd z(2);
+  z << 6.5, 0.3;
+  const fit::Uncertainty u = fit::compute_uncertainty(space, z, lin.b, lin.a);
+  EXPECT_EQ(u.verdict[0], "interval spans more than a decade");
+  EXPECT_GT(u.upper95(0) / u.lower95(0), 10);
+  EXPECT_EQ(u.verdict[1], "interval wider than the bounds");
+}
+
+TEST(Uncertainty, NoDegreesOfFreedom) {
+  const fit::ParameterSpace space({param("x", -1, 1, fit::Scale::linear), param("y", -1, 1, fit::Scale::linear)});
+  const fit::Uncertainty u = fit::compute_uncertainty(space, Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(2),
+                                                      Eigen::MatrixXd::Identity(2, 2));
+  EXPECT_EQ(u.identified[0], 0);
+  EXPECT_TRUE(std::isinf(u.standard_error(0)));
+  EXPECT_EQ(u.verdict[0], "no residual degrees of freedom");
+}
+
+TEST(Uncertainty, FiniteDifferenceJacobianOfALinearModel) {
+  const Linear lin(30, 2, 9);
+  const fit::ParameterSpace space({param("x", -3, 3, fit::Scale::linear), param("y", -3, 3, fit::Scale::linear)});
+  struct F : fit::ResidualFunction {
+    const Linear* lin;
+    Eigen::VectorXd w = Eigen::VectorXd::Ones(10);
+    int parameter_count() const override { return 2; }
+    int residual_count() const override { return 30; }
+    Eigen::VectorXd residuals(const Eigen::VectorXd& p) const override { return lin->a * p - lin->b; }
+    const Eigen::VectorXd& sqrt_weights() const override { return w; }
+  } f;
+  f.lin = &lin;
+  Eigen::VectorXd z(2);
+  z << 0.5, 3.0;  // y at its upper bound: the step goes inward
+  long evaluations = 0;
+  const Eigen::MatrixXd j =
+      fit::finite_difference_jacobian(space, f, z, f.residuals(z), 1e-4, false, 2, &evaluations);
+  EXPECT_EQ(evaluations, 2);
+  EXPECT_NEAR((j - lin.a).norm(), 0, 1e-9);
+}
