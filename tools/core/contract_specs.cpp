@@ -170,7 +170,7 @@ std::vector<FileSpec> build() {
                        opt(may_be_nan({"uncertainty/ci95", f64, {"np", "2"}, "", "95% interval in parameter units"})),
                        opt(may_be_nan({"uncertainty/correlation", f64, {"np", "np"}, "1", "parameter correlation matrix"})),
                        opt({"uncertainty/singular_values", f64, {"np"}, "m", "singular values of the weighted Jacobian dr/dz"}),
-                       opt({"uncertainty/residual_variance", f64, {}, "m2", "s^2 = |r|^2 / (m - n)"}),
+                       opt(may_be_nan({"uncertainty/residual_variance", f64, {}, "m2", "s^2 = |r|^2 / (m - n); NaN when m <= n"})),
                        opt({"uncertainty/identified", i32, {"np"}, "", "1: identified; 0: not (see verdict)"}),
                        {"uncertainty/verdict", str, {"np"}, "", "identifiability verdict per parameter"},
                    },

@@ -77,7 +77,7 @@ Material MaterialSpec::ray_material(int id) const {
 }
 
 MaterialSpec parse_material_spec(const nlohmann::json& j, const std::string& source) {
-  only_keys(j, source, "", {"membrane", "rays", "ray", "shell_region", "distal", "modulation", "rayleigh"});
+  only_keys(j, source, "", {"description", "membrane", "rays", "ray", "shell_region", "distal", "modulation", "rayleigh"});
   MaterialSpec s;
   if (!j.contains("membrane")) fail(source, "membrane", "missing");
   if (!j.contains("rays")) fail(source, "rays", "missing");

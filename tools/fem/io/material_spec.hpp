@@ -12,7 +12,8 @@
 //     "modulation": [{"target": "rays", "amplitude": 0.2, "frequency": 5.0, "phase": 0.0}],
 //     "rayleigh": {"mass": 0.0, "stiffness": 1e-4}   // C = mass M + stiffness K
 //   }
-// A ray entry inherits the fields it omits from "rays". Modulation targets: "membrane", "rays",
+// A ray entry inherits the fields it omits from "rays"; a top-level "description" string is
+// allowed for the file's provenance and otherwise ignored. Modulation targets: "membrane", "rays",
 // "ray <id>", "shell_region <id>". Unknown keys are rejected (a typo must not silently fall back
 // to a default).
 #pragma once
