@@ -1,0 +1,89 @@
+// The seed paper's eq. (2): the quasi-static objective. At each instant t_j the target shape
+// x_target(t_j) is the base, taken to be in equilibrium; the FEM's displacement increment over
+// [t_j, t_j + dt] under the load increment and the root-motion increment
+// (fem::QuasiStaticIncrement) is compared with the target's:
+//     r_(j,i) = sqrt(w_i) (dx_FE^i(t_j) - dx_target^i(t_j)),  dx_target = x(t_j + dt) - x(t_j),
+// three components per compared node, concatenated over the instants (instant-major). The paper
+// uses one instant (mid-swing, dt = 1/400 period); several identify more.
+//
+// The base state: positions from the target, rotations from a rigid fit of each node's 1-ring
+// (state_from_positions.hpp), and the prescribed (root) DOFs set to the drive's values at t_j,
+// so that the prescribed increment is exactly the drive's (fem::apply_prescribed).
+// Without loads the increment is driven by the root motion alone and scaling every modulus
+// leaves it unchanged: only a load increment makes the modulus scale identifiable (issue 31).
+//
+// Evaluations are thread-safe. Speed lever: models and their solvers (assembler, symbolic
+// factorisation) are kept in a small mutex-guarded cache keyed by the factory's rebuild key, so
+// an evaluation that changes only moduli re-targets a cached model in place
+// (model_factory.hpp) instead of building one. A model is used by one evaluation at a time.
+#pragma once
+
+#include <atomic>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fem/quasi_static_increment.hpp"
+#include "fem/static_solver.hpp"
+#include "fit/model_factory.hpp"
+#include "fit/residual_function.hpp"
+#include "fit/target_motion.hpp"
+
+namespace finverse::fit {
+
+struct QuasiStaticOptions {
+  std::vector<double> instants{};  // t_j; empty: the target's middle frame
+  double dt = 0;                 // increment; 0: the target's frame spacing
+  Eigen::VectorXd node_weights{};  // one per node; empty: default_node_weights (node_weights.hpp)
+  fem::StaticOptions static_options{.steps = 1};
+  int cached_models = 8;         // models kept for the in-place route; 0: build every evaluation
+};
+
+class QuasiStaticObjective : public ResidualFunction {
+ public:
+  // Throws InvalidInput naming target.source: node count differing from the model's, an instant
+  // whose [t_j, t_j + dt] leaves the target's span (or the loads' span when the model has
+  // tabulated loads), dt <= 0, bad weights.
+  QuasiStaticObjective(std::shared_ptr<const ModelFactory> factory, TargetMotion target,
+                       QuasiStaticOptions options = {});
+  ~QuasiStaticObjective() override;
+
+  int parameter_count() const override { return factory_->parameter_count(); }
+  int residual_count() const override { return 3 * static_cast<int>(nodes_.size() * instants_.size()); }
+  Eigen::VectorXd residuals(const Eigen::VectorXd& physical) const override;
+  const Eigen::VectorXd& sqrt_weights() const override { return sqrt_weights_; }
+
+  // dx_FE per instant, [instant][node] (every node): for diagnostics and plots.
+  std::vector<std::vector<fem::Vec3>> increments(const Eigen::VectorXd& physical) const;
+
+  const std::vector<double>& instants() const { return instants_; }
+  double dt() const { return dt_; }
+  const std::vector<int>& compared_nodes() const { return nodes_; }
+  const Eigen::VectorXd& node_weights() const { return weights_; }
+  // dx_target per instant, [instant][node].
+  const std::vector<std::vector<fem::Vec3>>& target_increments() const { return target_dx_; }
+  const std::vector<fem::NodalState>& base_states() const { return base_; }
+  long model_builds() const { return builds_.load(); }  // models built so far (the lever's effect)
+
+ private:
+  struct Workspace;
+  std::unique_ptr<Workspace> acquire(const Eigen::VectorXd& physical) const;
+  void release(std::unique_ptr<Workspace> workspace) const;
+
+  std::shared_ptr<const ModelFactory> factory_;
+  QuasiStaticOptions options_;
+  std::vector<double> instants_;
+  double dt_ = 0;
+  Eigen::VectorXd weights_, sqrt_weights_;
+  std::vector<int> nodes_;
+  std::vector<fem::NodalState> base_;                 // [instant]
+  std::vector<std::vector<fem::Vec3>> target_dx_;     // [instant][node]
+  mutable std::mutex mutex_;
+  mutable std::list<std::unique_ptr<Workspace>> idle_;  // most recently used first
+  mutable std::atomic<long> builds_{0};
+};
+
+}  // namespace finverse::fit
