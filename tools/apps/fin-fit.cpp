@@ -1,0 +1,155 @@
+// fin-fit: the inverse fit of the fin's material parameters (DESIGN.md section 5.4, issue 31):
+// the GA (pagmo2) over the nonlinear FEM, optionally CMA-ES, a Levenberg-Marquardt polish from
+// every champion, and the uncertainty at the optimum. Exit 0 on success, 2 on bad input (one
+// line naming the file, dataset or flag; no materials.h5 written).
+//
+//   fin-fit run --mesh mesh.h5 --motion motion.h5 --loads loads.h5 --materials materials.json
+//       --out materials.h5 [--summary fit_summary.json] [--parameters spec.json]
+//       [--objective quasi_static|dynamic] [--instant-count 4] [--runs 6] [--population 120]
+//       [--generations 200] [--methods ga,cmaes] [--seed 1] [--checkpoint fit.ckpt --resume]
+//
+// Validation cases (tools/fit/validation), writing <out-dir>/<case>/summary.json; exit 0 when
+// every metric passes, 1 when one misses:
+//   fin-fit hybrid_plate --case data/cases/hybrid_plate.json      eq. (1) and eq. (2), 1 % / 5 %
+//   fin-fit noise --case data/cases/hybrid_plate.json             errors and interval coverage
+//   fin-fit identifiability --case data/cases/hybrid_plate.json   no loads: scale not identified
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "core/cli.hpp"
+#include "core/summary.hpp"
+#include "fit/io/file_fit.hpp"
+#include "fit/validation/hybrid_plate_fit.hpp"
+
+namespace {
+
+// Writes <out-dir>/<case>/summary.json and prints the metrics; exit 0 when every graded metric
+// passes, 1 otherwise.
+int finish(finverse::Summary summary, const std::string& name, const std::filesystem::path& out_dir, double wall) {
+  summary.set_timing(wall, finverse::cli::threads_in_use());
+  const auto path = out_dir / name / "summary.json";
+  std::filesystem::create_directories(path.parent_path());
+  summary.write(path);
+  for (const auto& m : summary.metrics()) {
+    if (m.kind == "info") continue;
+    std::cerr << "  " << m.name << " = " << m.value;
+    if (m.reference) std::cerr << " (reference " << *m.reference << ", error " << m.error() << ")";
+    if (auto p = m.pass()) std::cerr << (*p ? "  pass" : "  FAIL");
+    std::cerr << "\n";
+  }
+  std::cerr << "fin-fit " << name << ": " << (summary.pass() ? "pass" : "FAIL") << ", " << wall << " s, wrote "
+            << path.string() << "\n";
+  return summary.pass() ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fin-fit: Young's moduli of the fin's rays and membrane from its motion and loads"};
+  finverse::cli::Standard standard(app, "fin-fit");
+  app.require_subcommand(1);
+
+  finverse::fit::io::FileFitOptions o;
+  std::string mesh, motion, materials, out, loads, parameters, summary, checkpoint;
+  std::vector<std::string> methods{"ga"};
+  bool no_polish = false;
+  auto* rn = app.add_subcommand("run", "fit from stage files (mesh, motion, loads, materials) to materials.h5");
+  rn->add_option("--mesh", mesh, "mesh.h5 (finverse/mesh)")->required();
+  rn->add_option("--motion", motion, "motion.h5: the target motion; its root nodes drive the model")->required();
+  rn->add_option("--loads", loads, "loads.h5: hydrodynamic nodal forces (eq. (2) needs them for the modulus scale)");
+  rn->add_option("--materials", materials, "materials JSON: densities and the values of parameters not fitted")
+      ->required();
+  rn->add_option("--parameters", parameters,
+                 "parameter specification JSON (default: E_membrane, E_ray<id> for every ray, nu)");
+  rn->add_option("--out", out, "materials.h5 (finverse/materials)")->required();
+  rn->add_option("--summary", summary, "also write this JSON digest (values, intervals, wall times)");
+  rn->add_option("--objective", o.objective, "quasi_static (paper eq. 2) or dynamic (eq. 1)")->capture_default_str();
+  rn->add_option("--instants", o.instants, "quasi_static: instants t_j [s] (default: --instant-count spread)");
+  rn->add_option("--instant-count", o.instant_count, "quasi_static: instants spread over the span from mid-swing")
+      ->capture_default_str();
+  rn->add_option("--dt", o.dt, "quasi_static: increment [s] (0: the motion's frame spacing)")->capture_default_str();
+  rn->add_option("--substeps", o.substeps, "dynamic: time steps per frame interval")->capture_default_str();
+  rn->add_option("--periods", o.periods, "dynamic: periods compared at the end of the motion")->capture_default_str();
+  rn->add_option("--ramp", o.ramp, "s of ramp from rest before the first frame (0: ten frame intervals)")
+      ->capture_default_str();
+  rn->add_option("--methods", methods, "optimisers, run in this order: ga, cmaes")->delimiter(',')->capture_default_str();
+  rn->add_option("--runs", o.fit.runs, "independent seeded runs per method")->capture_default_str();
+  rn->add_option("--population", o.fit.population, "GA population (0: 8 per unknown)")->capture_default_str();
+  rn->add_option("--generations", o.fit.max_generations, "generation cap per run")->capture_default_str();
+  rn->add_option("--stop-tolerance", o.fit.stop_tolerance, "stop when the best objective changes less than this")
+      ->capture_default_str();
+  rn->add_option("--stop-window", o.fit.stop_window, "... over this many generations")->capture_default_str();
+  rn->add_option("--seed", o.fit.seed, "seed of the first run (run k uses seed + k)")->capture_default_str();
+  rn->add_flag("--no-polish", no_polish, "skip the Levenberg-Marquardt polish (and with it the uncertainty)");
+  rn->add_option("--checkpoint", checkpoint, "checkpoint file, written after every generation");
+  rn->add_flag("--resume", o.fit.resume, "continue from --checkpoint (same inputs and options)");
+
+  // Validation cases: the hybrid plate twin and its variants.
+  finverse::fit::validation::HybridPlateFitOptions hp;
+  std::string out_dir = "results/validation";
+  std::string case_file;
+  hp.fit.runs = 3;
+  hp.fit.population = 40;
+  hp.fit.max_generations = 60;
+  std::vector<CLI::App*> cases;
+  for (const auto& [name, what] : std::vector<std::pair<std::string, std::string>>{
+           {"hybrid_plate", "hybrid plate twin: eq. (1) and eq. (2) fits, errors and speed ratio"},
+           {"noise", "hybrid plate twin with noisy target: errors and 95% interval coverage"},
+           {"identifiability", "hybrid plate, eq. (2) without loads: the modulus scale must be flagged"}}) {
+    auto* c = app.add_subcommand(name, what);
+    c->add_option("--case", case_file, "data/cases/hybrid_plate.json")->required();
+    c->add_option("--out-dir", out_dir, "directory that receives <case>/summary.json")->capture_default_str();
+    c->add_option("--nx", hp.nx, "plate cells along the chord")->capture_default_str();
+    c->add_option("--nz", hp.nz, "plate cells along the span")->capture_default_str();
+    c->add_option("--periods", hp.periods, "periods simulated from rest")->capture_default_str();
+    c->add_option("--steps-per-period", hp.steps_per_period, "time steps per period")->capture_default_str();
+    c->add_option("--compared-frames", hp.compared_frames, "eq. (1): frames compared over the last period")
+        ->capture_default_str();
+    c->add_option("--instants", hp.instants, "eq. (2): mid-swing instants")->capture_default_str();
+    c->add_option("--load-density", hp.load_scale, "fluid density of the thin-airfoil loads (case: 1)")
+        ->capture_default_str();
+    c->add_option("--runs", hp.fit.runs, "independent GA runs")->capture_default_str();
+    c->add_option("--population", hp.fit.population, "GA population")->capture_default_str();
+    c->add_option("--generations", hp.fit.max_generations, "generation cap")->capture_default_str();
+    c->add_option("--seed", hp.fit.seed, "seed of the first run")->capture_default_str();
+    c->add_option("--noise-seeds", hp.noise_seeds, "noise: seeds")->capture_default_str();
+    c->add_option("--noise-objective", hp.noise_objective, "noise: dynamic or quasi_static")->capture_default_str();
+    cases.push_back(c);
+  }
+
+  return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
+    for (auto* c : cases) {
+      if (!*c) continue;
+      namespace v = finverse::fit::validation;
+      const auto start = std::chrono::steady_clock::now();
+      hp.case_file = case_file;
+      hp.fit.threads = finverse::cli::threads_in_use();
+      const std::string name = c->get_name();
+      auto summary = name == "hybrid_plate" ? v::run_hybrid_plate_fit(hp)
+                     : name == "noise"      ? v::run_hybrid_plate_noise(hp)
+                                            : v::run_hybrid_plate_identifiability(hp);
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return finish(std::move(summary), "fit_" + name, out_dir, wall);
+    }
+    o.mesh = mesh;
+    o.motion = motion;
+    o.materials = materials;
+    o.out = out;
+    if (!loads.empty()) o.loads = loads;
+    if (!parameters.empty()) o.parameters = parameters;
+    if (!summary.empty()) o.summary = summary;
+    if (!checkpoint.empty()) o.fit.checkpoint = checkpoint;
+    o.fit.methods = methods;
+    o.fit.polish = !no_polish;
+    o.fit.threads = finverse::cli::threads_in_use();
+    const auto result = finverse::fit::io::run_fit_from_files(o, finverse::cli::effective_config(app));
+    std::cerr << "fin-fit run: objective " << result.best_objective << " m after " << result.evaluations
+              << " evaluations, wrote " << out << "\n";
+    return 0;
+  });
+}

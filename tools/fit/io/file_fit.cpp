@@ -1,0 +1,137 @@
+// fin-fit run from stage files (see file_fit.hpp).
+#include "fit/io/file_fit.hpp"
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "core/atomic_file.hpp"
+#include "core/log.hpp"
+#include "core/provenance.hpp"
+#include "core/stage_files.hpp"
+#include "fem/errors.hpp"
+#include "fem/io/material_spec.hpp"
+#include "fit/dynamic_objective.hpp"
+#include "fit/errors.hpp"
+#include "fit/fin_parameters.hpp"
+#include "fit/io/materials_file.hpp"
+#include "fit/parameter_space.hpp"
+#include "fit/quasi_static_objective.hpp"
+#include "fit/target_motion.hpp"
+
+namespace finverse::fit::io {
+
+namespace {
+
+std::string sci(double x, int digits = 3) {
+  std::ostringstream s;
+  s.precision(digits);
+  s << std::scientific << x;
+  return s.str();
+}
+
+// Instants of eq. (2): explicit, or `count` spread evenly over the span starting at mid-span
+// (count 1: the paper's mid-swing), each leaving room for the increment dt.
+std::vector<double> quasi_static_instants(const FileFitOptions& o, const TargetMotion& target, double dt) {
+  if (!o.instants.empty()) return o.instants;
+  if (o.instant_count < 1) throw InvalidInput("--instant-count must be >= 1");
+  const double t0 = target.times.front(), span = target.times.back() - t0 - dt;
+  if (!(span > 0)) throw InvalidInput(target.source + ": the motion spans less than one increment dt");
+  std::vector<double> t;
+  for (int j = 0; j < o.instant_count; ++j) {
+    double s = 0.5 + static_cast<double>(j) / o.instant_count;
+    s -= std::floor(s);
+    // Snap to a frame: the target increment is then two samples, not an interpolation.
+    const double h = target.frame_spacing();
+    double tj = t0 + s * span;
+    if (h > 0) tj = t0 + std::round((tj - t0) / h) * h;
+    t.push_back(std::min(tj, t0 + span));
+  }
+  return t;
+}
+
+}  // namespace
+
+FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& config) {
+  const auto mesh = stage::read<stage::Mesh>(o.mesh);
+  const auto motion = stage::read<stage::Motion>(o.motion);
+  std::optional<stage::Loads> loads;
+  if (o.loads) loads = stage::read<stage::Loads>(*o.loads);
+  const auto base = fem::io::read_material_spec(o.materials);
+  const ParameterSpace space = o.parameters ? read_parameter_space(*o.parameters)
+                                            : ParameterSpace(default_fin_parameters(mesh), "default fin parameters");
+
+  TargetMotion target = target_from_motion(motion, static_cast<int>(mesh.points.dim(0)), o.motion.string(),
+                                           o.mesh.string());
+  FinDrive drive;
+  drive.loads = loads;
+  if (o.loads) drive.loads_source = o.loads->string();
+  drive.root_motion = motion;
+  drive.motion_source = o.motion.string();
+  drive.ramp = o.ramp;
+  auto factory = std::make_shared<FinModelFactory>(mesh, base, space.names(), drive, o.mesh.string());
+
+  std::unique_ptr<ResidualFunction> objective;
+  std::ostringstream what;
+  if (o.objective == "quasi_static") {
+    QuasiStaticOptions qs;
+    qs.dt = o.dt > 0 ? o.dt : target.frame_spacing();
+    qs.instants = quasi_static_instants(o, target, qs.dt);
+    what << "eq. (2) quasi-static increments of " << sci(qs.dt) << " s at " << qs.instants.size() << " instant(s)";
+    objective = std::make_unique<QuasiStaticObjective>(factory, std::move(target), qs);
+  } else if (o.objective == "dynamic") {
+    DynamicObjectiveOptions dy;
+    dy.substeps = o.substeps;
+    dy.start_time = factory->start_time();
+    TargetMotion compared = target;
+    if (motion.period && o.periods > 0)
+      compared = target.window(target.times.back() - o.periods * *motion.period + 1e-9 * target.frame_spacing(),
+                               target.times.back());
+    what << "eq. (1) dynamic run from rest at t = " << sci(dy.start_time) << " s, compared at "
+         << compared.frame_count() << " frames";
+    objective = std::make_unique<DynamicObjective>(factory, std::move(compared), dy);
+  } else {
+    throw InvalidInput("--objective '" + o.objective + "': expected quasi_static or dynamic");
+  }
+
+  // One evaluation at the materials file's values before any generation: an unconstrained root
+  // node set, a singular model or a diverging solve is an input problem, reported as such.
+  try {
+    const Eigen::VectorXd r = objective->residuals(factory->default_parameters());
+    log::info("fin-fit: " + what.str() + "; " + std::to_string(space.size()) + " parameters, " +
+              std::to_string(objective->residual_count()) + " residuals; objective at the materials file's values " +
+              sci(mean_distance(r, objective->sqrt_weights())) + " m");
+  } catch (const fem::SingularMatrix& e) {
+    throw InvalidInput(o.mesh.string() + ": /root_nodes: the structure is not held (" + std::string(e.what()) + ")");
+  }
+
+  FitOptions fo = o.fit;
+  const auto user_progress = fo.progress;
+  fo.progress = [&](int run, const std::string& method, const GenerationRecord& g, double eta) {
+    if (user_progress) user_progress(run, method, g, eta);
+    const double rate = g.wall_seconds > 0 ? g.evaluations / g.wall_seconds : 0.0;
+    std::ostringstream s;
+    s << "fin-fit run " << run + 1 << " (" << method << ") generation " << g.generation << ": best "
+      << sci(g.best) << " m, " << std::fixed;
+    s.precision(1);
+    s << rate << " evaluations/s, ETA " << log::format_duration(eta);
+    log::info(s.str());
+  };
+  FitResult result = run_fit(space, *objective, fo, o.objective);
+
+  for (int i = 0; i < space.size(); ++i) {
+    const bool have = result.uncertainty.identified.size() == static_cast<std::size_t>(space.size());
+    if (have && !result.uncertainty.identified[i])
+      log::warn("fin-fit: " + space[i].name + " is NOT identified by these data: " + result.uncertainty.verdict[i] +
+                " (best " + sci(result.best_x(i)) + " " + space[i].unit + ")");
+  }
+
+  Provenance provenance{"fin-fit", config, {o.mesh, o.motion, o.materials}};
+  if (o.loads) provenance.inputs.push_back(*o.loads);
+  if (o.parameters) provenance.inputs.push_back(*o.parameters);
+  write_materials(o.out, result, provenance);
+  if (o.summary) write_text_atomic(*o.summary, fit_summary_json(result).dump(2) + "\n");
+  return result;
+}
+
+}  // namespace finverse::fit::io
