@@ -17,9 +17,11 @@
 // Defaults: cholmod for the symmetric matrices, umfpack for the LU, the faster of each pair per
 // numeric refactorisation (timings: docs/studies/fem_sparse_solver.md).
 //
-// Singularity: a free rigid-body mode shows up as a pivot at round-off level. We test the
-// reciprocal condition estimate (min/max pivot) against 1e-13 and throw SingularMatrix naming the
-// equation (callers map it to node and DOF).
+// Singularity: a free rigid-body mode shows up as a pivot at round-off level. The symmetric
+// paths factor the diagonally equilibrated matrix S A S (s_i = |a_ii|^-1/2), so that the
+// reciprocal condition estimate (min/max pivot), tested against 1e-13, measures singularity and
+// not the mix of rotation and translation units; SingularMatrix names the equation (callers map
+// it to node and DOF).
 #pragma once
 
 #include <functional>
