@@ -30,33 +30,66 @@ std::string sci(double x, int digits = 3) {
   return s.str();
 }
 
-// Instants of eq. (2): explicit, or `count` spread evenly over the span starting at mid-span
-// (count 1: the paper's mid-swing), each leaving room for the increment dt.
-std::vector<double> quasi_static_instants(const FileFitOptions& o, const TargetMotion& target, double dt) {
+// Instants of eq. (2): explicit, or `count` spread evenly over [t_lo, t_hi - dt] (the target's
+// span, within the loads' when given) starting at its middle (count 1: the paper's mid-swing),
+// each snapped to a target frame.
+std::vector<double> quasi_static_instants(const FileFitOptions& o, const TargetMotion& target, double dt,
+                                          double t_lo, double t_hi) {
   if (!o.instants.empty()) return o.instants;
   if (o.instant_count < 1) throw InvalidInput("--instant-count must be >= 1");
-  const double t0 = target.times.front(), span = target.times.back() - t0 - dt;
-  if (!(span > 0)) throw InvalidInput(target.source + ": the motion spans less than one increment dt");
+  const double span = t_hi - t_lo - dt;
+  if (!(span > 0)) throw InvalidInput(target.source + ": the motion and loads overlap by less than one increment dt");
   std::vector<double> t;
   for (int j = 0; j < o.instant_count; ++j) {
     double s = 0.5 + static_cast<double>(j) / o.instant_count;
     s -= std::floor(s);
-    // Snap to a frame: the target increment is then two samples, not an interpolation.
-    const double h = target.frame_spacing();
-    double tj = t0 + s * span;
-    if (h > 0) tj = t0 + std::round((tj - t0) / h) * h;
-    t.push_back(std::min(tj, t0 + span));
+    const double want = t_lo + s * span;
+    // Snap to the nearest target frame inside the range: the target increment is then a sample
+    // difference, not an interpolation.
+    double best = want;
+    for (double tf : target.times)
+      if (tf >= t_lo && tf <= t_lo + span && std::abs(tf - want) < std::abs(best - want) + (best == want ? 1e300 : 0))
+        best = tf;
+    t.push_back(best);
   }
   return t;
+}
+
+// A periodic motion (motion.h5 T) repeated to cover [t_begin, t_end]: fin-cfd reports the loads
+// of its last period, after the start-up ones, while the reconstruction samples one period from
+// t = 0. A frame one period after another (the seam) is kept once.
+stage::Motion periodic_extension(const stage::Motion& m, double t_begin, double t_end) {
+  const double T = *m.period, t0 = m.time.data.front();
+  const std::size_t nf = m.time.data.size(), nv = m.points.dim(1);
+  const int k0 = static_cast<int>(std::floor((t_begin - t0) / T)), k1 = static_cast<int>(std::ceil((t_end - t0) / T));
+  stage::Motion e;
+  e.period = m.period;
+  std::vector<double> times;
+  std::vector<double> points;
+  for (int k = k0; k <= k1; ++k)
+    for (std::size_t f = 0; f < nf; ++f) {
+      const double t = m.time.data[f] + k * T;
+      if (!times.empty() && t <= times.back() + 1e-9 * T) continue;
+      times.push_back(t);
+      points.insert(points.end(), m.points.data.begin() + f * nv * 3, m.points.data.begin() + (f + 1) * nv * 3);
+    }
+  e.time = NdArray<double>({times.size()}, times);
+  e.points = NdArray<double>({times.size(), nv, 3}, points);
+  return e;
 }
 
 }  // namespace
 
 FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& config) {
   const auto mesh = stage::read<stage::Mesh>(o.mesh);
-  const auto motion = stage::read<stage::Motion>(o.motion);
+  auto motion = stage::read<stage::Motion>(o.motion);
   std::optional<stage::Loads> loads;
   if (o.loads) loads = stage::read<stage::Loads>(*o.loads);
+  if (loads && motion.period && !loads->time.data.empty() &&
+      (loads->time.data.front() < motion.time.data.front() || loads->time.data.back() > motion.time.data.back())) {
+    motion = periodic_extension(motion, loads->time.data.front(), loads->time.data.back());
+    log::info(o.motion.string() + ": periodic (T = " + sci(*motion.period) + " s), repeated to cover the loads' times");
+  }
   const auto base = fem::io::read_material_spec(o.materials);
   const ParameterSpace space = o.parameters ? read_parameter_space(*o.parameters)
                                             : ParameterSpace(default_fin_parameters(mesh), "default fin parameters");
@@ -76,7 +109,12 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
   if (o.objective == "quasi_static") {
     QuasiStaticOptions qs;
     qs.dt = o.dt > 0 ? o.dt : target.frame_spacing();
-    qs.instants = quasi_static_instants(o, target, qs.dt);
+    double t_lo = target.times.front(), t_hi = target.times.back();
+    if (loads) {
+      t_lo = std::max(t_lo, loads->time.data.front());
+      t_hi = std::min(t_hi, loads->time.data.back());
+    }
+    qs.instants = quasi_static_instants(o, target, qs.dt, t_lo, t_hi);
     what << "eq. (2) quasi-static increments of " << sci(qs.dt) << " s at " << qs.instants.size() << " instant(s)";
     objective = std::make_unique<QuasiStaticObjective>(factory, std::move(target), qs);
   } else if (o.objective == "dynamic") {
@@ -103,6 +141,9 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
               sci(mean_distance(r, objective->sqrt_weights())) + " m");
   } catch (const fem::SingularMatrix& e) {
     throw InvalidInput(o.mesh.string() + ": /root_nodes: the structure is not held (" + std::string(e.what()) + ")");
+  } catch (const fem::NotConverged& e) {
+    // Not an input error: other parameters may converge; the optimisers score failures +inf.
+    log::warn("fin-fit: the model does not converge at the materials file's values: " + std::string(e.what()));
   }
 
   FitOptions fo = o.fit;
