@@ -23,6 +23,7 @@
 #include "fit/state_from_positions.hpp"
 #include "fit/target_motion.hpp"
 #include "fit/validation/hybrid_plate_twin.hpp"
+#include "fit/validation/thin_airfoil_loads.hpp"
 
 using namespace finverse;
 using fem::Vec3;
@@ -190,7 +191,7 @@ TEST(QuasiStaticObjective, VanishesAtTheTruthWhenTheTargetIsItsOwnIncrement) {
   const double off = rel(f.residuals(p), ref);
   std::printf("quasi-static twin: |r|/|dx| = %.2e at the truth, %.3f at 2 E_b2\n", at_truth, off);
   EXPECT_LT(at_truth, 1e-6);
-  EXPECT_GT(off, 0.05);
+  EXPECT_GT(off, 0.02);  // 0.033 inside the twin's start window (first period), 0.05 before it
 }
 
 TEST(QuasiStaticObjective, MarchedQuasiStaticTruthWithReconstructedRotations) {
@@ -219,7 +220,7 @@ TEST(QuasiStaticObjective, MarchedQuasiStaticTruthWithReconstructedRotations) {
   p(2) *= 2;
   const double off = rel(f.residuals(p), ref);
   std::printf("quasi-static march target: |r|/|dx| = %.2e at the truth, %.3f at 2 E_b2\n", at_truth, off);
-  EXPECT_LT(at_truth, 2e-3);
+  EXPECT_LT(at_truth, 5e-3);  // 3.5e-3 with the twin's start window
   EXPECT_GT(off, 10 * at_truth);
 }
 
@@ -283,7 +284,7 @@ TEST(DynamicObjective, VanishesAtTheTruthAndGrowsWithAModulusChange) {
     const double off = rel(f.residuals(p), ref);
     std::printf("dynamic twin: |r|/|u| = %.2e at the truth, %.2e at 1.1 x %s\n", at_truth, off,
                 twin->parameter_names()[i].c_str());
-    EXPECT_GT(off, 1e-3) << twin->parameter_names()[i];
+    EXPECT_GT(off, 5e-4) << twin->parameter_names()[i];  // E_b1: 9.6e-4 with the start window
   }
 }
 
@@ -534,4 +535,55 @@ TEST(FinParameters, ARayModulusForAllRaysEqualsEachRayAlike) {
   ASSERT_EQ(a->elements().size(), b->elements().size());
   for (int e = 0; e < static_cast<int>(a->elements().size()); ++e)
     EXPECT_EQ(a->element_youngs_modulus(e), b->element_youngs_modulus(e)) << "element " << e;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Regression (issue 31): the small-heave twin of fin-fit hybrid_plate (A = 1e-3, f = 0.5, the
+// thin-airfoil loads at fluid density 1). Started abruptly from rest, the undamped truth rang at
+// the plate's first natural frequency (1.63 Hz) through the compared period, the elastic part of
+// dx_target pointed against dx_FE's (cosine -0.52 at mid-swing) and eq. (2) preferred a rigid
+// plate: every modulus went to its upper bound. The twin's start window removes the ringing.
+
+TEST(QuasiStaticObjective, SmallHeaveTwinWithLoadsIsClosestAtTheTruthScale) {
+  auto c = plate_case();
+  c.heave_amplitude = 0.001;
+  const double T = 1.0 / c.frequency, dt = T / 400, A = c.heave_amplitude, w = 2 * kPi * c.frequency;
+  const HybridPlateTwin bare(c, 8, 8);
+  fit::validation::RigidPlateMotion m;
+  m.h = [=](double s) { return A * (1 - std::cos(w * s)); };
+  m.hdot = [=](double s) { return A * w * std::sin(w * s); };
+  m.hddot = [=](double s) { return A * w * w * std::cos(w * s); };
+  std::vector<double> times;
+  for (int k = 0; k <= 800; ++k) times.push_back(k * dt);
+  auto twin = std::make_shared<HybridPlateTwin>(
+      c, 8, 8, fit::validation::thin_airfoil_loads(*bare.build(bare.truth()), {1.0, 1.0, 1.0, 0.0}, m, times));
+  const fit::TargetMotion target =
+      fit::validation::hybrid_plate_truth(*twin, twin->truth(), {.output_interval = dt, .end_time = 2 * T});
+  const fit::QuasiStaticObjective f(twin, target, {.instants = {1.25 * T}, .dt = dt});  // mid-swing
+  const Eigen::VectorXd p0 = twin->truth();
+  auto J = [&](const Eigen::VectorXd& p) { return fit::mean_distance(f.residuals(p), f.sqrt_weights()); };
+  // The elastic parts (minus a rigid plate's increment) of target and FE increment agree in direction.
+  Eigen::VectorXd rigid = p0;
+  rigid.head(4) *= 1e4;
+  const auto dx_fe = f.increments(p0)[0], dx_rigid = f.increments(rigid)[0];
+  double aa = 0, bb = 0, ab = 0;
+  for (int n : f.compared_nodes()) {
+    const Vec3 a = f.target_increments()[0][n] - dx_rigid[n], b = dx_fe[n] - dx_rigid[n];
+    aa += a.squaredNorm(), bb += b.squaredNorm(), ab += a.dot(b);
+  }
+  const double cosine = ab / std::sqrt(aa * bb), j0 = J(p0);
+  std::printf("small-heave twin, eq. (2) at mid-swing: elastic-increment cosine %.3f, |target|/|FE| %.3f, "
+              "J = %.3e at the truth, %.3e rigid\n", cosine, std::sqrt(aa / bb), j0, J(rigid));
+  EXPECT_GT(cosine, 0.95);
+  EXPECT_LT(j0, 0.3 * J(rigid));
+  for (double s : {1.0 / 3, 3.0}) {
+    Eigen::VectorXd p = p0;
+    p.head(4) *= s;
+    EXPECT_GT(J(p), 2 * j0) << "every modulus x" << s;
+    for (int i : {0, 2}) {  // the membrane and the middle beam (the edge beams are weakly identified)
+      p = p0;
+      p(i) *= s;
+      EXPECT_GT(J(p), j0) << twin->parameter_names()[i] << " x" << s;
+    }
+  }
 }
