@@ -1,0 +1,68 @@
+// The inverse-fit benchmark (issue 31, "Benchmark"; results/bench/fit.json): on the hybrid plate
+// twin (hybrid_plate_fit.hpp: truth motion from fin-fem with the case's moduli, E_s, E_b1..3, nu
+// fitted back inside three-decade bounds), side by side in one run:
+//   arms        FEM evaluations (cache misses) and wall time until every parameter of the best
+//               point is within `goal` (1 %) of the truth, checked after every generation:
+//                 ga         pagmo GA alone (the seed paper's procedure)
+//                 cmaes      CMA-ES
+//                 ga_polish  the same GA run, with a Levenberg-Marquardt polish from its champion
+//                            every `polish_every` generations (when the champion changed)
+//               graded: the best arm needs <= 1/10 of the GA's evaluations;
+//   rate        evaluations per second of eq. (1) (dynamic) and eq. (2) (quasi-static), one
+//               thread each, on the same random points near the truth;
+//   speed-up    one generation (the same population) of the arms' objective evaluated on 2
+//               threads against 1; graded >= 1.8 (as 1 / speed-up <= 1 / 1.8, Summary has
+//               upper-bound goals only); eq. (1)'s the same way, reported only.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/summary.hpp"
+
+namespace finverse::fit::validation {
+
+struct FitBenchOptions {
+  std::filesystem::path case_file;  // data/cases/hybrid_plate.json
+  // The twin, as HybridPlateFitOptions (hybrid_plate_fit.hpp).
+  int nx = 8, nz = 8;
+  double periods = 2;
+  int steps_per_period = 100;
+  int qs_steps_per_period = 400;
+  int compared_frames = 20;
+  int instants = 1;
+  double load_scale = 0.1;
+  // The arms' objective: "dynamic" (eq. (1)) or "quasi_static" (eq. (2)). Eq. (2) by default:
+  // an eq. (1) evaluation takes 2-3 s on one core against 11-19 ms (measured, 8 x 8 plate), and
+  // the GA alone is still 11 % off after 6000 evaluations, so eq. (1) arms would take hours on 2
+  // cores where the benchmark has ~15 min. Eq. (2) compares quasi-static increments with the
+  // dynamic truth's, so its optimum is not the truth (the validation allows it 5 %); for the arms
+  // its target increments are replaced by the quasi-static increments at the true parameters, so
+  // that the 1 % goal is reachable and the arms measure the optimisers, not the objective's model
+  // error.
+  std::string objective = "quasi_static";
+  double goal = 0.01;  // relative error every parameter must reach
+  unsigned seed = 1;   // the same seed for every arm
+  int threads = 2;
+  int ga_population = 40;        // 8 per unknown, fin-fit's default
+  int cmaes_population = 0;      // 0: 4 + floor(3 ln n)
+  long max_evaluations = 6000;   // per arm: an arm stops (not reached) after the generation that passes it
+  double max_arm_seconds = 270;  // per arm, the same way (keeps the whole run within ~15 min on 2 cores)
+  int polish_every = 5;          // ga_polish: generations between polishes
+  // Per polish; 0: 20 (n + 1). Generous, because a polish started inside the basin converges
+  // quadratically and stops well short of it (91 evaluations from the 5th generation's champion,
+  // measured), while 6 (n + 1) stops it halfway; a polish outside the basin spends it all.
+  int polish_max_evaluations = 0;
+  int rate_points = 8;                 // rate: points near the truth, eq. (1) ...
+  int rate_repeats = 10;               // ... and eq. (2) passes over them (eq. (2) is ~100x cheaper)
+  int speedup_population = 0;          // speed-up: 0 = ga_population
+  int speedup_repeats = 3;             // the fastest of this many timings per thread count
+  int speedup_dynamic_population = 8;  // eq. (1) generation timed too, once, reported only (0: skip)
+  std::vector<std::string> arms{"ga", "cmaes", "ga_polish"};  // arms to run (the ratio needs ga)
+  bool rate = true, speedup = true;                           // the other parts
+};
+
+Summary run_fit_bench(const FitBenchOptions& options);
+
+}  // namespace finverse::fit::validation
