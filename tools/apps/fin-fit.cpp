@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
     c->add_option("--generations", hp.fit.max_generations, "generation cap")->capture_default_str();
     c->add_option("--seed", hp.fit.seed, "seed of the first run")->capture_default_str();
     c->add_option("--noise-seeds", hp.noise_seeds, "noise: seeds")->capture_default_str();
+    c->add_option("--materials-out", hp.materials_out, "hybrid_plate: also write the eq. (2) fit as materials.h5");
     c->add_option("--noise-objective", hp.noise_objective, "noise: dynamic or quasi_static")->capture_default_str();
     cases.push_back(c);
   }

@@ -40,6 +40,8 @@ struct HybridPlateFitOptions {
   // loads dominate the plate's own inertia as eq. (2) assumes.
   double load_scale = 1;
   FitOptions fit;                   // runs, population, generations, seed, threads
+  // hybrid_plate: also write the eq. (2) fit as materials.h5 (the golden-file regression test)
+  std::filesystem::path materials_out;
   // noise
   int noise_seeds = 10;
   double noise_over_chord = 0.003;
