@@ -7,6 +7,7 @@
 
 #include "fem/errors.hpp"
 #include "fem/newton_iteration.hpp"
+#include "fem/rotation.hpp"
 
 namespace finverse::fem {
 
@@ -89,6 +90,41 @@ int StaticSolver::newton(NodalState& state, double lam, const Eigen::VectorXd* o
   return out.iterations;
 }
 
+int StaticSolver::predict_free(const NodalState& state, NodalState& trial, double lam) {
+  // Increment of the prescribed DOFs (rotations as spatial spins, the convention of
+  // NodalState::apply_increment).
+  const int nn = model_.node_count();
+  Eigen::VectorXd dp = Eigen::VectorXd::Zero(dofs_.total());
+  bool moved = false;
+  for (int n = 0; n < nn; ++n) {
+    const int g0 = kDofsPerNode * n;
+    bool any = false;
+    for (int j = 0; j < kDofsPerNode; ++j) any = any || dofs_.is_prescribed(g0 + j);
+    if (!any) continue;
+    const Vec3 du = trial.position[n] - state.position[n];
+    const Vec3 w = log_so3(trial.rotation[n] * state.rotation[n].transpose());
+    for (int j = 0; j < 3; ++j) {
+      if (dofs_.is_prescribed(g0 + j) && du(j) != 0) dp(g0 + j) = du(j), moved = true;
+      if (dofs_.is_prescribed(g0 + 3 + j) && w(j) != 0) dp(g0 + 3 + j) = w(j), moved = true;
+    }
+  }
+  if (!moved || dofs_.free() == 0) return 0;
+  AssemblyRequest req;
+  req.matrix = true;
+  req.stiffness_times = &dp;
+  req.time = lam;
+  assembler_.assemble(state, req);
+  try {
+    solver_.factorize(assembler_.matrix(), "tangent stiffness");
+  } catch (const SingularMatrix&) {
+    return 0;  // e.g. the base sits at a limit point: leave the free DOFs to Newton
+  }
+  const Eigen::VectorXd du = solver_.solve(-dofs_.gather_free(assembler_.stiffness_product()));
+  if (!du.allFinite()) return 0;
+  trial.apply_increment(dofs_.scatter_free(du));
+  return 1;
+}
+
 StaticResult StaticSolver::solve(NodalState& state, double lam0, double lam1,
                                  const Eigen::VectorXd* offset) {
   StaticResult result;
@@ -100,8 +136,10 @@ StaticResult StaticSolver::solve(NodalState& state, double lam0, double lam1,
     NodalState trial = state;
     const double target = lam + step;
     apply_prescribed(model_, lam, target, trial);
+    const int predictor_its = predict_free(state, trial, target);
     double residual = 0;
-    const int its = newton(trial, target, offset, residual);
+    int its = newton(trial, target, offset, residual);
+    if (its >= 0) its += predictor_its;
     if (its < 0) {
       result.total_iterations += opt_.max_iterations;
       ++result.step_cuts;
