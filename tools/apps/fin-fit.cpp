@@ -88,6 +88,8 @@ int main(int argc, char** argv) {
   rn->add_option("--stop-window", o.fit.stop_window, "... over this many generations")->capture_default_str();
   rn->add_option("--seed", o.fit.seed, "seed of the first run (run k uses seed + k)")->capture_default_str();
   rn->add_flag("--no-polish", no_polish, "skip the Levenberg-Marquardt polish (and with it the uncertainty)");
+  rn->add_option("--polish-evaluations", o.fit.polish_options.max_evaluations,
+                 "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")->capture_default_str();
   rn->add_option("--checkpoint", checkpoint, "checkpoint file, written after every generation");
   rn->add_flag("--resume", o.fit.resume, "continue from --checkpoint (same inputs and options)");
 
@@ -119,6 +121,8 @@ int main(int argc, char** argv) {
     c->add_option("--population", hp.fit.population, "GA population")->capture_default_str();
     c->add_option("--generations", hp.fit.max_generations, "generation cap")->capture_default_str();
     c->add_option("--seed", hp.fit.seed, "seed of the first run")->capture_default_str();
+    c->add_option("--polish-evaluations", hp.fit.polish_options.max_evaluations,
+                  "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")->capture_default_str();
     c->add_option("--noise-seeds", hp.noise_seeds, "noise: seeds")->capture_default_str();
     c->add_option("--materials-out", hp.materials_out, "hybrid_plate: also write the eq. (2) fit as materials.h5");
     c->add_option("--noise-objective", hp.noise_objective, "noise: dynamic or quasi_static")->capture_default_str();
@@ -139,6 +143,8 @@ int main(int argc, char** argv) {
   uc->add_option("--population", up.fit.population, "GA population")->capture_default_str();
   uc->add_option("--generations", up.fit.max_generations, "generation cap")->capture_default_str();
   uc->add_option("--seed", up.fit.seed, "seed of the first run")->capture_default_str();
+  uc->add_option("--polish-evaluations", up.fit.polish_options.max_evaluations,
+                 "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")->capture_default_str();
 
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     if (*uc) {
