@@ -37,10 +37,10 @@ rule fit:
         " --summary {output.summary} {params.flags} 2> {log}"
 
 
-# Not yet part of the default target: on the default case's reconstructed (kinematic) motion the
-# eq. (2) increment's Newton solve does not converge at the materials file's values ("static
-# Newton did not converge at load factor 0.34", measured 2026-11-27 on the c/40 loads), and the
-# fin model's own quasi-static march on that motion stops at t = 0.07 s; issue 31's note. Until
+# Not yet part of the default target: on the default case's reconstructed motion the eq. (2)
+# base state's tangent is singular ("first at node 217 uz", measured 2026-11-27 on the c/40
+# loads): the root rotation is fitted from the root nodes alone, which lie on the pitch axis, so
+# the FEM holds the root at zero pitch under a pitched reconstructed shape (issue 31 note). Until
 # that is fixed the stage runs on request: snakemake -c2 results/<case>/materials.h5
 
 # Validation cases of the fit (tools/fit/validation): case -> (description, flags of the full
