@@ -4,7 +4,7 @@
 // (tools/fit/validation/fit_bench.hpp). A thin front end: the benchmark lives in the library so
 // that tests can run it small. Exit 0 when every goal is met, 1 when one is missed, 2 on error.
 //
-//   fin-fit-bench --case data/cases/hybrid_plate.json --out results/bench/fit.json --threads 2
+//   fin-fit-bench --case data/cases/hybrid_plate_small_heave.json --out results/bench/fit.json --threads 2
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <string>
@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
   finverse::cli::Standard standard(app, "fin-fit-bench");
   finverse::fit::validation::FitBenchOptions o;
   std::string case_file, out = "results/bench/fit.json";
-  app.add_option("--case", case_file, "data/cases/hybrid_plate.json")->required();
+  app.add_option("--case", case_file, "data/cases/hybrid_plate_small_heave.json (the fit validations' twin)")
+      ->required();
   app.add_option("--out", out, "benchmark file")->capture_default_str();
   app.add_option("--objective", o.objective, "the arms' objective: dynamic (eq. 1) or quasi_static (eq. 2)")
       ->capture_default_str();
@@ -29,6 +30,8 @@ int main(int argc, char** argv) {
   app.add_option("--compared-frames", o.compared_frames, "eq. (1): frames compared over the last period")
       ->capture_default_str();
   app.add_option("--instants", o.instants, "eq. (2): mid-swing instants")->capture_default_str();
+  app.add_option("--load-density", o.load_scale, "fluid density of the thin-airfoil loads (case: 1)")
+      ->capture_default_str();
   app.add_option("--goal", o.goal, "relative error every parameter must reach")->capture_default_str();
   app.add_option("--seed", o.seed, "seed of every arm")->capture_default_str();
   app.add_option("--population", o.ga_population, "GA population (even)")->capture_default_str();
