@@ -37,92 +37,26 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // --- the twin --------------------------------------------------------------------------------
-// The same twin as the fit validation (hybrid_plate_fit.cpp, whose helpers are file-local):
-// thin-airfoil loads of the rigid heave at load_scale density, truths at both objectives' steps,
-// three-decade modulus bounds placed off-centre, eq. (1) over the last period, eq. (2) at
-// mid-swing. Kept in step with that file by hand; the bench reports the same parameters.
+// The same twin as the fit validations (hybrid_plate_setup.hpp).
 
-struct Twin {
-  std::shared_ptr<HybridPlateTwin> factory;
-  TargetMotion truth, qs_truth;
-  double period = 0, dt = 0, qs_dt = 0;
-};
-
-Twin make_twin(const FitBenchOptions& o) {
-  Twin t;
-  const fem::validation::HybridPlateCase plate = fem::validation::read_hybrid_plate_case(o.case_file);
-  t.period = 1.0 / plate.frequency;
-  t.dt = t.period / o.steps_per_period;
-  t.qs_dt = t.period / o.qs_steps_per_period;
-  const double end = o.periods * t.period;
-  const HybridPlateTwin bare(plate, o.nx, o.nz);
-  const auto model = bare.build(bare.truth());
-  const double A = plate.heave_amplitude, w = 2 * std::numbers::pi * plate.frequency;
-  RigidPlateMotion m;
-  m.h = [=](double s) { return A * (1 - std::cos(w * s)); };
-  m.hdot = [=](double s) { return A * w * std::sin(w * s); };
-  m.hddot = [=](double s) { return A * w * w * std::cos(w * s); };
-  const double h = std::min(t.dt, t.qs_dt);
-  std::vector<double> times;
-  for (int k = 0; k * h <= end + 0.5 * h; ++k) times.push_back(k * h);
-  fem::LoadHistory loads = thin_airfoil_loads(*model, ThinAirfoilFlow{o.load_scale, 1.0, plate.chord, 0.0}, m, times);
-  t.factory = std::make_shared<HybridPlateTwin>(plate, o.nx, o.nz, std::move(loads));
-  const auto truth_at = [&](double step) {
-    TwinTruthOptions to;
-    to.output_interval = step;
-    to.end_time = std::round(end / step) * step;
-    return hybrid_plate_truth(*t.factory, t.factory->truth(), to);
-  };
-  t.truth = truth_at(t.dt);
-  t.qs_truth = o.qs_steps_per_period == o.steps_per_period ? t.truth : truth_at(t.qs_dt);
-  return t;
-}
-
-ParameterSpace twin_space(const HybridPlateTwin& twin) {
-  const auto names = twin.parameter_names();
-  const Eigen::VectorXd truth = twin.truth();
-  std::vector<Parameter> p;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    const double x = truth(static_cast<Eigen::Index>(i));
-    if (names[i] == "nu")
-      p.push_back({names[i], "1", 0.15, 0.45, Scale::linear, x});
-    else
-      p.push_back({names[i], "rho U^2", x * std::pow(10.0, -1.3), x * std::pow(10.0, 1.7), Scale::log10, x});
-  }
-  return ParameterSpace(p, "hybrid plate twin");
-}
-
-std::unique_ptr<DynamicObjective> dynamic_objective(const Twin& t, const FitBenchOptions& o) {
-  if (o.steps_per_period % o.compared_frames != 0)
-    throw InvalidInput("fit bench: steps per period must be a multiple of the compared frames");
-  const int substeps = o.steps_per_period / o.compared_frames;
-  TargetMotion w;
-  w.source = t.truth.source;
-  const int n = t.truth.frame_count();
-  for (int j = o.compared_frames - 1; j >= 0; --j) {
-    const int k = n - 1 - j * substeps;
-    w.times.push_back(t.truth.times[k]);
-    w.positions.push_back(t.truth.positions[k]);
-  }
+std::unique_ptr<DynamicObjective> dynamic_objective(const HybridPlateTwinRun& t, const FitBenchOptions& o) {
+  int substeps = 1;
+  TargetMotion w = last_period_frames(t, o, &substeps);
   DynamicObjectiveOptions dy;
   dy.substeps = substeps;
   return std::make_unique<DynamicObjective>(t.factory, std::move(w), dy);
 }
 
-QuasiStaticOptions quasi_static_options(const Twin& t, const FitBenchOptions& o) {
+QuasiStaticOptions quasi_static_options(const HybridPlateTwinRun& t, const FitBenchOptions& o) {
   QuasiStaticOptions qs;
-  const double start = (o.periods - 1) * t.period;
-  for (int j = 0; j < o.instants; ++j) {
-    const double ti = start + t.period / 4 + j * t.period / (2.0 * o.instants);
-    qs.instants.push_back(std::round(ti / t.qs_dt) * t.qs_dt);
-  }
+  qs.instants = mid_swing_instants(t, o);
   qs.dt = t.qs_dt;
   return qs;
 }
 
 // Eq. (2) whose target increments are the quasi-static model's own at the true parameters (the
 // bases stay the dynamic truth's): its minimum, zero, lies at the truth (see fit_bench.hpp).
-std::unique_ptr<QuasiStaticObjective> self_consistent_quasi_static(const Twin& t, const FitBenchOptions& o) {
+std::unique_ptr<QuasiStaticObjective> self_consistent_quasi_static(const HybridPlateTwinRun& t, const FitBenchOptions& o) {
   const QuasiStaticOptions qs = quasi_static_options(t, o);
   const QuasiStaticObjective plain(t.factory, t.qs_truth, qs);
   const auto dx = plain.increments(t.factory->truth());
@@ -370,8 +304,8 @@ Summary run_fit_bench(const FitBenchOptions& o) {
         "fit bench: threads, polish_every, rate points and repeats, max_evaluations and speed-up "
         "repeats must be >= 1");
   const auto t0 = std::chrono::steady_clock::now();
-  const Twin t = make_twin(o);
-  const ParameterSpace space = twin_space(*t.factory);
+  const HybridPlateTwinRun t = make_hybrid_plate_twin(o, true);
+  const ParameterSpace space = hybrid_plate_space(*t.factory);
   const std::unique_ptr<DynamicObjective> dynamic = dynamic_objective(t, o);
   const QuasiStaticObjective quasi_static(t.factory, t.qs_truth, quasi_static_options(t, o));
   log::info("fit bench: twin ready in " + log::format_duration(seconds_since(t0)));

@@ -20,19 +20,11 @@
 #include <vector>
 
 #include "core/summary.hpp"
+#include "fit/validation/hybrid_plate_setup.hpp"
 
 namespace finverse::fit::validation {
 
-struct FitBenchOptions {
-  std::filesystem::path case_file;  // data/cases/hybrid_plate_small_heave.json, as the fit validations
-  // The twin, as HybridPlateFitOptions (hybrid_plate_fit.hpp).
-  int nx = 8, nz = 8;
-  double periods = 2;
-  int steps_per_period = 100;
-  int qs_steps_per_period = 400;
-  int compared_frames = 20;
-  int instants = 1;
-  double load_scale = 1;  // fluid density of the thin-airfoil loads relative to the case's
+struct FitBenchOptions : HybridPlateSetup {  // the twin, as the fit validations'
   // The arms' objective: "dynamic" (eq. (1)) or "quasi_static" (eq. (2)). Eq. (2) by default:
   // an eq. (1) evaluation takes 1-3 s on one core against ~10 ms (measured, 8 x 8 plate), and
   // the GA alone needs ~2400 evaluations, so eq. (1) arms would take about an hour on 2 cores

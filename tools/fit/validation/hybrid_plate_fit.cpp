@@ -14,6 +14,7 @@
 #include "fit/errors.hpp"
 #include "fit/io/materials_file.hpp"
 #include "fit/quasi_static_objective.hpp"
+#include "fit/validation/hybrid_plate_setup.hpp"
 #include "fit/validation/hybrid_plate_twin.hpp"
 #include "fit/validation/thin_airfoil_loads.hpp"
 
@@ -22,95 +23,6 @@ namespace finverse::fit::validation {
 namespace {
 
 constexpr const char* kPaper = "seed paper Table 3 (Liu et al.)";
-
-struct Twin {
-  fem::validation::HybridPlateCase plate;
-  std::shared_ptr<HybridPlateTwin> factory;
-  TargetMotion truth;     // every time step of the dynamic objective (dt) to the end
-  TargetMotion qs_truth;  // every step of qs_dt (eq. (2)'s increments)
-  double period = 0, dt = 0, qs_dt = 0;
-};
-
-Twin make_twin(const HybridPlateFitOptions& o, bool with_loads) {
-  Twin t;
-  t.plate = fem::validation::read_hybrid_plate_case(o.case_file);
-  t.period = 1.0 / t.plate.frequency;
-  t.dt = t.period / o.steps_per_period;
-  t.qs_dt = t.period / o.qs_steps_per_period;
-  const double end = o.periods * t.period;
-  fem::LoadHistory loads;
-  if (with_loads) {
-    // The case is nondimensional: fluid density, free-stream speed and chord are 1.
-    const HybridPlateTwin bare(t.plate, o.nx, o.nz);
-    const auto model = bare.build(bare.truth());
-    const double A = t.plate.heave_amplitude, w = 2 * std::numbers::pi * t.plate.frequency;
-    RigidPlateMotion m;
-    m.h = [=](double s) { return A * (1 - std::cos(w * s)); };
-    m.hdot = [=](double s) { return A * w * std::sin(w * s); };
-    m.hddot = [=](double s) { return A * w * w * std::cos(w * s); };
-    // Sampled finely enough for both objectives' time steps (linear in between).
-    const double h = std::min(t.dt, t.qs_dt);
-    std::vector<double> times;
-    for (int k = 0; k * h <= end + 0.5 * h; ++k) times.push_back(k * h);
-    loads = thin_airfoil_loads(*model, ThinAirfoilFlow{o.load_scale, 1.0, t.plate.chord, 0.0}, m, times);
-  }
-  t.factory = std::make_shared<HybridPlateTwin>(t.plate, o.nx, o.nz, std::move(loads));
-  const auto truth_at = [&](double step) {
-    TwinTruthOptions to;
-    to.output_interval = step;
-    to.substeps = 1;
-    to.end_time = std::round(end / step) * step;
-    TargetMotion m = hybrid_plate_truth(*t.factory, t.factory->truth(), to);
-    m.source = "hybrid plate truth";
-    return m;
-  };
-  t.truth = truth_at(t.dt);
-  t.qs_truth = o.qs_steps_per_period == o.steps_per_period ? t.truth : truth_at(t.qs_dt);
-  return t;
-}
-
-// Moduli: a three-decade log10 interval around the truth, 10^-1.3 below to 10^1.7 above (off
-// centre); nu in [0.15, 0.45] as the paper.
-ParameterSpace twin_space(const HybridPlateTwin& twin) {
-  const auto names = twin.parameter_names();
-  const Eigen::VectorXd truth = twin.truth();
-  std::vector<Parameter> p;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    const double x = truth(static_cast<Eigen::Index>(i));
-    if (names[i] == "nu")
-      p.push_back({names[i], "1", 0.15, 0.45, Scale::linear, x});
-    else
-      p.push_back({names[i], "rho U^2", x * std::pow(10.0, -1.3), x * std::pow(10.0, 1.7), Scale::log10, x});
-  }
-  return ParameterSpace(p, "hybrid plate twin");
-}
-
-// The last period, compared_frames equally spaced frames (eq. (1)).
-TargetMotion last_period(const Twin& t, const HybridPlateFitOptions& o, int* substeps) {
-  if (o.steps_per_period % o.compared_frames != 0)
-    throw InvalidInput("hybrid plate fit: steps per period must be a multiple of the compared frames");
-  *substeps = o.steps_per_period / o.compared_frames;
-  TargetMotion w;
-  w.source = t.truth.source;
-  const int n = t.truth.frame_count();  // frame k is t = (k + 1) dt
-  for (int j = o.compared_frames - 1; j >= 0; --j) {
-    const int k = n - 1 - j * *substeps;
-    w.times.push_back(t.truth.times[k]);
-    w.positions.push_back(t.truth.positions[k]);
-  }
-  return w;
-}
-
-// Mid-swing instants of the last period (heave velocity extremes), as the paper's eq. (2).
-std::vector<double> mid_swing(const Twin& t, const HybridPlateFitOptions& o) {
-  std::vector<double> s;
-  const double start = (o.periods - 1) * t.period;
-  for (int j = 0; j < o.instants; ++j) {
-    const double ti = start + t.period / 4 + j * t.period / (2.0 * o.instants);
-    s.push_back(std::round(ti / t.qs_dt) * t.qs_dt);
-  }
-  return s;
-}
 
 FitOptions with_progress(FitOptions f, const std::string& label) {
   f.progress = [label](int run, const std::string& method, const GenerationRecord& g, double eta) {
@@ -144,8 +56,8 @@ Summary run_hybrid_plate_fit(const HybridPlateFitOptions& o) {
   Summary s("validation", "fit_hybrid_plate",
             "hybrid plate twin (shell + 3 beams, heaved, thin-airfoil loads): E_s, E_b1..3, nu fitted back by eq. (1) "
             "and eq. (2)");
-  const Twin t = make_twin(o, true);
-  const ParameterSpace space = twin_space(*t.factory);
+  const HybridPlateTwinRun t = make_hybrid_plate_twin(o, true);
+  const ParameterSpace space = hybrid_plate_space(*t.factory);
   s.parameters() = {{"grid", {o.nx, o.nz}}, {"periods", o.periods}, {"steps_per_period", o.steps_per_period},
                     {"qs_steps_per_period", o.qs_steps_per_period},
                     {"compared_frames", o.compared_frames}, {"instants", o.instants}, {"runs", o.fit.runs},
@@ -157,7 +69,7 @@ Summary run_hybrid_plate_fit(const HybridPlateFitOptions& o) {
   DynamicObjectiveOptions dy;
   dy.start_time = 0;
   dy.substeps = 0;
-  TargetMotion compared = last_period(t, o, &substeps);
+  TargetMotion compared = last_period_frames(t, o, &substeps);
   dy.substeps = substeps;
   const DynamicObjective dynamic(t.factory, compared, dy);
   auto t0 = std::chrono::steady_clock::now();
@@ -166,7 +78,7 @@ Summary run_hybrid_plate_fit(const HybridPlateFitOptions& o) {
   report_fit(s, "dynamic", rd, 0.01, std::string(kPaper) + ": errors up to 7.9 %; goal 1 %");
 
   QuasiStaticOptions qs;
-  qs.instants = mid_swing(t, o);
+  qs.instants = mid_swing_instants(t, o);
   qs.dt = t.qs_dt;
   const QuasiStaticObjective quasi(t.factory, t.qs_truth, qs);
   t0 = std::chrono::steady_clock::now();
@@ -187,8 +99,8 @@ Summary run_hybrid_plate_noise(const HybridPlateFitOptions& o) {
   Summary s("validation", "fit_noise",
             "hybrid plate twin with the target perturbed at fin-track's accuracy: parameter errors and 95 % interval "
             "coverage over noise seeds");
-  const Twin t = make_twin(o, true);
-  const ParameterSpace space = twin_space(*t.factory);
+  const HybridPlateTwinRun t = make_hybrid_plate_twin(o, true);
+  const ParameterSpace space = hybrid_plate_space(*t.factory);
   const Eigen::VectorXd truth = space.truth();
   // Isotropic Gaussian per node: E|e| = sigma 2 sqrt(2/pi) for three components.
   const double sigma = o.noise_over_chord * t.plate.chord / (2 * std::sqrt(2 / std::numbers::pi));
@@ -204,15 +116,15 @@ Summary run_hybrid_plate_noise(const HybridPlateFitOptions& o) {
     FitOptions f = with_progress(o.fit, "fit_noise seed " + std::to_string(seed));
     if (o.noise_objective == "dynamic") {
       int substeps = 1;
-      Twin view = t;
+      HybridPlateTwinRun view = t;
       view.truth = noisy;
       DynamicObjectiveOptions dy;
-      TargetMotion compared = last_period(view, o, &substeps);
+      TargetMotion compared = last_period_frames(view, o, &substeps);
       dy.substeps = substeps;
       r = run_fit(space, DynamicObjective(t.factory, compared, dy), f, "dynamic");
     } else {
       QuasiStaticOptions qs;
-      qs.instants = mid_swing(t, o);
+      qs.instants = mid_swing_instants(t, o);
       qs.dt = t.qs_dt;
       r = run_fit(space, QuasiStaticObjective(t.factory, noisy, qs), f, "quasi_static");
     }
@@ -237,10 +149,10 @@ Summary run_hybrid_plate_noise(const HybridPlateFitOptions& o) {
 Summary run_hybrid_plate_identifiability(const HybridPlateFitOptions& o) {
   Summary s("validation", "fit_identifiability",
             "eq. (2) on the hybrid plate with the loads removed: the modulus scale must be reported not identified");
-  const Twin t = make_twin(o, false);
-  const ParameterSpace space = twin_space(*t.factory);
+  const HybridPlateTwinRun t = make_hybrid_plate_twin(o, false);
+  const ParameterSpace space = hybrid_plate_space(*t.factory);
   QuasiStaticOptions qs;
-  qs.instants = mid_swing(t, o);
+  qs.instants = mid_swing_instants(t, o);
   qs.dt = t.qs_dt;
   const FitResult r = run_fit(space, QuasiStaticObjective(t.factory, t.qs_truth, qs),
                               with_progress(o.fit, "fit_identifiability"), "quasi_static");

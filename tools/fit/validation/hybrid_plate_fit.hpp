@@ -18,27 +18,11 @@
 
 #include "core/summary.hpp"
 #include "fit/fit_driver.hpp"
+#include "fit/validation/hybrid_plate_setup.hpp"
 
 namespace finverse::fit::validation {
 
-struct HybridPlateFitOptions {
-  std::filesystem::path case_file;  // data/cases/hybrid_plate_small_heave.json
-  int nx = 8, nz = 8;               // plate grid (the beams must lie on grid lines)
-  double periods = 2;               // simulated from rest; the last one is compared by eq. (1)
-  // Each objective is compared with a truth computed at its own time step, so that the twin
-  // measures the fit and not the time-discretisation error: eq. (1) runs generalized-alpha with
-  // steps_per_period; eq. (2)'s increments come from a truth at qs_steps_per_period (the paper's
-  // T/400).
-  int steps_per_period = 100;
-  int qs_steps_per_period = 400;
-  int compared_frames = 20;         // eq. (1): frames compared over the last period
-  int instants = 1;                 // eq. (2): mid-swing instants (1: the paper's one)
-  // Fluid density of the thin-airfoil loads relative to the case's (1). The loads of the rigid
-  // heave do not relax as the plate deflects (no flow feedback): with the case's A = 0.1 c the
-  // soft middle beam would deflect tens of chords and Newton stalls at full density, so the fit
-  // cases run data/cases/hybrid_plate_small_heave.json (A = 0.001 c) at full density, where the
-  // loads dominate the plate's own inertia as eq. (2) assumes.
-  double load_scale = 1;
+struct HybridPlateFitOptions : HybridPlateSetup {
   FitOptions fit;                   // runs, population, generations, seed, threads
   // hybrid_plate: also write the eq. (2) fit as materials.h5 (the golden-file regression test)
   std::filesystem::path materials_out;
