@@ -1,23 +1,11 @@
-// Twin experiment on the uniform plate of the seed paper's sections 3.2-3.3 (Table 2): the
-// flexible rectangular plate (span over chord W/L = 0.54) pitching about its leading edge,
-// alpha0 = 12 deg, f = f0 L/U = 1, E/(rho_f U^2) = 6e6, nu = 0.25, mass ratio
-// m = rho_s h/(rho_f L) = 0.1 and K = D/(rho_f U^2 L^3) = 0.5 with D = E h^3/(12 (1 - nu^2))
-// (Dai et al. 2012's definition; the paper's "rho_s" in K is a slip: with rho_s the numbers do
-// not close). Nondimensional units rho_f = U = L = 1, so
-//     h     = (12 (1 - nu^2) K / E)^(1/3) = 9.787e-3 L
-//     rho_s = m / h                       = 10.22 rho_f
-// (UniformPlateCase::thickness(), density()). A model factory whose parameters are the paper's
-// two unknowns "E" and "nu", the plate of shell triangles built by fem::validation::
-// build_hybrid_plate with no beams (same mesh, same leading-edge set), the leading edge's
-// translations and its rotations about x and y held, its rotation about the span axis z
-// prescribed = the pitch; and the truth target: the dynamic run with the true E, nu.
-//
-// The pitch starts smoothly from rest: theta(t) = alpha0 r(t) sin(2 pi f t), with the ramp
-// r(t) = (1 - cos(pi t / T_r)) / 2 for t < T_r = ramp_periods / f and 1 after. theta, its rate and
-// acceleration vanish at t = 0, and since sin(2 pi f T_r) = 0 for whole ramp periods, theta is
-// twice continuously differentiable at T_r as well (the added-mass loads follow thetaddot).
-// Nose up is positive, as thin_airfoil_loads.hpp (y = -x theta for small theta): the leading
-// edge's rotation vector about +z is -theta.
+// Twin of the seed paper's uniform plate (sections 3.2-3.3, Table 2): a plate of W/L = 0.54
+// pitching about its leading edge, alpha0 = 12 deg, f L/U = 1, E/(rho_f U^2) = 6e6, nu = 0.25,
+// mass ratio rho_s h/(rho_f L) = 0.1, K = E h^3/(12 (1 - nu^2))/(rho_f U^2 L^3) = 0.5 (Dai et
+// al. 2012's K; with the paper's rho_s the numbers do not close): h = 9.787e-3 L, rho_s = 10.22.
+// Parameters "E" and "nu"; shells of build_hybrid_plate without beams; the leading edge held but
+// for its rotation about the span, prescribed = -theta (nose up positive, thin_airfoil_loads.hpp).
+// The pitch starts from rest, theta = alpha0 r(t) sin(2 pi f t), r = (1 - cos(pi t/T_r))/2 up to
+// T_r (whole periods), so theta is C2 and the added-mass loads have no jump.
 #pragma once
 
 #include <vector>
