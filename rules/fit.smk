@@ -56,12 +56,12 @@ _FIT_CASES = {
     ),
     "fit_hybrid_plate": (
         "hybrid plate twin: E_s, E_b1..3, nu by eq. (1) within 1 % and eq. (2) within 5 %, eq. (2) >= 25x faster",
-        "hybrid_plate --case " + _HYBRID_PLATE + " --runs 2 --population 40 --generations 40",
+        "hybrid_plate --case " + _HYBRID_PLATE + " --runs 1 --population 20 --generations 15 --polish-evaluations 150",
         "hybrid_plate --case " + _HYBRID_PLATE + " --nx 4 --nz 4 --runs 1 --population 10 --generations 3",
     ),
     "fit_noise": (
         "hybrid plate twin, target with fin-track's noise: errors and 95 % interval coverage over 10 seeds",
-        "noise --case " + _HYBRID_PLATE + " --runs 1 --population 20 --generations 15 --noise-seeds 10",
+        "noise --case " + _HYBRID_PLATE + " --runs 1 --population 20 --generations 15 --polish-evaluations 150 --noise-seeds 10",
         "noise --case " + _HYBRID_PLATE + " --nx 4 --nz 4 --runs 1 --population 10 --generations 2 --noise-seeds 2",
     ),
     "fit_identifiability": (
