@@ -2,6 +2,7 @@
 #include "fit/io/file_fit.hpp"
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -46,10 +47,12 @@ std::vector<double> quasi_static_instants(const FileFitOptions& o, const TargetM
     const double want = t_lo + s * span;
     // Snap to the nearest target frame inside the range: the target increment is then a sample
     // difference, not an interpolation.
-    double best = want;
+    double best = want, distance = std::numeric_limits<double>::infinity();
     for (double tf : target.times)
-      if (tf >= t_lo && tf <= t_lo + span && std::abs(tf - want) < std::abs(best - want) + (best == want ? 1e300 : 0))
+      if (tf >= t_lo && tf <= t_lo + span && std::abs(tf - want) < distance) {
         best = tf;
+        distance = std::abs(tf - want);
+      }
     t.push_back(best);
   }
   return t;
