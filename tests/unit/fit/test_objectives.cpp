@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "fit_test_util.hpp"
+
 #include "fem/quasi_static_increment.hpp"
 #include "fem/static_solver.hpp"
 #include "fem/structural_run.hpp"
@@ -33,17 +35,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// data/cases/hybrid_plate.json (nondimensional: rho_f = U = chord = 1).
-fem::validation::HybridPlateCase plate_case() {
-  fem::validation::HybridPlateCase c;
-  c.chord = 1.0, c.span = 1.0, c.thickness = 0.01;
-  c.plate = {"plate", 1e5, 0.3, 10.0};
-  const double E[3] = {1e8, 1e7, 5e7}, z[3] = {-0.5, 0.0, 0.5};
-  for (int b = 0; b < 3; ++b)
-    c.beams.push_back({"b" + std::to_string(b + 1), z[b], {"b", E[b], 0.3, 10.0}, 0.04, 0.02});
-  c.heave_amplitude = 0.1, c.frequency = 0.5, c.periods = 2, c.time_step = 0.005;
-  return c;
-}
+using fit::test::hybrid_plate_case;
+fem::validation::HybridPlateCase plate_case() { return hybrid_plate_case(); }
 
 constexpr double kFrame = 0.05;  // output interval of the twin runs (1/40 period)
 

@@ -4,6 +4,8 @@
 // evaluations; the driver's result is reproducible and survives an interruption.
 #include <gtest/gtest.h>
 
+#include "fit_test_util.hpp"
+
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -55,14 +57,7 @@ const Eigen::Vector3d decay_truth(2.0, 0.5, 0.1);
 double decay_model(const Eigen::VectorXd& p, double t) { return p(0) * std::exp(-t / p(1)) + p(2); }
 
 fit::ParameterSpace decay_space() {
-  auto param = [](const char* name, double lo, double hi, fit::Scale s) {
-    fit::Parameter p;
-    p.name = name;
-    p.lower = lo;
-    p.upper = hi;
-    p.scale = s;
-    return p;
-  };
+  using fit::test::param;
   return fit::ParameterSpace({param("a", 0.1, 10, fit::Scale::log10), param("tau", 0.05, 5, fit::Scale::log10),
                               param("c", -1, 1, fit::Scale::linear)});
 }
@@ -365,14 +360,7 @@ TEST(LevenbergMarquardt, ConvergesFromNearbyInFewEvaluations) {
 
 TEST(LevenbergMarquardt, StaysInsideTheBox) {
   // Truth tau = 0.5 outside a box capped at 0.3: the polish ends on the bound.
-  auto param = [](const char* name, double lo, double hi, fit::Scale s) {
-    fit::Parameter p;
-    p.name = name;
-    p.lower = lo;
-    p.upper = hi;
-    p.scale = s;
-    return p;
-  };
+  using fit::test::param;
   const fit::ParameterSpace space({param("a", 0.1, 10, fit::Scale::log10), param("tau", 0.05, 0.3, fit::Scale::log10),
                                    param("c", -1, 1, fit::Scale::linear)});
   const LambdaResidual f = decay_function();

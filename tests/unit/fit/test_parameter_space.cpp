@@ -1,6 +1,8 @@
 // Parameter space: validation messages, the JSON specification, the scaled <-> physical maps.
 #include <gtest/gtest.h>
 
+#include "fit_test_util.hpp"
+
 #include <cmath>
 
 #include "fit/errors.hpp"
@@ -11,14 +13,7 @@ namespace fit = finverse::fit;
 
 namespace {
 
-fit::Parameter param(const std::string& name, double lo, double hi, fit::Scale s = fit::Scale::log10) {
-  fit::Parameter p;
-  p.name = name;
-  p.lower = lo;
-  p.upper = hi;
-  p.scale = s;
-  return p;
-}
+using fit::test::param;
 
 // The message of the InvalidInput thrown by f, or "" when nothing is thrown.
 template <class F>

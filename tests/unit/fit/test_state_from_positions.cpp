@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "fit_test_util.hpp"
+
 #include "fem/model.hpp"
 #include "fem/rotation.hpp"
 #include "fem/validation/hybrid_plate_model.hpp"
@@ -17,16 +19,8 @@ using fem::Vec3;
 
 namespace {
 
-fem::validation::HybridPlateCase plate_case() {
-  fem::validation::HybridPlateCase c;
-  c.chord = 1.0, c.span = 1.0, c.thickness = 0.01;
-  c.plate = {"plate", 1e5, 0.3, 10.0};
-  const double E[3] = {1e8, 1e7, 5e7}, z[3] = {-0.5, 0.0, 0.5};
-  for (int b = 0; b < 3; ++b)
-    c.beams.push_back({"b" + std::to_string(b + 1), z[b], {"b", E[b], 0.3, 10.0}, 0.04, 0.02});
-  c.heave_amplitude = 0.1, c.frequency = 0.5, c.periods = 2, c.time_step = 0.005;
-  return c;
-}
+using fit::test::hybrid_plate_case;
+fem::validation::HybridPlateCase plate_case() { return hybrid_plate_case(); }
 
 // A straight beam of n elements along x, length 1.
 fem::Model straight_beam(int n) {

@@ -3,6 +3,8 @@
 // decades, and the scale direction of a ratio-only model are all reported not identified.
 #include <gtest/gtest.h>
 
+#include "fit_test_util.hpp"
+
 #include <cmath>
 #include <random>
 
@@ -15,14 +17,7 @@ namespace fit = finverse::fit;
 
 namespace {
 
-fit::Parameter param(const std::string& name, double lo, double hi, fit::Scale s) {
-  fit::Parameter p;
-  p.name = name;
-  p.lower = lo;
-  p.upper = hi;
-  p.scale = s;
-  return p;
-}
+using fit::test::param;
 
 // A linear model r = A z - b with fixed pseudo-random A and b (m = 60 residuals, n = 3).
 struct Linear {
