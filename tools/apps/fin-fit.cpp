@@ -1,19 +1,11 @@
-// fin-fit: the inverse fit of the fin's material parameters (DESIGN.md section 5.4, issue 31):
-// the GA (pagmo2) over the nonlinear FEM, optionally CMA-ES, a Levenberg-Marquardt polish from
-// every champion, and the uncertainty at the optimum. Exit 0 on success, 2 on bad input (one
-// line naming the file, dataset or flag; no materials.h5 written).
-//
+// fin-fit: the inverse fit of the fin's material parameters (DESIGN.md 5.4, issue 31). Exit 0 on
+// success, 1 when a validation metric misses, 2 on bad input (one line; no materials.h5 written).
 //   fin-fit run --mesh mesh.h5 --motion motion.h5 --loads loads.h5 --materials materials.json
 //       --out materials.h5 [--summary fit_summary.json] [--parameters spec.json]
-//       [--objective quasi_static|dynamic] [--instant-count 4] [--runs 6] [--population 120]
-//       [--generations 200] [--methods ga,cmaes] [--seed 1] [--checkpoint fit.ckpt --resume]
-//
-// Validation cases (tools/fit/validation), writing <out-dir>/<case>/summary.json; exit 0 when
-// every metric passes, 1 when one misses:
-//   fin-fit uniform_plate                                          sec. 3.3 pitching plate, eq. (1)
+//       [--objective quasi_static|dynamic] [--instant-count 4] [--runs 6] [--methods ga,cmaes]
+//   fin-fit uniform_plate                                            sec. 3.3 twin, eq. (1)
 //   fin-fit hybrid_plate --case data/cases/hybrid_plate_small_heave.json   eq. (1), eq. (2)
-//   fin-fit noise --case ...                                      errors and interval coverage
-//   fin-fit identifiability --case ...                            no loads: scale not identified
+//   fin-fit noise | identifiability --case ...                       noise; no loads
 #include <chrono>
 #include <filesystem>
 #include <iostream>

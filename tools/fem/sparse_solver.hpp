@@ -1,27 +1,11 @@
-// Sparse symmetric direct solver with symbolic-factorisation reuse.
-//
-// The matrices come from Assembler (upper triangle, fixed pattern), so the ordering and symbolic
-// analysis are done once and only the numeric factorisation is repeated per Newton iteration /
-// time step. The analysis is redone automatically if the pattern ever changes.
-//
-// Backends:
-//   cholmod         CHOLMOD supernodal LL^T (SuiteSparse 5.12, AMD/METIS ordering) through
-//                   Eigen's CholmodSupport. Fails on an indefinite matrix (a tangent past a
-//                   buckling point); then this factorisation falls back to simplicial LDL^T.
-//   simplicial_ldlt Eigen::SimplicialLDLT (AMD ordering), also handles indefinite matrices.
-//   sparse_lu       Eigen::SparseLU (COLAMD ordering) of a FULL (non-symmetric) matrix, for the
-//                   consistent non-symmetric tangent (Assembler with full_matrix). Not selectable
-//                   by name: it needs the full matrix, which only StaticOptions::unsymmetric_tangent
-//                   assembles. Singularity: a zero pivot reported by SparseLU.
-//   umfpack         UMFPACK (SuiteSparse 5.12) LU of the full matrix, same use as sparse_lu.
-// Defaults: cholmod for the symmetric matrices, umfpack for the LU, the faster of each pair per
-// numeric refactorisation (timings: docs/studies/fem_sparse_solver.md).
-//
-// Singularity: a free rigid-body mode shows up as a pivot at round-off level. The symmetric
-// paths factor the diagonally equilibrated matrix S A S (s_i = |a_ii|^-1/2), so that the
-// reciprocal condition estimate (min/max pivot), tested against 1e-13, measures singularity and
-// not the mix of rotation and translation units; SingularMatrix names the equation (callers map
-// it to node and DOF).
+// Sparse symmetric direct solver with symbolic-factorisation reuse: the ordering and symbolic
+// analysis are done once per pattern (Assembler's upper triangle), the numeric factorisation per
+// Newton iteration. Backends: cholmod (supernodal LL^T; on an indefinite tangent it falls back to
+// simplicial LDL^T), simplicial_ldlt, and for the full non-symmetric tangent sparse_lu / umfpack
+// (timings: docs/studies/fem_sparse_solver.md).
+// Singularity: the symmetric paths factor the equilibrated S A S (s_i = |a_ii|^-1/2), so the pivot
+// ratio tested against 1e-13 measures singularity, not the mix of rotation and translation units;
+// SingularMatrix names the equation.
 #pragma once
 
 #include <functional>

@@ -1,17 +1,9 @@
-// The fin's material parameters (DESIGN.md section 5.4, issue 31) and the model factory that
-// maps them onto the fin model of fin-fem (fem/io/fin_model.hpp):
-//   "E_membrane"  Young's modulus of the membrane (shell region 0)
-//   "E_ray<id>"   of the ray with mesh.h5 id <id> (beams/ray)
-//   "E_rays"      of every ray (a single ray modulus; an "E_ray<id>" also given overrides it)
-//   "nu"          one Poisson ratio for the membrane and every ray
-// Parameters not listed keep the materials file's values (shell regions other than 0 always do);
-// the distal softening and the modulation of the materials file apply on top of the parameters.
-// The drive is that of `fin-fem run` (fem/io/file_run.cpp): loads.h5 nodal forces and motion.h5
-// root motion, both ramping up from rest over `ramp` before the first output time (the loads'
-// times if given, else the motion's); ramp 0 means ten output intervals.
-//
-// Default search space for a fin (22 parameters for the 20-ray trout): membrane E in [1e5, 1e8]
-// Pa, each ray's E in [1e7, 1e10] Pa, both log10; nu in [0.15, 0.49] linear.
+// The fin's material parameters (DESIGN.md 5.4) mapped onto fin-fem's fin model
+// (fem/io/fin_model.hpp): "E_membrane" (shell region 0), "E_ray<id>" (mesh ray id), "E_rays"
+// (every ray; an "E_ray<id>" overrides it), "nu" (one Poisson ratio for all). Parameters not
+// listed keep the materials file's values; its distal softening and modulation apply on top.
+// The drive is fin-fem run's (loads.h5 forces and motion.h5 root motion, ramping up from rest).
+// Default fin space: membrane E [1e5, 1e8] Pa, each ray's E [1e7, 1e10] Pa (log10), nu [0.15, 0.49].
 #pragma once
 
 #include <optional>

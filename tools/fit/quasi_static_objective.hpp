@@ -1,21 +1,12 @@
-// The seed paper's eq. (2): the quasi-static objective. At each instant t_j the target shape
-// x_target(t_j) is the base, taken to be in equilibrium; the FEM's displacement increment over
-// [t_j, t_j + dt] under the load increment and the root-motion increment
-// (fem::QuasiStaticIncrement) is compared with the target's:
-//     r_(j,i) = sqrt(w_i) (dx_FE^i(t_j) - dx_target^i(t_j)),  dx_target = x(t_j + dt) - x(t_j),
-// three components per compared node, concatenated over the instants (instant-major). The paper
-// uses one instant (mid-swing, dt = 1/400 period); several identify more.
-//
-// The base state: positions from the target, rotations from a rigid fit of each node's 1-ring
-// (state_from_positions.hpp), and the prescribed (root) DOFs set to the drive's values at t_j,
-// so that the prescribed increment is exactly the drive's (fem::apply_prescribed).
-// Without loads the increment is driven by the root motion alone and scaling every modulus
-// leaves it unchanged: only a load increment makes the modulus scale identifiable (issue 31).
-//
-// Evaluations are thread-safe. Speed lever: models and their solvers (assembler, symbolic
-// factorisation) are kept in a small mutex-guarded cache keyed by the factory's rebuild key, so
-// an evaluation that changes only moduli re-targets a cached model in place
-// (model_factory.hpp) instead of building one. A model is used by one evaluation at a time.
+// The seed paper's eq. (2): at each instant t_j the target shape is the base, taken to be in
+// equilibrium, and the FEM's increment over [t_j, t_j + dt] under the load and root-motion
+// increments (fem::QuasiStaticIncrement) is compared with the target's:
+//     r_(j,i) = sqrt(w_i) (dx_FE^i(t_j) - dx_target^i(t_j)), instant-major.
+// Base rotations come from a rigid fit of each node's 1-ring (state_from_positions.hpp); the
+// prescribed DOFs take the drive's values, so the root increment is exactly the drive's. Without
+// loads, scaling every modulus leaves the increment unchanged (the identifiability trap).
+// Thread-safe; models are cached per rebuild key so that a change of moduli alone re-targets a
+// model in place (model_factory.hpp).
 #pragma once
 
 #include <atomic>

@@ -1,18 +1,10 @@
-// The inverse-fit benchmark (issue 31, "Benchmark"; results/bench/fit.json): on the hybrid plate
-// twin (hybrid_plate_fit.hpp: truth motion from fin-fem with the case's moduli, E_s, E_b1..3, nu
-// fitted back inside three-decade bounds), side by side in one run:
-//   arms        FEM evaluations (cache misses) and wall time until every parameter of the best
-//               point is within `goal` (1 %) of the truth, checked after every generation:
-//                 ga         pagmo GA alone (the seed paper's procedure)
-//                 cmaes      CMA-ES
-//                 ga_polish  the same GA run, with a Levenberg-Marquardt polish from its champion
-//                            every `polish_every` generations (when the champion changed)
-//               graded: the best arm needs <= 1/10 of the GA's evaluations;
-//   rate        evaluations per second of eq. (1) (dynamic) and eq. (2) (quasi-static), one
-//               thread each, on the same random points near the truth;
-//   speed-up    one generation (the same population) of the arms' objective evaluated on 2
-//               threads against 1; graded >= 1.8 (as 1 / speed-up <= 1 / 1.8, Summary has
-//               upper-bound goals only); eq. (1)'s the same way, reported only.
+// The inverse-fit benchmark (issue 31; results/bench/fit.json) on the hybrid plate twin
+// (hybrid_plate_setup.hpp), side by side in one run:
+//   arms      evaluations and wall time until every parameter is within `goal` of the truth:
+//             ga (the paper's procedure), cmaes, ga_polish (the same GA with a Levenberg-Marquardt
+//             polish from each new champion); graded: best arm <= 1/10 of the GA's evaluations;
+//   rate      evaluations per second of eq. (1) and eq. (2), one thread each;
+//   speed-up  one generation on 2 threads against 1, graded >= 1.8 (as 1/speed-up <= 1/1.8).
 #pragma once
 
 #include <filesystem>
