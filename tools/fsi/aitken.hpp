@@ -19,8 +19,9 @@
 // Dot products run over the displacement block X only (the paper's dX) unless displacement_only is
 // false; the same omega relaxes X and V (the paper's step 3). omega is bounded to
 // omega_min <= |omega| <= omega_max keeping its sign (a zero denominator keeps the previous omega).
-// Measured (tests): SeedPaper and IronsTuck differ only by the two extra fixed iterations; which
-// needs fewer iterations per step is printed by test_added_mass_tube.cpp.
+// Measured (fsi_tests, mean iterations per step at relative tolerance 1e-6; linear: one step, 1e-8):
+// added-mass tube rho_f L/m = 10: SeedPaper 14.2, IronsTuck 12.6; rho_f L/m = 100: 23.4 vs 26.7;
+// linear n = 50: 44 vs 43. Neither is consistently faster; IQN-ILS beats both (iqn_ils.hpp).
 #pragma once
 
 #include <vector>

@@ -11,6 +11,12 @@
 // columns become nearly dependent. Without any column (the first iteration of the first step, or
 // of every step when q = 0) the update is constant relaxation with omega0.
 // For a linear H with a full column space this is GMRES-like: at most n + 1 iterations.
+// Defaults, measured in fsi_tests (mean iterations per step, 40 steps of the added-mass tube at
+// rho_f L/m = 10 and 100): q = 0: 8.1 / 10.2, q = 8: 3.2 / 3.6, q = 16: 2.7 / 2.9 (Aitken 12.6-26.7).
+// q = 8 is kept below the best measured (16) because these model problems are linear, where old
+// columns never go stale; in a real FSI run the Jacobian drifts. The filter costs a little on these
+// noise-free problems (eps 0 / 1e-2 / 1e-1: 2.5 / 3.2 / 3.6) and guards conditioning in real ones.
+// Cost: the QR is rebuilt every iteration, O(n c^2): 14 ms per iteration at n = 10^4, c <= 100.
 #pragma once
 
 #include <deque>

@@ -61,8 +61,11 @@ void print(const char* name, const RunResult& r) {
   }
 }
 
-TEST(AddedMassTube, AitkenAndIqnConvergeWherePlainIterationDiverges) {
-  const test::TubeParameters params;
+class AddedMassTube : public ::testing::TestWithParam<double> {};
+
+TEST_P(AddedMassTube, AitkenAndIqnConvergeWherePlainIterationDiverges) {
+  test::TubeParameters params;
+  params.mass = GetParam();
   const test::AddedMassTube tube(params);
   const double radius = tube.plain_iteration_radius(kDt);
   std::printf("[ tube    ] rho_f L / m = %.0f, n = %d, dt = %.3g: plain iteration radius %.2f\n",
@@ -97,12 +100,27 @@ TEST(AddedMassTube, AitkenAndIqnConvergeWherePlainIterationDiverges) {
     EXPECT_LT(r.error, 1e-4);
     if (q == IqnIlsOptions{}.reused_time_steps) iqn_default = r;
   }
+  for (double eps : {0.0, 1e-1}) {  // the QR1 filter threshold (default 1e-2 above)
+    IqnIlsOptions options;
+    options.filter_epsilon = eps;
+    char name[64];
+    std::snprintf(name, sizeof name, "IQN-ILS q = 8, eps = %g", eps);
+    print(name, run(params, std::make_unique<IqnIls>(layout, options)));
+  }
+  {
+    IqnIlsOptions options;
+    options.block_scaling = false;
+    print("IQN-ILS q = 8, no scaling", run(params, std::make_unique<IqnIls>(layout, options)));
+  }
   ASSERT_TRUE(seed.failure.empty()) << seed.failure;
   ASSERT_TRUE(irons.failure.empty()) << irons.failure;
   EXPECT_LT(seed.error, 1e-4);
   EXPECT_LT(irons.error, 1e-4);
   EXPECT_LT(iqn_default.mean, std::min(seed.mean, irons.mean));
 }
+
+// rho_f L / m = 10 and 100 (wall mass 0.1 and 0.01).
+INSTANTIATE_TEST_SUITE_P(MassRatios, AddedMassTube, ::testing::Values(0.1, 0.01));
 
 }  // namespace
 }  // namespace finverse::fsi

@@ -2,6 +2,9 @@
 // columns, finite termination on a linear map, the QR1 filter, reuse and the column limit.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cmath>
+
 #include <Eigen/Dense>
 
 #include "core/error.hpp"
@@ -127,6 +130,54 @@ TEST(IqnIls, ReuseKeepsColumnsOfLastQStepsAndLimitsColumns) {
   bad = IqnIlsOptions{};
   bad.initial_omega = 0.0;
   EXPECT_THROW(IqnIls({n, 0}, bad), Error);
+}
+
+}  // namespace
+}  // namespace finverse::fsi
+
+namespace finverse::fsi {
+namespace {
+
+// The size the brief names: 10^4 interface unknowns, up to 100 columns. A diagonal A suffices
+// (IQN-ILS is invariant under an orthogonal change of basis); spectrum in [-3, 0.5].
+class DiagonalStep : public CoupledStep {
+ public:
+  DiagonalStep(Eigen::VectorXd a, Eigen::VectorXd b) : a_(std::move(a)), b_(std::move(b)) {}
+  void save() override {}
+  void restore() override {}
+  Eigen::VectorXd evaluate(const Eigen::VectorXd& x) override { return a_.cwiseProduct(x) + b_; }
+  Eigen::VectorXd a_, b_;
+};
+
+TEST(IqnIls, TenThousandUnknownsWithHundredColumns) {
+  const int n = 10000, steps = 6;
+  const Eigen::VectorXd a = Eigen::VectorXd::LinSpaced(n, -3.0, 0.5);
+  const Eigen::VectorXd b0 = test::random_vector(n, 21), b1 = test::random_vector(n, 22);
+  DiagonalStep step(a, b0);
+  CouplingOptions options;
+  options.convergence.relative_tolerance = 1e-8;
+  options.predictor = Predictor::Constant;
+  options.max_iterations = 100;
+  IqnIlsOptions iqn_options;  // defaults: q = 8, 100 columns
+  ImplicitCoupling coupling({n, 0}, Eigen::VectorXd::Zero(n),
+                            std::make_unique<IqnIls>(InterfaceLayout{n, 0}, iqn_options), options);
+  int total = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (int s = 1; s <= steps; ++s) {
+    step.b_ = b0 + std::sin(0.05 * s) * b1;
+    total += coupling.advance(step, 0.1).iterations;
+    const Eigen::VectorXd exact = step.b_.cwiseQuotient((1.0 - a.array()).matrix());
+    EXPECT_LT((coupling.state() - exact).norm(), 1e-6 * exact.norm());
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto& iqn = dynamic_cast<const IqnIls&>(coupling.acceleration());
+  std::printf("[ IQN-ILS ] n = %d, %d steps: %d iterations (mean %.1f), %d columns held, "
+              "%.1f ms per iteration\n",
+              n, steps, total, static_cast<double>(total) / steps, iqn.columns(),
+              1e3 * seconds / total);
+  EXPECT_LE(iqn.columns(), 100);
+  EXPECT_LT(seconds / total, 1.0);
 }
 
 }  // namespace
