@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "fem/errors.hpp"
@@ -31,6 +32,7 @@ GeneralizedAlpha::GeneralizedAlpha(const Model& model, DynamicOptions options)
       dofs_((model.validate(), model)),
       assembler_(model_, dofs_),
       solver_(options.backend),
+      predictor_solver_(options.backend),
       lchar_(model.characteristic_length()) {
   if (!(opt_.time_step > 0) || !std::isfinite(opt_.time_step))
     throw InvalidInput("generalized-alpha: time step must be > 0, got " + std::to_string(opt_.time_step));
@@ -42,6 +44,25 @@ GeneralizedAlpha::GeneralizedAlpha(const Model& model, DynamicOptions options)
   gamma_ = 0.5 - am_ + af_;
   beta_ = 0.25 * (1 - am_ + af_) * (1 - am_ + af_);
   solver_.set_equation_names([this](int eq) { return describe_equation(dofs_, eq); });
+  predictor_solver_.set_equation_names([this](int eq) { return describe_equation(dofs_, eq); });
+}
+
+void GeneralizedAlpha::check_added_load(const Eigen::VectorXd& f) const {
+  if (f.size() == 0) return;
+  if (f.size() != dofs_.total())
+    throw InvalidInput("generalized-alpha: added load has " + std::to_string(f.size()) +
+                       " entries, expected " + std::to_string(dofs_.total()) + " (6 per node)");
+  if (!f.allFinite()) throw InvalidInput("generalized-alpha: added load is not finite");
+}
+
+void GeneralizedAlpha::restore(const Snapshot& s) {
+  if (s.initialized && s.old_terms.size() != dofs_.total())
+    throw InvalidInput("generalized-alpha: snapshot of another model (old terms have " +
+                       std::to_string(s.old_terms.size()) + " entries, expected " +
+                       std::to_string(dofs_.total()) + ")");
+  old_terms_ = s.old_terms;
+  force_scale_ = s.force_scale;
+  initialized_ = s.initialized;
 }
 
 DynamicState GeneralizedAlpha::reference_state(double t0) const {
@@ -53,7 +74,7 @@ DynamicState GeneralizedAlpha::reference_state(double t0) const {
   return s;
 }
 
-void GeneralizedAlpha::store_old_terms(const DynamicState& s) {
+void GeneralizedAlpha::store_old_terms(const DynamicState& s, const Eigen::VectorXd& added) {
   AssemblyRequest req;
   const bool stiff_damping = opt_.rayleigh_stiffness != 0;
   Eigen::VectorXd w = s.acceleration * am_ + s.velocity * (af_ * opt_.rayleigh_mass);
@@ -61,12 +82,19 @@ void GeneralizedAlpha::store_old_terms(const DynamicState& s) {
   if (stiff_damping) req.stiffness_times = &s.velocity;
   req.time = s.time;
   assembler_.assemble(s.configuration, req);
-  old_terms_ = assembler_.mass_product() + af_ * (assembler_.internal_force() -
-                                                  model_.external_load(s.time));
+  if (added.size() == 0)
+    old_terms_ = assembler_.mass_product() + af_ * (assembler_.internal_force() -
+                                                    model_.external_load(s.time));
+  else
+    old_terms_ = assembler_.mass_product() + af_ * (assembler_.internal_force() -
+                                                    (model_.external_load(s.time) + added));
   if (stiff_damping) old_terms_ += af_ * opt_.rayleigh_stiffness * assembler_.stiffness_product();
 }
 
-void GeneralizedAlpha::initialize(DynamicState& s) {
+void GeneralizedAlpha::initialize(DynamicState& s) { initialize(s, Eigen::VectorXd()); }
+
+void GeneralizedAlpha::initialize(DynamicState& s, const Eigen::VectorXd& added) {
+  check_added_load(added);
   const int nt = dofs_.total();
   if (s.velocity.size() != nt) s.velocity = Eigen::VectorXd::Zero(nt);
   s.acceleration = Eigen::VectorXd::Zero(nt);
@@ -88,22 +116,30 @@ void GeneralizedAlpha::initialize(DynamicState& s) {
   assembler_.assemble(s.configuration, req);
   Eigen::VectorXd rhs = model_.external_load(s.time) - assembler_.internal_force() -
                         assembler_.mass_product();
+  if (added.size() != 0) rhs += added;
   if (opt_.rayleigh_stiffness != 0) rhs -= opt_.rayleigh_stiffness * assembler_.stiffness_product();
   SparseSolver mass_solver(opt_.backend);
   mass_solver.set_equation_names([this](int eq) { return describe_equation(dofs_, eq); });
   mass_solver.factorize(assembler_.matrix(), "mass matrix");
   const Eigen::VectorXd af = mass_solver.solve(dofs_.gather_free(rhs));
   for (int i = 0; i < dofs_.free(); ++i) s.acceleration(dofs_.free_to_global()[i]) = af(i);
-  store_old_terms(s);
+  store_old_terms(s, added);
   initialized_ = true;
 }
 
-DynamicStepInfo GeneralizedAlpha::step(DynamicState& s) {
-  if (!initialized_) initialize(s);
+DynamicStepInfo GeneralizedAlpha::step(DynamicState& s) { return step(s, Eigen::VectorXd()); }
+
+DynamicStepInfo GeneralizedAlpha::step(DynamicState& s, const Eigen::VectorXd& added) {
+  check_added_load(added);
+  // Without a previous step the start load is the one at s.time; an added load given only now
+  // counts as already acting at the start (a sudden load at t_n).
+  if (!initialized_) initialize(s, added);
   const double h = opt_.time_step;
   const double t1 = s.time + h;
   const double aM = opt_.rayleigh_mass, aK = opt_.rayleigh_stiffness;
-  const Eigen::VectorXd f_ext = (1 - af_) * model_.external_load(t1);
+  const Eigen::VectorXd f_ext = added.size() == 0
+                                    ? Eigen::VectorXd((1 - af_) * model_.external_load(t1))
+                                    : Eigen::VectorXd((1 - af_) * (model_.external_load(t1) + added));
 
   // Predictor: prescribed DOFs to their new values, free DOFs with constant acceleration.
   NodalState x = s.configuration;
@@ -131,6 +167,13 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s) {
   DynamicStepInfo info;
   Eigen::VectorXd a1, v1, w;
   double r0 = 0, floor = 0, last_inc = INFINITY, step_norm = 0;
+  const SparseSolver* current = &solver_;
+  // Scaled norm (translations / lchar) of increments resolved only to position round-off.
+  const double inc_floor =
+      opt_.increment_roundoff_floor
+          ? 10 * std::numeric_limits<double>::epsilon() * std::sqrt(double(dofs_.free())) *
+                std::max(model_.position_scale() / lchar_, 1.0)
+          : 0.0;
   for (int it = 0;; ++it) {
     const Eigen::VectorXd d = configuration_difference(s.configuration, x);
     a1 = c_a * (d - h * s.velocity - (h * h * (0.5 - beta_)) * s.acceleration);
@@ -170,11 +213,22 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s) {
       throw NotConverged(os.str());
     }
     // Modified Newton once close: the previous factorisation still contracts the small residual.
-    if (it == 0 || rn > 1e-6) {
+    if (it == 0 && opt_.reuse_predictor_factorization) {
+      const auto& A = assembler_.matrix();
+      const double* v = A.valuePtr();
+      if (predictor_values_.size() != static_cast<std::size_t>(A.nonZeros()) ||
+          !std::equal(predictor_values_.begin(), predictor_values_.end(), v)) {
+        predictor_solver_.factorize(A, "effective stiffness");
+        ++info.factorizations;
+        predictor_values_.assign(v, v + A.nonZeros());
+      }
+      current = &predictor_solver_;
+    } else if (it == 0 || rn > 1e-6) {
       solver_.factorize(assembler_.matrix(), "effective stiffness");
       ++info.factorizations;
+      current = &solver_;
     }
-    const Eigen::VectorXd du = solver_.solve(r);
+    const Eigen::VectorXd du = current->solve(r);
     const double inc = scaled_increment_norm(dofs_, du, lchar_);
     if (it == 0) {
       double dn = 0;
@@ -184,7 +238,9 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s) {
       }
       step_norm = std::max(std::sqrt(dn), inc);
     }
-    last_inc = inc / std::max(step_norm, 1e-300);
+    // Increments at the round-off of the positions count as zero (option): a step under a load
+    // near zero (the start of an FSI ramp) moves so little that 1e-9 of its increment is noise.
+    last_inc = (inc_floor > 0 ? std::max(inc - inc_floor, 0.0) : inc) / std::max(step_norm, 1e-300);
     x.apply_increment(dofs_.scatter_free(du));
     info.iterations = it + 1;
   }
@@ -192,7 +248,7 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s) {
   s.velocity = v1;
   s.acceleration = a1;
   s.time = t1;
-  store_old_terms(s);
+  store_old_terms(s, added);
   return info;
 }
 

@@ -20,6 +20,8 @@
 // relations, so prescribed root motion enters consistently.
 #pragma once
 
+#include <vector>
+
 #include "fem/assembly.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/model.hpp"
@@ -36,6 +38,15 @@ struct DynamicOptions {
   double residual_tolerance = 1e-9;
   double increment_tolerance = 1e-9;  // relative to the step's increment
   SolverBackend backend = SolverBackend::cholmod;
+  // Keep the factorisation of the first Newton iteration's matrix and reuse it when a later step
+  // assembles a bitwise-equal one: the case of FSI coupling iterations, which all restart from the
+  // same saved state and predictor (coupled_structure.hpp). Results are unchanged; costs a second
+  // factorisation's memory and one comparison of the matrix values per step.
+  bool reuse_predictor_factorization = false;
+  // Treat Newton increments below the position round-off (10 eps sqrt(n) |x|max, scaled like the
+  // increment norm) as zero in the increment test: a step that hardly moves (an FSI load ramp
+  // starting from zero) otherwise cannot meet increment_tolerance relative to its own increment.
+  bool increment_roundoff_floor = false;
 };
 
 struct DynamicState {
@@ -53,6 +64,14 @@ struct DynamicStepInfo {
 
 class GeneralizedAlpha {
  public:
+  // The integrator's memory between steps, besides the DynamicState: what a restart of a step
+  // from a saved state needs (FSI coupling iterations) to reproduce it bit for bit.
+  struct Snapshot {
+    Eigen::VectorXd old_terms;
+    double force_scale = 0;
+    bool initialized = false;
+  };
+
   GeneralizedAlpha(const Model& model, DynamicOptions options);
 
   // State at rest in the reference configuration at time t0.
@@ -61,6 +80,17 @@ class GeneralizedAlpha {
   // and the prescribed ones from the prescribed functions.
   void initialize(DynamicState& state);
   DynamicStepInfo step(DynamicState& state);
+  // The same with an added external load (full length, 6 per node, e.g. FSI interface forces) on
+  // top of Model::external_load: for initialize() at state.time, for step() at the step's end
+  // t_{n+1}. The load at the step's start is the one given to the previous step (or to
+  // initialize), remembered in the old-step terms, so the balance at t_{n+1-alpha_f} sees
+  // (1 - alpha_f) f_{n+1} + alpha_f f_n. An empty vector means zero (and gives bitwise the results
+  // of the overloads without it).
+  void initialize(DynamicState& state, const Eigen::VectorXd& added_load);
+  DynamicStepInfo step(DynamicState& state, const Eigen::VectorXd& added_load);
+
+  Snapshot snapshot() const { return {old_terms_, force_scale_, initialized_}; }
+  void restore(const Snapshot& snapshot);
 
   double kinetic_energy(const DynamicState& state);
   double strain_energy(const DynamicState& state) const;
@@ -74,13 +104,17 @@ class GeneralizedAlpha {
 
  private:
   // alpha-weighted old-step terms: alpha_m M_n a_n + alpha_f (f_int,n + C_n v_n - f_ext,n)
-  void store_old_terms(const DynamicState& state);
+  void store_old_terms(const DynamicState& state, const Eigen::VectorXd& added_load);
+  void check_added_load(const Eigen::VectorXd& added_load) const;
 
   const Model& model_;
   DynamicOptions opt_;
   DofMap dofs_;
   Assembler assembler_;
   SparseSolver solver_;
+  // reuse_predictor_factorization: the first iteration's matrix values and their factorisation.
+  SparseSolver predictor_solver_;
+  std::vector<double> predictor_values_;
   double am_, af_, beta_, gamma_;
   double lchar_;
   Eigen::VectorXd old_terms_;  // full length

@@ -74,51 +74,27 @@ struct Flag {
                          ": geometry inconsistent (point A must be the tip centre of a flag "
                          "starting at the cylinder's rear, thickness < diameter)");
   }
-  // Left end: the cylinder arc, or a straight cut at the arc's corner abscissa.
-  double clamp_x(double y, bool straight) const {
-    const double dy = straight ? 0.5 * thickness : y - yc;
-    return xc + std::sqrt(radius * radius - dy * dy);
-  }
 };
 
-struct FlagModel {
-  Model model;
-  int point_a = 0;  // model node at A
-  int dofs = 0;     // free DOFs
-  double mass = 0;
-};
-
-// Builds the meshed, clamped flag. Gravity enters as the model's gravity (applied at once:
-// dynamics) or, with `gravity_as_load`, as nodal loads scaled by the load factor (statics with
-// load stepping: Model applies its own gravity at full value for every load factor).
-void build_flag(FlagModel& fm, const Flag& flag, const FlagMesh& mesh, bool straight_clamp,
-                bool gravity_as_load) {
-  StripSpec spec;
-  spec.x_begin = [&flag, straight_clamp](double y) { return flag.clamp_x(y, straight_clamp); };
-  spec.x_end = flag.xa;
-  spec.y0 = flag.yc - 0.5 * flag.thickness;
-  spec.y1 = flag.yc + 0.5 * flag.thickness;
-  spec.nx = mesh.nx;
-  spec.ny = mesh.ny;
-  spec.grading_x = mesh.grading;
-  const StructuredMeshQ9 m = mesh_strip_q9(spec);
-  const Material solid{"flag", flag.E, flag.nu, flag.rho};
-  Model& model = fm.model;
-  model.add_material(solid);
-  const std::vector<int> id = add_plane_strain_mesh(model, m, solid);
-  for (int j = 0; j <= 2 * m.ny; ++j) {
-    model.fix(id[m.node(0, j)], 0);
-    model.fix(id[m.node(0, j)], 1);
-  }
-  fm.point_a = id[m.node(2 * m.nx, m.ny)];
-  model.set_gravity(Vec3(0, -flag.g, 0));
-  if (gravity_as_load) {
-    const Eigen::VectorXd fg = model.gravity_load();
-    model.set_gravity(Vec3::Zero());
-    for (int g = 0; g < fg.size(); ++g)
-      if (fg(g) != 0) model.add_nodal_load(g / kDofsPerNode, g % kDofsPerNode, fg(g));
-  }
-  fm.mass = model.total_mass();
+// Builds the meshed, clamped flag (turek_hron_flag.hpp). Gravity enters as the model's gravity
+// (applied at once: dynamics) or, with `gravity_as_load`, as nodal loads scaled by the load factor
+// (statics with load stepping: Model applies its own gravity at full value for every load factor).
+TurekHronFlag build_flag(const Flag& flag, const FlagMesh& mesh, bool straight_clamp,
+                         bool gravity_as_load) {
+  TurekHronFlagSpec spec;
+  spec.xc = flag.xc;
+  spec.yc = flag.yc;
+  spec.radius = flag.radius;
+  spec.x_tip = flag.xa;
+  spec.thickness = flag.thickness;
+  spec.youngs_modulus = flag.E;
+  spec.poisson_ratio = flag.nu;
+  spec.density = flag.rho;
+  spec.gravity = flag.g;
+  spec.gravity_as_load = gravity_as_load;
+  spec.mesh = mesh;
+  spec.straight_clamp = straight_clamp;
+  return build_turek_hron_flag(spec);
 }
 
 std::string mesh_name(const FlagMesh& m) {
@@ -228,8 +204,7 @@ Summary run_turek_hron_csm_static(const CsmStaticOptions& opt) {
   std::vector<double> ux, uy;
   for (const FlagMesh& mesh : meshes) {
     const auto t0 = std::chrono::steady_clock::now();
-    FlagModel fm;
-    build_flag(fm, flag, mesh, opt.straight_clamp, true);
+    const TurekHronFlag fm = build_flag(flag, mesh, opt.straight_clamp, true);
     StaticOptions so;
     so.steps = opt.load_steps;
     so.backend = opt.backend;
@@ -304,8 +279,7 @@ struct Csm3Run {
 
 Csm3Run simulate_csm3(const Flag& flag, const FlagMesh& mesh, double dt, const Csm3Options& opt) {
   const auto t0 = std::chrono::steady_clock::now();
-  FlagModel fm;
-  build_flag(fm, flag, mesh, opt.straight_clamp, false);
+  const TurekHronFlag fm = build_flag(flag, mesh, opt.straight_clamp, false);
   DynamicOptions dyn;
   dyn.time_step = dt;
   dyn.spectral_radius = opt.spectral_radius;

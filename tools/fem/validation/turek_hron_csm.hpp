@@ -20,14 +20,9 @@
 
 #include "core/summary.hpp"
 #include "fem/sparse_solver.hpp"
+#include "fem/validation/turek_hron_flag.hpp"  // FlagMesh, the flag model
 
 namespace finverse::fem::validation {
-
-struct FlagMesh {
-  int nx = 20;           // Q9 elements along the flag
-  int ny = 2;            // through the thickness
-  double grading = 3.0;  // last / first element length along the flag (finer at the clamp)
-};
 
 struct CsmStaticOptions {
   std::filesystem::path reference;  // turek_hron.json

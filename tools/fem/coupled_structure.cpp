@@ -1,0 +1,173 @@
+// The structure's side of an implicit FSI coupling step (see coupled_structure.hpp).
+#include "fem/coupled_structure.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "fem/errors.hpp"
+
+namespace finverse::fem {
+
+namespace {
+DynamicOptions integrator_options(const CoupledStructureOptions& o) {
+  if (o.substeps < 1)
+    throw InvalidInput("coupled structure: substeps must be >= 1, got " + std::to_string(o.substeps));
+  if (o.dim < 1 || o.dim > 3)
+    throw InvalidInput("coupled structure: dim must be 1, 2 or 3, got " + std::to_string(o.dim));
+  DynamicOptions d = o.dynamics;
+  d.time_step = o.dynamics.time_step / o.substeps;
+  d.reuse_predictor_factorization = true;
+  d.increment_roundoff_floor = true;
+  return d;
+}
+}  // namespace
+
+CoupledStructure::CoupledStructure(const Model& model, const CoupledStructureOptions& options,
+                                   std::vector<int> wet_nodes)
+    : model_(model), opt_(options), wet_(std::move(wet_nodes)),
+      integrator_(model, integrator_options(options)) {
+  if (wet_.empty()) throw InvalidInput("coupled structure: the wet-node list is empty");
+  std::vector<bool> seen(model.node_count(), false);
+  for (int n : wet_) {
+    if (n < 0 || n >= model.node_count())
+      throw InvalidInput("coupled structure: wet node " + std::to_string(n) + " out of range 0.." +
+                         std::to_string(model.node_count() - 1));
+    if (seen[n]) throw InvalidInput("coupled structure: wet node " + std::to_string(n) + " repeated");
+    seen[n] = true;
+  }
+  initialize(options.start_time, Eigen::VectorXd::Zero(opt_.dim * static_cast<int>(wet_.size())));
+}
+
+void CoupledStructure::check_load(const Eigen::VectorXd& f, const char* what) const {
+  const long n = static_cast<long>(opt_.dim) * static_cast<long>(wet_.size());
+  if (f.size() != n) {
+    std::ostringstream os;
+    os << "coupled structure: " << what << " has " << f.size() << " entries, expected " << n
+       << " (" << opt_.dim << " per wet node)";
+    throw InvalidInput(os.str());
+  }
+  for (int i = 0; i < f.size(); ++i)
+    if (!std::isfinite(f(i))) {
+      std::ostringstream os;
+      os << "coupled structure: " << what << " entry " << i << " (wet node " << wet_[i / opt_.dim]
+         << ") is not finite";
+      throw InvalidInput(os.str());
+    }
+}
+
+Eigen::VectorXd CoupledStructure::scatter(const Eigen::VectorXd& f) const {
+  check_load(f, "interface load");
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(kDofsPerNode * model_.node_count());
+  for (std::size_t k = 0; k < wet_.size(); ++k)
+    for (int c = 0; c < opt_.dim; ++c) full(kDofsPerNode * wet_[k] + c) = f(opt_.dim * k + c);
+  return full;
+}
+
+Eigen::VectorXd CoupledStructure::gather(const Eigen::VectorXd& full) const {
+  Eigen::VectorXd out(opt_.dim * wet_.size());
+  for (std::size_t k = 0; k < wet_.size(); ++k)
+    for (int c = 0; c < opt_.dim; ++c) out(opt_.dim * k + c) = full(kDofsPerNode * wet_[k] + c);
+  return out;
+}
+
+void CoupledStructure::initialize(const DynamicState& state, const Eigen::VectorXd& f) {
+  const Eigen::VectorXd full = scatter(f);
+  const int nt = kDofsPerNode * model_.node_count();
+  if (state.configuration.node_count() != model_.node_count() || state.velocity.size() != nt)
+    throw InvalidInput("coupled structure: initial state must have " +
+                       std::to_string(model_.node_count()) + " nodes and full-length velocities");
+  state_ = state;
+  load_ = f;
+  integrator_.initialize(state_, full);
+  has_saved_ = false;
+  advanced_ = false;
+}
+
+void CoupledStructure::initialize(double t0, const Eigen::VectorXd& f) {
+  initialize(integrator_.reference_state(t0), f);
+}
+
+void CoupledStructure::save() {
+  saved_.state = state_;
+  saved_.integrator = integrator_.snapshot();
+  saved_.load = load_;
+  has_saved_ = true;
+  advanced_ = false;
+}
+
+void CoupledStructure::restore() {
+  if (!has_saved_) throw InvalidInput("coupled structure: restore() before save()");
+  state_ = saved_.state;
+  integrator_.restore(saved_.integrator);
+  load_ = saved_.load;
+}
+
+CoupledStepReport CoupledStructure::advance(double t_new, const Eigen::VectorXd& f_new) {
+  if (!has_saved_)
+    throw InvalidInput("coupled structure: advance() before save(): no start state for the step");
+  check_load(f_new, "interface load");
+  const double dt = opt_.dynamics.time_step;
+  const double t_expected = saved_.state.time + dt;
+  if (!(std::abs(t_new - t_expected) <= 1e-9 * dt)) {
+    std::ostringstream os;
+    os.precision(12);
+    os << "coupled structure: advance to t = " << t_new << ", expected the step's end "
+       << t_expected << " (start " << saved_.state.time << " + time step " << dt << ")";
+    throw InvalidInput(os.str());
+  }
+  restore();
+  CoupledStepReport rep;
+  const int k = opt_.substeps;
+  const double af = integrator_.alpha_f();
+  const Eigen::VectorXd f0 = saved_.load;
+  Eigen::VectorXd f_prev = f0;
+  Eigen::VectorXd model_prev = model_.external_load(state_.time);
+  for (int j = 1; j <= k; ++j) {
+    // Linear in time over the sub-steps; the last one is f_new exactly.
+    const Eigen::VectorXd f_j = j == k ? f_new : Eigen::VectorXd(f0 + (double(j) / k) * (f_new - f0));
+    const NodalState x0 = state_.configuration;
+    const DynamicStepInfo info = integrator_.step(state_, scatter(f_j));
+    rep.newton_iterations += info.iterations;
+    rep.factorizations += info.factorizations;
+    rep.residual = info.residual;
+    // Work of the alpha_f-weighted loads the balance used, on the translation increments.
+    const Eigen::VectorXd fa = (1 - af) * f_j + af * f_prev;
+    for (std::size_t n = 0; n < wet_.size(); ++n) {
+      const Vec3 du = state_.configuration.position[wet_[n]] - x0.position[wet_[n]];
+      for (int c = 0; c < opt_.dim; ++c) rep.interface_work += fa(opt_.dim * n + c) * du(c);
+    }
+    const Eigen::VectorXd model_new = model_.external_load(state_.time);
+    const Eigen::VectorXd ma = (1 - af) * model_new + af * model_prev;
+    const DofMap& dofs = integrator_.dofs();
+    for (int g = 0; g < dofs.total(); ++g) {
+      if (ma(g) == 0 || g % kDofsPerNode >= 3) continue;  // moments: no rotation work tracked
+      const int node = g / kDofsPerNode, c = g % kDofsPerNode;
+      rep.model_load_work += ma(g) * (state_.configuration.position[node](c) - x0.position[node](c));
+    }
+    f_prev = f_j;
+    model_prev = model_new;
+  }
+  state_.time = t_new;  // no drift of the sub-steps' summed times against the coupling's clock
+  load_ = f_new;
+  advanced_ = true;
+  return rep;
+}
+
+void CoupledStructure::accept() {
+  if (!advanced_) throw InvalidInput("coupled structure: accept() without an advance() since save()");
+  save();
+}
+
+Eigen::VectorXd CoupledStructure::wet_positions() const {
+  Eigen::VectorXd out(opt_.dim * wet_.size());
+  for (std::size_t k = 0; k < wet_.size(); ++k)
+    for (int c = 0; c < opt_.dim; ++c) out(opt_.dim * k + c) = state_.configuration.position[wet_[k]](c);
+  return out;
+}
+Eigen::VectorXd CoupledStructure::wet_velocities() const { return gather(state_.velocity); }
+Eigen::VectorXd CoupledStructure::wet_accelerations() const { return gather(state_.acceleration); }
+
+double CoupledStructure::kinetic_energy() { return integrator_.kinetic_energy(state_); }
+double CoupledStructure::strain_energy() const { return integrator_.strain_energy(state_); }
+
+}  // namespace finverse::fem
