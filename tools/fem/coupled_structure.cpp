@@ -35,7 +35,19 @@ CoupledStructure::CoupledStructure(const Model& model, const CoupledStructureOpt
     if (seen[n]) throw InvalidInput("coupled structure: wet node " + std::to_string(n) + " repeated");
     seen[n] = true;
   }
+  if (opt_.dynamics.rayleigh_mass != 0 || opt_.dynamics.rayleigh_stiffness != 0)
+    damping_assembler_ = std::make_unique<Assembler>(model_, integrator_.dofs());
   initialize(options.start_time, Eigen::VectorXd::Zero(opt_.dim * static_cast<int>(wet_.size())));
+}
+
+Eigen::VectorXd CoupledStructure::damping_force(const DynamicState& s) {
+  AssemblyRequest req;
+  req.mass_times = &s.velocity;
+  req.stiffness_times = &s.velocity;
+  req.time = s.time;
+  damping_assembler_->assemble(s.configuration, req);
+  return opt_.dynamics.rayleigh_mass * damping_assembler_->mass_product() +
+         opt_.dynamics.rayleigh_stiffness * damping_assembler_->stiffness_product();
 }
 
 void CoupledStructure::check_load(const Eigen::VectorXd& f, const char* what) const {
@@ -122,6 +134,7 @@ CoupledStepReport CoupledStructure::advance(double t_new, const Eigen::VectorXd&
   const Eigen::VectorXd f0 = saved_.load;
   Eigen::VectorXd f_prev = f0;
   Eigen::VectorXd model_prev = model_.external_load(state_.time);
+  Eigen::VectorXd damping_prev = damping_assembler_ ? damping_force(state_) : Eigen::VectorXd();
   for (int j = 1; j <= k; ++j) {
     // Linear in time over the sub-steps; the last one is f_new exactly.
     const Eigen::VectorXd f_j = j == k ? f_new : Eigen::VectorXd(f0 + (double(j) / k) * (f_new - f0));
@@ -134,7 +147,22 @@ CoupledStepReport CoupledStructure::advance(double t_new, const Eigen::VectorXd&
     const Eigen::VectorXd fa = (1 - af) * f_j + af * f_prev;
     for (std::size_t n = 0; n < wet_.size(); ++n) {
       const Vec3 du = state_.configuration.position[wet_[n]] - x0.position[wet_[n]];
-      for (int c = 0; c < opt_.dim; ++c) rep.interface_work += fa(opt_.dim * n + c) * du(c);
+      for (int c = 0; c < opt_.dim; ++c) {
+        const int i = opt_.dim * static_cast<int>(n) + c;
+        rep.interface_work += fa(i) * du(c);
+        rep.interface_work_trapezoidal += 0.5 * (f_j(i) + f_prev(i)) * du(c);
+      }
+    }
+    if (damping_assembler_) {
+      const Eigen::VectorXd damping_new = damping_force(state_);
+      const Eigen::VectorXd ca = (1 - af) * damping_new + af * damping_prev;
+      for (int node = 0; node < model_.node_count(); ++node) {
+        const Vec3 du = state_.configuration.position[node] - x0.position[node];
+        const Vec3 dw = log_so3(state_.configuration.rotation[node] * x0.rotation[node].transpose());
+        rep.damping_work += ca.segment<3>(kDofsPerNode * node).dot(du) +
+                            ca.segment<3>(kDofsPerNode * node + 3).dot(dw);
+      }
+      damping_prev = damping_new;
     }
     const Eigen::VectorXd model_new = model_.external_load(state_.time);
     const Eigen::VectorXd ma = (1 - af) * model_new + af * model_prev;

@@ -18,13 +18,18 @@
 //     W_I = sum_j (x_{j+1} - x_j) . [(1 - alpha_f) F_I,j+1 + alpha_f F_I,j]   (wet nodes)
 // i.e. the displacement increment times the force the integrator actually balanced. With
 // rho_inf = 1 (alpha_m = alpha_f = 1/2, beta = 1/4, gamma = 1/2: the trapezoidal rule) this is the
-// trapezoidal work, and for a linear undamped structure W_I + W_model = Delta(T + U) holds to
-// round-off every step (multiply the balance by the increment: M (a_n + a_n+1)/2 . Delta u =
-// Delta T and K (u_n + u_n+1)/2 . Delta u = Delta U). With rho_inf < 1 the difference is the
-// algorithm's dissipation, with Rayleigh damping also the damping work (not computed here);
-// for nonlinear elements f_int at the end points only approximates Delta U (second order in the
-// step). W_model is the same expression for Model::external_load (gravity, nodal loads) on the
-// translations of all nodes (moments are not tracked).
+// trapezoidal work, and for a linear structure without moving supports
+//     W_I + W_model = Delta(T + U) + D
+// holds to round-off every step (multiply the balance by the increment: M (a_n + a_n+1)/2 .
+// Delta u = Delta T and K (u_n + u_n+1)/2 . Delta u = Delta U). D is the Rayleigh damping work,
+//     D = sum_j Delta q_j . [(1 - alpha_f) C_j+1 v_j+1 + alpha_f C_j v_j],  C v = a_M M v + a_K K v,
+// with M, K at each end's configuration and Delta q the full increment (rotations: log(R1 R0^T)),
+// as the integrator balances it; zero without damping. With rho_inf < 1 the identity leaves a
+// remainder: the algorithm's dissipation plus (1/2 - alpha_f) sum Delta F . Delta x, first order in
+// the step; W_I,trap = sum_j (x_{j+1} - x_j) . (F_I,j + F_I,j+1) / 2 is then the better (second-
+// order) estimate of the physical work. For nonlinear elements f_int at the end points only
+// approximates Delta U (second order in the step). W_model is the alpha_f-weighted expression for
+// Model::external_load (gravity, nodal loads) on the translations (moments are not tracked).
 //
 // Save/restore. save() copies everything a step depends on: the DynamicState (configuration,
 // velocities, accelerations, time), the integrator's memory (GeneralizedAlpha::Snapshot: the
@@ -40,10 +45,12 @@
 // on here): the loads of a ramped FSI start are tiny, and so are the first steps' increments.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "fem/assembly.hpp"
 #include "fem/generalized_alpha.hpp"
 #include "fem/model.hpp"
 
@@ -62,7 +69,9 @@ struct CoupledStepReport {
   int factorizations = 0;
   double residual = 0;        // of the last sub-step
   double interface_work = 0;  // W_I over the step (see above) [J, or J/m in plane strain]
-  double model_load_work = 0; // W_model over the step
+  double interface_work_trapezoidal = 0;  // W_I,trap (equal to W_I at rho_inf = 1)
+  double model_load_work = 0;  // W_model over the step
+  double damping_work = 0;     // D over the step (>= 0 for a_M, a_K >= 0)
 };
 
 class CoupledStructure {
@@ -117,10 +126,14 @@ class CoupledStructure {
   void check_load(const Eigen::VectorXd& f, const char* what) const;
   Eigen::VectorXd gather(const Eigen::VectorXd& full) const;
 
+  // C v = a_M M v + a_K K v at the state (full length); the damping work's ingredient.
+  Eigen::VectorXd damping_force(const DynamicState& s);
+
   const Model& model_;
   CoupledStructureOptions opt_;
   std::vector<int> wet_;
   GeneralizedAlpha integrator_;
+  std::unique_ptr<Assembler> damping_assembler_;  // only with Rayleigh damping
   DynamicState state_;
   Eigen::VectorXd load_;  // F_I at state_.time (wet-node vector)
 
