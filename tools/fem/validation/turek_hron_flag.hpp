@@ -9,9 +9,10 @@
 // the cylinder arc from its upper flag corner counter-clockwise round to the lower one, then the
 // flag's lower edge to the tip, the tip upwards, the upper edge back). So the list runs: lower clamp
 // corner, the lower edge to the tip, up the tip, the upper edge back to the upper clamp corner.
-// Its first and last nodes are the clamped corners, which coincide with the arc's end vertices:
-// the flow polygon is the arc's interior vertices (upper corner excluded ... lower corner
-// excluded, counter-clockwise) followed by the wet nodes' current positions. 4 nx + 2 ny + 1 nodes.
+// Its first and last nodes are the clamped corners, which coincide with the arc's end vertices
+// (to round-off): the flow polygon is the arc's vertices without its two ends, counter-clockwise,
+// followed by the wet nodes' current positions. 4 nx + 2 ny + 1 nodes; point A is the
+// (2 nx + ny)-th (0-based). Clamped nodes do not move, so the polygon's arc part stays fixed.
 #pragma once
 
 #include <filesystem>
