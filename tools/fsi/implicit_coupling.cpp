@@ -2,6 +2,7 @@
 #include "fsi/implicit_coupling.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 
@@ -25,6 +26,13 @@ std::string format_number(double value) {
 }
 
 }  // namespace
+
+std::string progress_line(const IterationReport& report) {
+  char line[160];
+  std::snprintf(line, sizeof line, "step %ld (time %.6g): iteration %d, residual %.2e, omega %.3g",
+                report.step, report.time, report.iteration, report.residual, report.omega);
+  return line;
+}
 
 ImplicitCoupling::ImplicitCoupling(InterfaceLayout layout, Eigen::VectorXd initial,
                                    std::unique_ptr<Acceleration> acceleration,

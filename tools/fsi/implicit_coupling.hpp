@@ -16,6 +16,7 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -70,6 +71,9 @@ struct IterationReport {
   double absolute = 0.0;  // |x_out - x_in|
   double omega = 0.0;     // the acceleration's last relaxation factor (1: quasi-Newton)
 };
+
+// One progress line: "step 12 (time 0.06): iteration 3, residual 1.23e-04, omega 0.31".
+[[nodiscard]] std::string progress_line(const IterationReport& report);
 
 // Per step, for fsi.h5 (issue 32): coupling iterations and the final residual.
 struct StepStatistics {

@@ -11,6 +11,8 @@
 // iteration has the error operator -(m + dt^2 K)^{-1} M_A, whose spectral radius exceeds one when
 // rho_f L / m is large, whatever dt: the added-mass instability. The monolithic step
 // (m/dt + dt K + M_A/dt) v = ((m + M_A)/dt) v^n - K eta^n + p_in (1 - x/L) is the reference.
+// With moving_height the flow sees the channel height R + mean(X) of the interface vector, so
+// H depends on X too (as a real flow depends on the surface position) and is nonlinear.
 #pragma once
 
 #include <cmath>
@@ -31,6 +33,7 @@ struct TubeParameters {
   double spring = 1.0;     // k
   double pulse = 1.0;      // p_in amplitude
   double pulse_time = 0.2; // p_in = pulse sin^2(pi t / pulse_time) for t < pulse_time
+  bool moving_height = false;
 };
 
 class AddedMassTube : public CoupledStep {
@@ -44,19 +47,24 @@ class AddedMassTube : public CoupledStep {
       if (i > 0) stiffness_(i, i - 1) = -p.tension / (h * h);
       if (i + 1 < n) stiffness_(i, i + 1) = -p.tension / (h * h);
     }
-    Eigen::MatrixXd sine(n, n);
-    Eigen::VectorXd modal_mass(n);
-    for (int k = 1; k <= n; ++k) {
-      const double lambda = k * M_PI / p.length;
-      modal_mass(k - 1) = p.rho_f / (lambda * std::tanh(lambda * p.height));
-      for (int j = 1; j <= n; ++j) sine(j - 1, k - 1) = std::sin(k * M_PI * j / (n + 1.0));
-    }
-    added_mass_ = sine * modal_mass.asDiagonal() * sine * (2.0 / (n + 1.0));
+    sine_.resize(n, n);
+    for (int k = 1; k <= n; ++k)
+      for (int j = 1; j <= n; ++j) sine_(j - 1, k - 1) = std::sin(k * M_PI * j / (n + 1.0));
+    added_mass_ = added_mass(p.height);
     inlet_shape_.resize(n);
     for (int j = 1; j <= n; ++j) inlet_shape_(j - 1) = 1.0 - j * h / p.length;
     eta_ = v_ = Eigen::VectorXd::Zero(n);
   }
 
+  // M_A for a channel of height r.
+  [[nodiscard]] Eigen::MatrixXd added_mass(double r) const {
+    Eigen::VectorXd modal_mass(p_.n);
+    for (int k = 1; k <= p_.n; ++k) {
+      const double lambda = k * M_PI / p_.length;
+      modal_mass(k - 1) = p_.rho_f / (lambda * std::tanh(lambda * r));
+    }
+    return sine_ * modal_mass.asDiagonal() * sine_ * (2.0 / (p_.n + 1.0));
+  }
   [[nodiscard]] InterfaceLayout layout() const { return {p_.n, p_.n}; }
   [[nodiscard]] Eigen::VectorXd state() const { return layout().stack(eta_, v_); }
   [[nodiscard]] double inlet(double t) const {
@@ -87,8 +95,9 @@ class AddedMassTube : public CoupledStep {
   Eigen::VectorXd evaluate(const Eigen::VectorXd& x) override {
     // Flow with the wall velocity of x -> wall pressure.
     const Eigen::VectorXd v_in = x.tail(p_.n);
-    const Eigen::VectorXd p_wall =
-        inlet(t_end_) * inlet_shape_ - added_mass_ * ((v_in - v_) / dt_);
+    const Eigen::MatrixXd m_a = p_.moving_height ? added_mass(p_.height + x.head(p_.n).mean())
+                                                 : added_mass_;
+    const Eigen::VectorXd p_wall = inlet(t_end_) * inlet_shape_ - m_a * ((v_in - v_) / dt_);
     // Structure over the step under that pressure.
     const Eigen::VectorXd rhs = (p_.mass / dt_) * v_ - stiffness_ * eta_ + p_wall;
     const Eigen::VectorXd v_new = structure_.solve(rhs);
@@ -109,7 +118,7 @@ class AddedMassTube : public CoupledStep {
 
  private:
   TubeParameters p_;
-  Eigen::MatrixXd stiffness_, added_mass_;
+  Eigen::MatrixXd stiffness_, added_mass_, sine_;
   Eigen::VectorXd inlet_shape_;
   Eigen::LDLT<Eigen::MatrixXd> structure_;
   Eigen::VectorXd eta_, v_, saved_eta_, saved_v_;

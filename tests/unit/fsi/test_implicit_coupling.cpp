@@ -137,6 +137,8 @@ TEST(ImplicitCoupling, PredictorsAndProgress) {
     EXPECT_EQ(reports[i].step, 1);
   }
   EXPECT_EQ(coupling.state(), Eigen::Vector4d(5, 6, 7, 8));
+  EXPECT_EQ(progress_line({12, 0.06, 3, 1.234e-4, 1.0, 0.31}),
+            "step 12 (time 0.06): iteration 3, residual 1.23e-04, omega 0.31");
 
   // Linear extrapolation: the third step starts from 2 x^2 - x^1.
   test::LinearStep lin(Eigen::MatrixXd::Zero(2, 2), Eigen::Vector2d(1, 1));
