@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "cfd/grid/grid_loops.hpp"
@@ -59,6 +61,10 @@ void FlowSolver::setup(const StretchedGrid& grid, const FlowBoundary& boundary, 
   wall_dpdn_3d_.reset();
   body_faces_.clear();
   moving_.reset();
+  deforming_.reset();
+  next_polygon_.reset();
+  next_surface_.reset();
+  caller_surface_ = false;
   surface_.reset();
   surface_motion_ = nullptr;
   fresh_.clear();
@@ -75,6 +81,9 @@ void FlowSolver::immerse(const std::vector<SolidRegion>& regions, const Velocity
   ib_.emplace(grid_, regions);
   index_body_faces();
   moving_.reset();
+  deforming_.reset();
+  next_polygon_.reset();
+  caller_surface_ = false;
   cut_.reset();
   surface_.reset();
   surface_motion_ = nullptr;
@@ -124,7 +133,7 @@ void FlowSolver::impose_body_velocity() {
         for (int i = 0; i < grid_.nx(); ++i)
           if (ib_->kind(i, j) == CellKind::Solid)
             u(i, j, 0) = moving_->velocity(body_state_, grid_.xc(i), grid_.yc(j))[static_cast<std::size_t>(c)];
-    } else if (surface_motion_) {  // solid cells: the velocity of their closest surface point
+    } else if (surface_motion_ || deforming_) {  // solid cells: their closest surface point's velocity
       const Field& b = body_velocity_[static_cast<std::size_t>(c)];
       for (int k = 0; k < grid_.nz(); ++k)
         for (int j = 0; j < grid_.ny(); ++j)
@@ -184,7 +193,7 @@ void FlowSolver::body_face_velocities(FaceField& U, const std::array<Field, 3>& 
   for (const BodyFace& b : body_faces_) {
     const int d = b.d, i = b.i, j = b.j, k = b.k;
     if (b.side == 0) {  // inside the body: its own velocity (a cleared cell's first fluxes)
-      if (surface_motion_) {
+      if (surface_motion_ || deforming_) {
         int lo[3] = {i, j, k};
         --lo[d];
         const Field& v = body_velocity_[static_cast<std::size_t>(d)];
@@ -228,11 +237,11 @@ void FlowSolver::initialise(const VelocityFunction& velocity, const std::functio
   time_ = t0;
   dt_old_ = 0;
   step_ = 0;
-  if (moving_) {
+  if (moving_ || deforming_) {
     place_body(t0);
     fresh_.clear();
   } else if (surface_motion_) {
-    place_surface(t0);
+    place_surface(t0, caller_surface_ ? surface_state_ : surface_motion_(t0));
     fresh_.clear();
   }
   for_each_cell(grid_, [&](int i, int j, int k) {
@@ -271,9 +280,23 @@ void FlowSolver::initialise(const VelocityFunction& velocity, const std::functio
 StepStats FlowSolver::step() {
   const double dt = choose_time_step();
   const double t_new = time_ + dt;
+  if ((deforming_ && !next_polygon_) || (caller_surface_ && !next_surface_))
+    throw Error("flow solver: step to t = " + std::to_string(t_new) +
+                ": set_body_state must give the deforming body's state at the new time level first");
   set_boundary_values(t_new, dt, false);
-  if (moving_) move_body(t_new);
-  else if (surface_motion_) move_surface(t_new);
+  if (deforming_) {  // (built aside first: a bad state leaves the body as it was)
+    DeformingPolygon next(*next_polygon_, "flow solver: deforming body at t = " + std::to_string(t_new),
+                          deforming_->state().position.size());
+    deforming_ = std::move(next);
+    next_polygon_.reset();
+  }
+  if (moving_ || deforming_) {
+    move_body(t_new);
+  } else if (surface_motion_) {
+    SurfaceState next = caller_surface_ ? std::move(*next_surface_) : surface_motion_(t_new);
+    next_surface_.reset();
+    move_surface(t_new, std::move(next));
+  }
   predict_momentum(dt);
   face_predictor(dt, coupling_time(dt));
   const PoissonSolveStats ps = solve_pressure_correction(dt);
@@ -464,6 +487,56 @@ void unraw(const StateArray& a, Field& f) {
   std::memcpy(f.data(), a.values.data(), a.values.size() * sizeof(double));
 }
 const char* comp_name(int c) { return c == 0 ? "x" : c == 1 ? "y" : "z"; }
+
+// A body's vertex state as one array: positions, velocities, accelerations (empty ones as zero),
+// and back (like: the state whose vertex count and connectivity the array must match).
+template <class P>
+void append(std::vector<double>& out, const std::vector<P>& q, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t c = 0; c < std::tuple_size_v<P>; ++c) out.push_back(q.empty() ? 0.0 : q[k][c]);
+}
+template <class P>
+std::vector<P> take(const std::vector<double>& in, std::size_t& at, std::size_t n) {
+  std::vector<P> q(n);
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t c = 0; c < std::tuple_size_v<P>; ++c) q[k][c] = in[at++];
+  return q;
+}
+std::vector<double> polygon_state_values(const PolygonState& s) {
+  std::vector<double> out;
+  const std::size_t n = s.position.size();
+  append(out, s.position, n);
+  append(out, s.velocity, n);
+  append(out, s.acceleration, n);
+  return out;
+}
+PolygonState polygon_state_from(const std::vector<double>& in, const PolygonState& like) {
+  const std::size_t n = like.position.size();
+  std::size_t at = 0;
+  PolygonState s;
+  s.position = take<std::array<double, 2>>(in, at, n);
+  s.velocity = take<std::array<double, 2>>(in, at, n);
+  s.acceleration = take<std::array<double, 2>>(in, at, n);
+  return s;
+}
+std::vector<double> surface_state_values(const SurfaceState& s) {
+  std::vector<double> out;
+  const std::size_t n = s.surface.points.size();
+  append(out, s.surface.points, n);
+  append(out, s.velocity, n);
+  append(out, s.acceleration, n);
+  return out;
+}
+SurfaceState surface_state_from(const std::vector<double>& in, const SurfaceState& like) {
+  const std::size_t n = like.surface.points.size();
+  std::size_t at = 0;
+  SurfaceState s;
+  s.surface.triangles = like.surface.triangles;
+  s.surface.points = take<Vec3>(in, at, n);
+  s.velocity = take<Vec3>(in, at, n);
+  s.acceleration = take<Vec3>(in, at, n);
+  return s;
+}
 }  // namespace
 
 std::vector<StateArray> FlowSolver::state() const {
@@ -486,6 +559,10 @@ std::vector<StateArray> FlowSolver::state() const {
   if (surface_motion_)
     for (int c = 0; c < 3; ++c)
       s.push_back(raw(std::string("body_velocity_") + comp_name(c), body_velocity_[static_cast<std::size_t>(c)]));
+  // A deforming body whose state the caller sets: its vertex state at time() (the geometry of the
+  // next step's t^n, from which restore() re-places it).
+  if (deforming_) s.push_back({"body_vertices", polygon_state_values(deforming_->state())});
+  if (caller_surface_) s.push_back({"body_vertices", surface_state_values(surface_state_)});
   return s;
 }
 
@@ -508,11 +585,22 @@ void FlowSolver::restore(const std::vector<StateArray>& s) {
     U_.values(c) = s[a++].values;
     for (int side = 0; side < 2 * dim(); ++side) bv_[C].value[static_cast<std::size_t>(side)] = s[a++].values;
   }
-  if (moving_) {  // the geometry is a function of time
+  // The geometry: a function of time, or the deforming body's saved state; a state set for the
+  // next step is dropped (a coupling iteration sets its own after restoring).
+  next_polygon_.reset();
+  next_surface_.reset();
+  if (moving_) {
+    place_body(time_);
+    fresh_.clear();
+  } else if (deforming_) {
+    DeformingPolygon saved(polygon_state_from(s.back().values, deforming_->state()),
+                           "flow solver restore: deforming body at t = " + std::to_string(time_),
+                           deforming_->state().position.size());
+    deforming_ = std::move(saved);
     place_body(time_);
     fresh_.clear();
   } else if (surface_motion_) {
-    place_surface(time_);
+    place_surface(time_, caller_surface_ ? surface_state_from(s.back().values, surface_state_) : surface_motion_(time_));
     fresh_.clear();
     for (int c = 0; c < 3; ++c) unraw(s[a++], body_velocity_[static_cast<std::size_t>(c)]);
   }

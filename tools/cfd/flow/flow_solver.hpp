@@ -76,6 +76,15 @@
 // and freshly cleared cells get the same treatment as in 2-D (moving_surface.cpp).
 // surface_forces() integrates the traction on the true surface per triangle
 // (surface_traction_3d.hpp).
+// Deforming body whose surface the caller sets (FSI, issue 32; seed paper section 2.3):
+// immerse_deforming(reference) once, then before every step() set_body_state(next) with the
+// body's vertex state at the new time level t^{n+1} = time() + next_dt(); the step places it
+// there exactly as a moving body (2-D: deforming_polygon.hpp, the wall velocity and acceleration
+// linear along each edge, solid cells with the velocity of their closest surface point, the
+// cut-cell flux integrated over the clipped edges; 3-D: the triangulated body of immerse(
+// SurfaceMotion)). A coupling iteration is restore(saved), set_body_state(iterate), step():
+// state() holds the body's vertex state at time(), and restore() re-places the body from it.
+// edge_traction() gives the 2-D traction samples by edge for the structure's loads.
 // Boundary values for the new time level (inlet ramps, convective outlet, mass balance) are set in
 // boundary_update.cpp; diagnostics (divergence, energy, momentum, CFL) in flow_diagnostics.cpp.
 //
@@ -94,11 +103,13 @@
 
 #include "cfd/poisson/poisson_boundary.hpp"
 #include "cfd/immersed/cut_faces.hpp"
+#include "cfd/immersed/deforming_polygon.hpp"
 #include "cfd/grid/face_field.hpp"
 #include "cfd/grid/field.hpp"
 #include "cfd/flow/velocity_boundary.hpp"
 #include "cfd/immersed/ghost_cells.hpp"
 #include "cfd/immersed/immersed_momentum_solver.hpp"
+#include "cfd/forces/surface_traction.hpp"
 #include "cfd/forces/wall_pressure_gradient.hpp"
 #include "cfd/forces/wall_pressure_gradient_3d.hpp"
 #include "cfd/grid/stretched_grid.hpp"
@@ -133,9 +144,10 @@ struct FlowOptions {
   // Moving body: give freshly cleared cells interpolated values (false only to measure the spikes
   // that the treatment removes).
   bool fresh_cell_treatment = true;
-  // Moving 2-D body (immerse(MovingBody)): the cut-cell mass balance of Seo & Mittal 2011 in the
-  // pressure correction (see the header comment); false: the staircase mass balance of the fixed
-  // bodies (only to measure the spurious force oscillations that it removes).
+  // Moving 2-D body (immerse(MovingBody), immerse_deforming(PolygonState)): the cut-cell mass
+  // balance of Seo & Mittal 2011 in the pressure correction (see the header comment); false: the
+  // staircase mass balance of the fixed bodies (only to measure the spurious force oscillations
+  // that it removes).
   bool cut_cell_continuity = true;
   // The same for a moving triangulated body (immerse(SurfaceMotion)). Off here, so the solver's own
   // tests keep the balance they were written for; fin-cfd fin turns it on (FinFlowOptions).
@@ -223,6 +235,27 @@ class FlowSolver {
   // kinematic). Builds the sampling stencils on every call (O(samples)); throws without a body.
   // With FlowOptions::surface_crosses, only the part inside the domain carries traction.
   SurfaceForces surface_forces(double rho = 1.0) const;
+  // A deforming closed body whose surface the caller sets (FSI): its vertex state at time() (2-D:
+  // a polygon of fixed vertex count and order; 3-D: a closed triangulated surface of fixed
+  // connectivity, with the conditions of immerse(SurfaceMotion)); after setup, before initialise.
+  void immerse_deforming(const PolygonState& reference);
+  void immerse_deforming(const SurfaceState& reference);
+  // The body's vertex state at the new time level t^{n+1} = time() + next_dt(), required before
+  // every step() (the step consumes it). Throws a one-line finverse::Error naming t^{n+1} when the
+  // vertex count (connectivity) changes or a value is not finite; the step throws, naming the time,
+  // when the body leaves the domain or turns inside out.
+  void set_body_state(const PolygonState& next);
+  void set_body_state(const SurfaceState& next);
+  // The time step the next step() takes (a function of the state at time()).
+  double next_dt() const { return choose_time_step(); }
+  // The 2-D deforming body at time() (null without one); the net flux int u_B . n dl of its last
+  // placement, d(area)/dt, which the cut-cell balance removes (spread over the boundary by length)
+  // so that the pressure equation stays compatible (exact for an area-preserving motion).
+  const DeformingPolygon* deforming_body() const { return deforming_ ? &*deforming_ : nullptr; }
+  double deforming_net_flux() const { return deforming_net_flux_; }
+  // Traction samples of the 2-D deforming body at time(), by the caller's edges, with the density
+  // rho (surface_traction.hpp, the wall velocity linear along each edge).
+  EdgeTraction edge_traction(double rho = 1.0) const;
   // Cells that were cleared at the start of the last step (i, j, k; k = 0 in 2-D).
   const std::vector<std::array<int, 3>>& freshly_cleared() const { return fresh_; }
   const GhostCellSet* immersed() const { return ib_ ? &*ib_ : nullptr; }
@@ -302,8 +335,12 @@ class FlowSolver {
   // Immersed boundary: ghost values of the velocity (Dirichlet) and of a pressure-like field
   // (homogeneous Neumann); face velocities on the body's faces with zero net flux.
   void impose_body_velocity();
-  // Moving body: geometry, ghost data and pressure operator at time t; the step to t.
+  // Moving body (rigid or deforming 2-D): geometry, ghost data and pressure operator at time t; the
+  // step to t. A deforming body is placed at its current state deforming_.
   void place_body(double t);
+  // The wall velocity and acceleration of the moving 2-D body at a point of body_now_.closest().
+  std::array<double, 2> wall_velocity_2d(const SurfacePoint& b) const;
+  std::array<double, 2> wall_acceleration_2d(const SurfacePoint& b) const;
   // Cut-cell balance (cut_cell_balance.cpp): the apertures of the current geometry, the cut cells
   // among those of the body's bounding box {x0, x1, y0, y1, z0, z1} and their body fluxes G_c (a
   // moving polygon's from the rigid motion, plus piece_flux, the fluxes of a triangulated body's
@@ -335,9 +372,10 @@ class FlowSolver {
   // The predicted velocity of a body face of a moving triangulated body in cut-cell mode.
   double cut_body_face_velocity(const BodyFace& b, const Field& ud) const;
   // Moving triangulated body (moving_surface.cpp).
-  void place_surface(double t);
+  // The surface placed at time t with state st (of motion(t), or the caller's).
+  void place_surface(double t, SurfaceState st);
   void place_surface_cut_cells();  // cut-cell balance of the placed surface (moving_surface.cpp)
-  void move_surface(double t);
+  void move_surface(double t, SurfaceState st);
   // A freshly cleared cell's data (cleared_cells.cpp): stencils at P = x + offset n, the wall
   // velocity and dp/dn at its boundary intercept, d / (d + offset), offset.
   struct ClearedCell {
@@ -364,6 +402,13 @@ class FlowSolver {
   std::vector<double> ib_dpdn_;  // per ghost cell: dp/dn at the intercept (empty: 0)
   std::optional<MovingBody> moving_;
   RigidState body_state_;
+  // Deforming body whose state the caller sets: 2-D at time(), and the state for the next step
+  // (2-D or 3-D); caller_surface_: the 3-D body takes its states from set_body_state.
+  std::optional<DeformingPolygon> deforming_;
+  std::optional<PolygonState> next_polygon_;
+  std::optional<SurfaceState> next_surface_;
+  bool caller_surface_ = false;
+  double deforming_net_flux_ = 0;
   Polygon body_now_ = Polygon::circle(0, 0, 1, 3);
   // Cut-cell mass balance (cut_cell_continuity): the apertures of the current placement, the cells
   // whose balance differs from the plain divergence (not fluid, or a face not all fluid, and some

@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "core/error.hpp"
 
 namespace finverse::cfd {
 
@@ -23,6 +26,8 @@ SurfaceTraction::SurfaceTraction(const StretchedGrid& grid, const GhostCellSet& 
       const double t = (q + 0.5) / m;
       s.point = {a[0] + t * ex, a[1] + t * ey};
       samples_.push_back(sample(s.point[0], s.point[1], s, len / m));
+      samples_.back().edge = static_cast<int>(e);
+      samples_.back().edge_t = t;
     }
   }
 }
@@ -102,6 +107,50 @@ SurfaceLoads SurfaceTraction::evaluate(const Field& u, const Field& v, const Fie
   }
   for (int c = 0; c < 2; ++c)
     L.force[static_cast<std::size_t>(c)] = L.pressure_force[static_cast<std::size_t>(c)] + L.viscous_force[static_cast<std::size_t>(c)];
+  return L;
+}
+
+SurfaceLoads SurfaceTraction::evaluate_deforming(const Field& u, const Field& v, const Field& p, double nu, double rho,
+                                                 const std::vector<std::array<double, 2>>& vertex_velocity) const {
+  const auto& vs = body_.vertices();
+  if (vertex_velocity.size() != vs.size())
+    throw Error("surface traction: need one wall velocity per polygon vertex (" + std::to_string(vs.size()) + "), got " +
+                std::to_string(vertex_velocity.size()));
+  SurfaceLoads L;
+  L.pressure.resize(samples_.size());
+  L.traction.resize(samples_.size());
+  const bool third = extrapolation_ == WallExtrapolation::Quadratic;
+  const double mu = rho * nu;
+  for (std::size_t n = 0; n < samples_.size(); ++n) {
+    const SurfaceSample& s = samples_[n];
+    const auto e = static_cast<std::size_t>(s.edge);
+    const auto& va = vertex_velocity[e];
+    const auto& vb = vertex_velocity[(e + 1) % vs.size()];
+    const auto& a = vs[e];
+    const auto& b = vs[(e + 1) % vs.size()];
+    const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
+    const std::array<double, 2> uw{va[0] + s.edge_t * (vb[0] - va[0]), va[1] + s.edge_t * (vb[1] - va[1])};
+    const std::array<double, 2> g{(vb[0] - va[0]) / len, (vb[1] - va[1]) / len};  // du_w/ds
+    const std::array<double, 2> t{-s.normal[1], s.normal[0]};
+    const double pw =
+        rho * wall_value(s.pressure1.apply(p, 0.0), s.pressure2.apply(p, 0.0), third ? s.pressure3.apply(p, 0.0) : 0.0);
+    const auto dn = [&](const Field& q, int c) {
+      const auto C = static_cast<std::size_t>(c);
+      return wall_derivative(s.velocity1.apply(q, uw[C]) - uw[C], s.velocity2.apply(q, uw[C]) - uw[C],
+                             third ? s.velocity3.apply(q, uw[C]) - uw[C] : 0.0, s.probe);
+    };
+    const double gn = g[0] * s.normal[0] + g[1] * s.normal[1], gt = g[0] * t[0] + g[1] * t[1];
+    const std::array<double, 2> tp{-pw * s.normal[0], -pw * s.normal[1]};
+    const std::array<double, 2> tv{mu * (dn(u, 0) + gn * t[0] - gt * s.normal[0]),
+                                   mu * (dn(v, 1) + gn * t[1] - gt * s.normal[1])};
+    L.pressure[n] = pw;
+    L.traction[n] = {tp[0] + tv[0], tp[1] + tv[1]};
+    for (std::size_t c = 0; c < 2; ++c) {
+      L.pressure_force[c] += tp[c] * s.ds;
+      L.viscous_force[c] += tv[c] * s.ds;
+    }
+  }
+  for (std::size_t c = 0; c < 2; ++c) L.force[c] = L.pressure_force[c] + L.viscous_force[c];
   return L;
 }
 

@@ -15,6 +15,12 @@
 // field, w = u - u_B(x) (the wall datum of the substituted nodes is u_B at the sample point). A
 // rigid motion has no strain, S(u) = S(w), and w = 0 on the wall with div w = 0, so mu dw/dn is
 // again the exact viscous stress of a translating and rotating wall.
+// A deforming body (deforming_polygon.hpp): the wall velocity u_w is linear along each edge, with
+// the tangential derivative g = du_w/ds constant on it; with w = u - u_w(sample point) the probes
+// give du/dn, and on a straight no-slip wall continuity (du_n/dn = -g . t) and the wall's own
+// motion (du_n/ds = g . n) complete the viscous stress:
+//     2 mu S n = mu [du/dn + (g . n) t - (g . t) n],     t = e_z x n,
+// which for a rigid motion (g = -Omega n) is the rigid body's mu d(u - u_B)/dn above.
 // WallExtrapolation::Quadratic adds a third probe at 3d and takes the next order,
 //     p_w = 3 p(d) - 3 p(2d) + p(3d),   du/dn = [18 w(d) - 9 w(2d) + 2 w(3d)] / (6 d)   (O(d^3)),
 // to measure how much of a force is the evaluation's rather than the flow's. The default stays
@@ -38,6 +44,8 @@ struct SurfaceSample {
   std::array<double, 2> point{}, normal{};
   double ds = 0;      // length of the surface element (2-D: area per unit depth)
   double probe = 0;   // d
+  int edge = 0;       // the polygon edge it lies on (vertices edge -> edge + 1)
+  double edge_t = 0;  // its parameter along the edge in (0, 1)
   PointStencil velocity1, velocity2, pressure1, pressure2;  // at d and 2d
   PointStencil velocity3, pressure3;                        // at 3d (Quadratic only)
 };
@@ -46,6 +54,21 @@ struct SurfaceLoads {
   std::vector<double> pressure;                 // p_w per sample [Pa]
   std::vector<std::array<double, 2>> traction;  // t per sample [Pa]
   std::array<double, 2> pressure_force{}, viscous_force{}, force{};  // per unit depth [N/m]
+};
+
+// The traction of a deforming 2-D body sampled by edge, for the structure's loads (FSI): each
+// sample's point, the caller's edge it lies on and its local coordinate xi in [0, 1] along it (from
+// the edge's vertex e to e + 1), and its force per unit depth, traction x ds [N/m]; the totals are
+// their sums (the pressure and viscous parts: the same sums of the two parts of the traction).
+struct EdgeTractionSample {
+  std::array<double, 2> point{};
+  int edge = 0;
+  double xi = 0;
+  std::array<double, 2> force{};
+};
+struct EdgeTraction {
+  std::vector<EdgeTractionSample> samples;
+  std::array<double, 2> pressure_force{}, viscous_force{}, force{};
 };
 
 class SurfaceTraction {
@@ -61,6 +84,11 @@ class SurfaceTraction {
   // Body moving with the rigid-body velocity field wall_velocity(x, y).
   SurfaceLoads evaluate(const Field& u, const Field& v, const Field& p, double nu, double rho,
                         const std::function<std::array<double, 2>(double, double)>& wall_velocity) const;
+
+  // Deforming body: the wall velocity linear along each edge between vertex_velocity (one per
+  // vertex of the polygon, in its stored counter-clockwise order).
+  SurfaceLoads evaluate_deforming(const Field& u, const Field& v, const Field& p, double nu, double rho,
+                                  const std::vector<std::array<double, 2>>& vertex_velocity) const;
 
   // Wall pressure (kinematic) at the surface point closest to (x, y), by the same extrapolation.
   double wall_pressure(const Field& p, double x, double y) const;

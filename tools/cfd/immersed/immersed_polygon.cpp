@@ -54,6 +54,13 @@ bool Polygon::contains(double x, double y) const {
 SurfacePoint Polygon::closest(double x, double y) const {
   SurfacePoint best;
   double best_d2 = std::numeric_limits<double>::infinity();
+  // contains() is O(n): evaluated once, when first needed (a point deep inside the body improves
+  // on vertex-closest candidates many times).
+  int inside = -1;
+  const auto in = [&] {
+    if (inside < 0) inside = contains(x, y) ? 1 : 0;
+    return inside == 1;
+  };
   for (std::size_t k = 0; k < v_.size(); ++k) {
     const auto& a = v_[k];
     const auto& b = v_[(k + 1) % v_.size()];
@@ -66,19 +73,21 @@ SurfacePoint Polygon::closest(double x, double y) const {
     if (d2 < best_d2) {
       best_d2 = d2;
       best.point = {px, py};
+      best.edge = static_cast<int>(k);
+      best.edge_t = t;
       const double len = std::sqrt(len2);
       best.normal = {ey / len, -ex / len};  // outward for a counter-clockwise polygon
       if (t == 0.0 || t == 1.0) {
         // Closest to a vertex: the probe direction is along (x - p), not the edge normal.
         const double d = std::sqrt(d2);
         if (d > 0) {
-          const double s = contains(x, y) ? -1.0 : 1.0;
+          const double s = in() ? -1.0 : 1.0;
           best.normal = {s * (x - px) / d, s * (y - py) / d};
         }
       }
     }
   }
-  best.distance = (contains(x, y) ? -1.0 : 1.0) * std::sqrt(best_d2);
+  best.distance = (in() ? -1.0 : 1.0) * std::sqrt(best_d2);
   return best;
 }
 

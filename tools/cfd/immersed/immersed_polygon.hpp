@@ -14,6 +14,10 @@ struct SurfacePoint {
   std::array<double, 2> point{};   // closest point on the polygon
   std::array<double, 2> normal{};  // outward unit normal there
   double distance = 0;             // signed: > 0 outside the body, < 0 inside
+  // The edge it lies on (vertices edge -> edge + 1 of Polygon::vertices()) and its parameter along
+  // it in [0, 1] (for interpolating vertex data; -1 where not from Polygon::closest).
+  int edge = -1;
+  double edge_t = 0;
 };
 
 class Polygon {

@@ -18,6 +18,10 @@ namespace finverse::cfd {
 void FlowSolver::immerse(const TriangulatedSurface& body) {
   if (dim() != 3) throw Error("flow solver: an immersed triangulated body needs a 3-D grid");
   moving_.reset();
+  deforming_.reset();
+  next_polygon_.reset();
+  next_surface_.reset();
+  caller_surface_ = false;
   wall_dpdn_.reset();
   wall_dpdn_3d_.reset();
   cut_.reset();
@@ -38,6 +42,10 @@ void FlowSolver::immerse(const SurfaceMotion& motion) {
   if (dim() != 3) throw Error("flow solver: an immersed triangulated body needs a 3-D grid");
   if (!motion) throw Error("flow solver: the moving triangulated body has no motion");
   moving_.reset();
+  deforming_.reset();
+  next_polygon_.reset();
+  next_surface_.reset();
+  caller_surface_ = false;
   wall_dpdn_.reset();
   wall_dpdn_3d_.reset();
   cut_.reset();
@@ -46,11 +54,10 @@ void FlowSolver::immerse(const SurfaceMotion& motion) {
   fresh_.clear();
   for (auto& b : body_velocity_) b = Field(grid_);
   ib_momentum_.setup(grid_);
-  place_surface(time_);
+  place_surface(time_, motion(time_));
 }
 
-void FlowSolver::place_surface(double t) {
-  SurfaceState st = surface_motion_(t);
+void FlowSolver::place_surface(double t, SurfaceState st) {
   const std::string at = "flow solver: moving triangulated body at t = " + std::to_string(t) + ": ";
   const std::size_t nv = st.surface.points.size();
   if ((!st.velocity.empty() && st.velocity.size() != nv) || (!st.acceleration.empty() && st.acceleration.size() != nv))
@@ -168,9 +175,9 @@ void FlowSolver::place_surface_cut_cells() {
       &split);
 }
 
-void FlowSolver::move_surface(double t) {
+void FlowSolver::move_surface(double t, SurfaceState st) {
   const GhostCellSet old = *ib_;
-  place_surface(t);
+  place_surface(t, std::move(st));
   fresh_.clear();
   for (int k = 0; k < grid_.nz(); ++k)
     for (int j = 0; j < grid_.ny(); ++j)
