@@ -150,7 +150,11 @@ class DiagonalStep : public CoupledStep {
 };
 
 TEST(IqnIls, TenThousandUnknownsWithHundredColumns) {
+#ifdef NDEBUG
   const int n = 10000, steps = 6;
+#else  // unoptimized (sanitized) builds: 34 s at full size, so a fifth of it, and no timing check
+  const int n = 2000, steps = 6;
+#endif
   const Eigen::VectorXd a = Eigen::VectorXd::LinSpaced(n, -3.0, 0.5);
   const Eigen::VectorXd b0 = test::random_vector(n, 21), b1 = test::random_vector(n, 22);
   DiagonalStep step(a, b0);
@@ -177,7 +181,9 @@ TEST(IqnIls, TenThousandUnknownsWithHundredColumns) {
               n, steps, total, static_cast<double>(total) / steps, iqn.columns(),
               1e3 * seconds / total);
   EXPECT_LE(iqn.columns(), 100);
-  EXPECT_LT(seconds / total, 1.0);
+#ifdef NDEBUG
+  EXPECT_LT(seconds / total, 0.5);  // measured 14 ms on the shared 2-core machine
+#endif
 }
 
 }  // namespace
