@@ -157,7 +157,7 @@ int main(int argc, char** argv) {
   rn->add_option("--out", out_path, "response file, finverse/motion schema")->required();
   rn->add_option("--pvd", pvd_path, "ParaView series of the shell surface (default: none)");
   rn->add_option("--analysis", analysis, "static, quasi_static (paper eq. 2) or dynamic")->capture_default_str();
-  rn->add_option("--root-rotation", root_rotation, "root rotations: fit (rigid fit of the root nodes) or zero")
+  rn->add_option("--root-rotation", root_rotation, "root rotations: fit (root nodes + the rays' tangents at the root) or zero")
       ->capture_default_str();
   rn->add_option("--ramp", file_run.ramp, "s of ramp from rest before the first frame (0: ten frame intervals)")
       ->capture_default_str();

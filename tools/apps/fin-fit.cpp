@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
   finverse::fit::io::FileFitOptions o;
   std::string mesh, motion, materials, out, loads, parameters, summary, checkpoint;
   std::vector<std::string> methods{"ga"};
+  std::string root_rotation = "fit";
   bool no_polish = false;
   auto* rn = app.add_subcommand("run", "fit from stage files (mesh, motion, loads, materials) to materials.h5");
   rn->add_option("--mesh", mesh, "mesh.h5 (finverse/mesh)")->required();
@@ -70,6 +71,9 @@ int main(int argc, char** argv) {
   rn->add_option("--substeps", o.substeps, "dynamic: time steps per frame interval")->capture_default_str();
   rn->add_option("--periods", o.periods, "dynamic: periods compared at the end of the motion")->capture_default_str();
   rn->add_option("--ramp", o.ramp, "s of ramp from rest before the first frame (0: ten frame intervals)")
+      ->capture_default_str();
+  rn->add_option("--root-rotation", root_rotation,
+                 "root rotations: fit (root nodes + the rays' tangents at the root) or zero (the clamp does not turn)")
       ->capture_default_str();
   rn->add_option("--methods", methods, "optimisers, run in this order: ga, cmaes")->delimiter(',')->capture_default_str();
   rn->add_option("--runs", o.fit.runs, "independent seeded runs per method")->capture_default_str();
@@ -168,6 +172,7 @@ int main(int argc, char** argv) {
     if (!summary.empty()) o.summary = summary;
     if (!checkpoint.empty()) o.fit.checkpoint = checkpoint;
     o.fit.methods = methods;
+    o.root_rotation = finverse::fem::parse_root_rotation(root_rotation);
     o.fit.polish = !no_polish;
     o.fit.threads = finverse::cli::threads_in_use();
     const auto result = finverse::fit::io::run_fit_from_files(o, finverse::cli::effective_config(app));

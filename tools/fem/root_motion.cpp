@@ -48,12 +48,17 @@ Mat3 fit_rigid_rotation(const std::vector<Vec3>& X, const std::vector<Vec3>& x) 
 }
 
 RootMotion::RootMotion(std::vector<int> nodes, std::vector<Vec3> reference, std::vector<double> times,
-                       const std::vector<std::vector<Vec3>>& positions, RootRotation rotation, double ramp)
+                       const std::vector<std::vector<Vec3>>& positions, RootRotation rotation, double ramp,
+                       const RotationSupport& support)
     : nodes_(std::move(nodes)), times_(std::move(times)), ramp_(ramp) {
   check_sample_times(times_, ramp_, "root motion");
   if (nodes_.empty()) throw InvalidInput("root motion: no root nodes");
   if (reference.size() != nodes_.size() || positions.size() != times_.size())
     throw InvalidInput("root motion: inconsistent numbers of root nodes / frames");
+  if (!support.reference.empty() && support.positions.size() != times_.size())
+    throw InvalidInput("root motion: the rotation support has the wrong number of frames");
+  std::vector<Vec3> fit_reference = reference;
+  fit_reference.insert(fit_reference.end(), support.reference.begin(), support.reference.end());
   for (size_t k = 0; k < positions.size(); ++k) {
     if (positions[k].size() != nodes_.size())
       throw InvalidInput("root motion: frame " + std::to_string(k) + " has the wrong number of root nodes");
@@ -66,8 +71,21 @@ RootMotion::RootMotion(std::vector<int> nodes, std::vector<Vec3> reference, std:
     std::vector<Vec3> u(nodes_.size());
     for (size_t i = 0; i < nodes_.size(); ++i) u[i] = positions[k][i] - reference[i];
     displacement_.push_back(std::move(u));
-    rotation_.push_back(rotation == RootRotation::fit ? log_so3(fit_rigid_rotation(reference, positions[k]))
-                                                      : Vec3::Zero());
+    if (rotation == RootRotation::fit) {
+      std::vector<Vec3> current = positions[k];
+      if (!support.reference.empty()) {
+        const auto& extra = support.positions[k];
+        if (extra.size() != support.reference.size())
+          throw InvalidInput("root motion: frame " + std::to_string(k) + " of the rotation support has the wrong size");
+        for (const Vec3& p : extra)
+          if (!p.allFinite())
+            throw InvalidInput("root motion: a rotation support point at frame " + std::to_string(k) + " is not finite");
+        current.insert(current.end(), extra.begin(), extra.end());
+      }
+      rotation_.push_back(log_so3(fit_rigid_rotation(fit_reference, current)));
+    } else {
+      rotation_.push_back(Vec3::Zero());
+    }
     if (k > 0 && (rotation_[k] - rotation_[k - 1]).norm() > std::numbers::pi) {
       std::ostringstream os;
       os << "root motion: root rotation changes by more than pi between frames " << k - 1 << " and " << k;

@@ -6,6 +6,7 @@
 
 #include "fit/errors.hpp"
 #include "fit/node_weights.hpp"
+#include "fit/rotation_relaxation.hpp"
 #include "fit/state_from_positions.hpp"
 
 namespace finverse::fit {
@@ -14,6 +15,9 @@ struct QuasiStaticObjective::Workspace {
   Eigen::VectorXd key;
   std::unique_ptr<fem::Model> model;
   std::unique_ptr<fem::QuasiStaticIncrement> increment;  // refers to *model: declared after it
+  // relax_rotations: a second model with the bases' translations held, and its solver.
+  std::unique_ptr<fem::Model> held;
+  std::unique_ptr<RotationRelaxation> relaxation;  // refers to *held
 };
 
 QuasiStaticObjective::~QuasiStaticObjective() = default;
@@ -84,6 +88,7 @@ std::unique_ptr<QuasiStaticObjective::Workspace> QuasiStaticObjective::acquire(c
         std::unique_ptr<Workspace> w = std::move(*it);
         idle_.erase(it);
         factory_->set_moduli(*w->model, p);
+        if (w->held) factory_->set_moduli(*w->held, p);
         return w;
       }
   }
@@ -91,9 +96,14 @@ std::unique_ptr<QuasiStaticObjective::Workspace> QuasiStaticObjective::acquire(c
   w->key = key;
   w->model = factory_->build(key);
   w->increment = std::make_unique<fem::QuasiStaticIncrement>(*w->model, options_.static_options);
+  if (options_.relax_rotations) {
+    w->held = factory_->build(key);
+    w->relaxation = std::make_unique<RotationRelaxation>(*w->held, instants_, base_, options_.static_options);
+  }
   ++builds_;
   // Always through set_moduli, also right after a build: the result then depends on p alone.
   factory_->set_moduli(*w->model, p);
+  if (w->held) factory_->set_moduli(*w->held, p);
   return w;
 }
 
@@ -108,8 +118,13 @@ std::vector<std::vector<fem::Vec3>> QuasiStaticObjective::increments(const Eigen
   std::unique_ptr<Workspace> w = acquire(p);
   std::vector<std::vector<fem::Vec3>> dx;
   // On an exception the workspace is dropped (its solver may hold a failed factorisation).
-  for (size_t j = 0; j < instants_.size(); ++j)
-    dx.push_back(w->increment->displacement_increment(base_[j], instants_[j], instants_[j] + dt_));
+  for (size_t j = 0; j < instants_.size(); ++j) {
+    const double t = instants_[j];
+    if (w->relaxation)
+      dx.push_back(w->increment->displacement_increment(w->relaxation->relax(base_[j], t), t, t + dt_));
+    else
+      dx.push_back(w->increment->displacement_increment(base_[j], t, t + dt_));
+  }
   release(std::move(w));
   return dx;
 }

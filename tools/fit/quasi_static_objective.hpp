@@ -2,7 +2,8 @@
 // equilibrium, and the FEM's increment over [t_j, t_j + dt] under the load and root-motion
 // increments (fem::QuasiStaticIncrement) is compared with the target's:
 //     r_(j,i) = sqrt(w_i) (dx_FE^i(t_j) - dx_target^i(t_j)), instant-major.
-// Base rotations come from a rigid fit of each node's 1-ring (state_from_positions.hpp); the
+// Base rotations come from a rigid fit of each node's 1-ring (state_from_positions.hpp), then
+// relaxed to moment balance with the positions held (rotation_relaxation.hpp); the
 // prescribed DOFs take the drive's values, so the root increment is exactly the drive's. Without
 // loads, scaling every modulus leaves the increment unchanged (the identifiability trap).
 // Thread-safe; models are cached per rebuild key so that a change of moduli alone re-targets a
@@ -31,6 +32,9 @@ struct QuasiStaticOptions {
   Eigen::VectorXd node_weights{};  // one per node; empty: default_node_weights (node_weights.hpp)
   fem::StaticOptions static_options{.steps = 1};
   int cached_models = 8;         // models kept for the in-place route; 0: build every evaluation
+  // Base rotations relaxed to moment balance with the positions held, under the moduli of each
+  // evaluation (rotation_relaxation.hpp); false: the 1-ring rigid fits as they are.
+  bool relax_rotations = true;
 };
 
 class QuasiStaticObjective : public ResidualFunction {
@@ -56,6 +60,7 @@ class QuasiStaticObjective : public ResidualFunction {
   const Eigen::VectorXd& node_weights() const { return weights_; }
   // dx_target per instant, [instant][node].
   const std::vector<std::vector<fem::Vec3>>& target_increments() const { return target_dx_; }
+  // The bases from the positions (1-ring rotations, the drive's root values), before relaxation.
   const std::vector<fem::NodalState>& base_states() const { return base_; }
   long model_builds() const { return builds_.load(); }  // models built so far (the lever's effect)
 

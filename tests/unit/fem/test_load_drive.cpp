@@ -92,6 +92,32 @@ TEST(RootMotion, RigidRotationFitRecoversPlanarAndCollinearSets) {
   EXPECT_LT((fit_rigid_rotation(line, moved) - Mat3::Identity()).norm(), 1e-12);
 }
 
+TEST(RootMotion, SupportPointsCarryThePitchAboutACollinearRoot) {
+  // A fin base: root nodes on the z axis, pitched about that axis by 0.25 rad. The root nodes
+  // alone see no rotation; with the rays' first nodes as support the pitch is recovered.
+  const Mat3 R = exp_so3(Vec3(0, 0, 0.25));
+  const std::vector<Vec3> root{{0, 0, 0}, {0, 0, 0.01}, {0, 0, 0.02}};
+  const std::vector<Vec3> ray{{0.004, 0, 0}, {0.004, 0, 0.012}, {0.004, 0, 0.024}};
+  std::vector<Vec3> root_moved, ray_moved;
+  for (const auto& p : root) root_moved.push_back(R * p);
+  for (const auto& p : ray) ray_moved.push_back(R * p);
+  const RootMotion alone({0, 1, 2}, root, {0.0, 1.0}, {root, root_moved}, RootRotation::fit);
+  EXPECT_LT(alone.rotation_vector(1.0).norm(), 1e-12);
+  const RootMotion supported({0, 1, 2}, root, {0.0, 1.0}, {root, root_moved}, RootRotation::fit, 0,
+                             RotationSupport{ray, {ray, ray_moved}});
+  EXPECT_LT((supported.rotation_vector(1.0) - Vec3(0, 0, 0.25)).norm(), 1e-12);
+  EXPECT_LT((supported.rotation_vector(0.5) - Vec3(0, 0, 0.125)).norm(), 1e-12);
+  // The support must have one frame per sample and finite points.
+  EXPECT_THROW(RootMotion({0, 1, 2}, root, {0.0, 1.0}, {root, root_moved}, RootRotation::fit, 0,
+                          RotationSupport{ray, {ray}}),
+               InvalidInput);
+  std::vector<Vec3> bad = ray_moved;
+  bad[1](0) = std::nan("");
+  EXPECT_THROW(RootMotion({0, 1, 2}, root, {0.0, 1.0}, {root, root_moved}, RootRotation::fit, 0,
+                          RotationSupport{ray, {ray, bad}}),
+               InvalidInput);
+}
+
 TEST(RootMotion, TrackedRootMovesTheUnloadedStructureRigidly) {
   // 5 x 5 beam lattice clamped along x = 0 (root nodes 0, 5, 10, ... along y).
   Model m = lattice(5);

@@ -142,8 +142,89 @@ void apply_root_motion(Model& model, const stage::Mesh& mesh, const stage::Motio
   for (size_t k = 0; k < nf; ++k)
     for (int n : root)
       positions[k].emplace_back(motion.points(k, n, 0), motion.points(k, n, 1), motion.points(k, n, 2));
+  // The rotation is fitted to the root nodes and, per ray, a point one element along the ray's
+  // tangent at the root: the root nodes alone lie on the pitch axis and cannot see the pitch
+  // (root_motion.hpp). The rays leave the clamp with its rotation; the tangent at the root comes
+  // from the quadratic through the ray's first three nodes, exact for a rigid motion and for a
+  // constant curvature, so the root's own bending under the loads does not leak into the
+  // rotation (the chord of the first element alone would tilt by half that element's bend). A
+  // ray of one element gives its chord; without beams at the root, the nodes of every element
+  // there (first order).
+  const auto& Xref = model.reference_positions();
+  auto point = [&](size_t k, int n) {
+    return Vec3(motion.points(k, static_cast<size_t>(n), 0), motion.points(k, static_cast<size_t>(n), 1),
+                motion.points(k, static_cast<size_t>(n), 2));
+  };
+  std::vector<char> is_root(nv, 0);
+  for (int n : root) is_root[static_cast<size_t>(n)] = 1;
+  std::vector<std::vector<int>> beam_neighbours(nv);
+  for (const auto& e : model.elements())
+    if (e->type() == "corotational_beam") {
+      const auto en = e->nodes();
+      beam_neighbours[static_cast<size_t>(en[0])].push_back(en[1]);
+      beam_neighbours[static_cast<size_t>(en[1])].push_back(en[0]);
+    }
+  // Per support point: nodes (r, n1, n2) and weights of the tangent at r (n2 < 0: the chord r-n1).
+  struct Tangent {
+    int r, n1, n2;
+    double w0, w1, w2, length;
+  };
+  std::vector<Tangent> tangents;
+  for (int r : root)
+    for (int n1 : beam_neighbours[static_cast<size_t>(r)]) {
+      if (is_root[static_cast<size_t>(n1)]) continue;
+      int n2 = -1;
+      for (int c : beam_neighbours[static_cast<size_t>(n1)])
+        if (c != r && !is_root[static_cast<size_t>(c)]) n2 = c;
+      const double s1 = (Xref[n1] - Xref[r]).norm();
+      Tangent t{r, n1, n2, -1 / s1, 1 / s1, 0, s1};
+      if (n2 >= 0) {
+        const double s2 = s1 + (Xref[n2] - Xref[n1]).norm();
+        t.w0 = -(1 / s1 + 1 / s2);
+        t.w1 = s2 / (s1 * (s2 - s1));
+        t.w2 = -s1 / (s2 * (s2 - s1));
+      }
+      tangents.push_back(t);
+    }
+  RotationSupport support;
+  if (rotation == RootRotation::fit) {
+    auto tip = [&](const Tangent& t, auto&& at) {
+      Vec3 d = t.w0 * at(t.r) + t.w1 * at(t.n1);
+      if (t.n2 >= 0) d += t.w2 * at(t.n2);
+      return d;
+    };
+    if (!tangents.empty()) {
+      std::vector<double> scale;
+      for (const Tangent& t : tangents) {
+        const Vec3 D = tip(t, [&](int n) { return Xref[n]; });
+        scale.push_back(t.length / D.norm());
+        support.reference.push_back(Xref[t.r] + scale.back() * D);
+      }
+      support.positions.resize(nf);
+      for (size_t k = 0; k < nf; ++k)
+        for (size_t i = 0; i < tangents.size(); ++i)
+          support.positions[k].push_back(point(k, tangents[i].r) +
+                                         scale[i] * tip(tangents[i], [&](int n) { return point(k, n); }));
+    } else {
+      std::vector<char> is_support(nv, 0);
+      for (const auto& e : model.elements()) {
+        const auto en = e->nodes();
+        if (std::none_of(en.begin(), en.end(), [&](int n) { return is_root[static_cast<size_t>(n)] != 0; })) continue;
+        for (int n : en)
+          if (!is_root[static_cast<size_t>(n)]) is_support[static_cast<size_t>(n)] = 1;
+      }
+      for (size_t n = 0; n < nv; ++n)
+        if (is_support[n]) support.reference.push_back(Xref[n]);
+      if (!support.reference.empty()) {
+        support.positions.resize(nf);
+        for (size_t k = 0; k < nf; ++k)
+          for (size_t n = 0; n < nv; ++n)
+            if (is_support[n]) support.positions[k].push_back(point(k, static_cast<int>(n)));
+      }
+    }
+  }
   try {
-    RootMotion(root, X, motion.time.data, positions, rotation, ramp).apply(model);
+    RootMotion(root, X, motion.time.data, positions, rotation, ramp, support).apply(model);
   } catch (const InvalidInput& e) {
     throw InvalidInput(source + ": " + e.what());
   }

@@ -32,7 +32,9 @@ FinModel build_fin_model(const stage::Mesh& mesh, const MaterialSpec& materials,
 // prescribed (root) DOF: such forces go into the support, not the structure (0 when none).
 double apply_loads(Model& model, const stage::Loads& loads, double ramp, const std::string& source);
 
-// Root-node positions of motion.h5 as prescribed root displacements and rotations.
+// Root-node positions of motion.h5 as prescribed root displacements and rotations; with
+// RootRotation::fit the rotation is fitted to the root nodes and the nodes of the elements at the
+// root (root_motion.hpp).
 void apply_root_motion(Model& model, const stage::Mesh& mesh, const stage::Motion& motion,
                        RootRotation rotation, double ramp, const std::string& source);
 

@@ -105,6 +105,7 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
   drive.root_motion = motion;
   drive.motion_source = o.motion.string();
   drive.ramp = o.ramp;
+  drive.root_rotation = o.root_rotation;
   auto factory = std::make_shared<FinModelFactory>(mesh, base, space.names(), drive, o.mesh.string());
 
   std::unique_ptr<ResidualFunction> objective;

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fem/root_motion.hpp"
 #include "fit/fit_driver.hpp"
 #include "fit/fit_result.hpp"
 
@@ -36,6 +37,9 @@ struct FileFitOptions {
   int substeps = 4;
   double periods = 1;
   double ramp = 0;  // s of ramp from rest before the first sample (0: ten frame intervals)
+  // Root rotations of the drive: fit (root nodes + the rays' tangents at the root) or zero (a
+  // clamp that does not turn), fem/root_motion.hpp.
+  fem::RootRotation root_rotation = fem::RootRotation::fit;
   FitOptions fit;
 };
 
