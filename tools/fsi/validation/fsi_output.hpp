@@ -1,0 +1,43 @@
+// The frames of a coupled flow-structure run and their fsi.h5 (schema finverse/fsi, tools/core/
+// CONTRACTS.md; issue 32 "Outputs"): per output step the time, every structure node's position and
+// velocity, the hydrodynamic force on each node, the total force on the body with its coefficients,
+// and the coupling's iterations and final residual. A 2-D run (the plane-strain flag) stores z = 0
+// and forces per metre depth [N/m]; its reference area is then D x 1 m. The file is written to a
+// temporary and renamed (stage::write, core/atomic_file.hpp): nothing half-written under the final
+// name. No checkpoint/restart yet.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/provenance.hpp"
+#include "fem/generalized_alpha.hpp"
+
+namespace finverse::fsi::validation {
+
+class FsiOutput {
+ public:
+  // rho, speed, reference_area: the coefficients' normalisation F / (rho U^2 A / 2).
+  FsiOutput(int nodes, double rho, double speed, double reference_area);
+
+  // state: the structure (positions, velocities 6 per node: the translations are kept);
+  // nodal_force: full length (6 per node) hydrodynamic load; force: on the whole body (x, y, z);
+  // residual: the coupling's final |x_out - x_in| [m].
+  void add(const fem::DynamicState& state, const Eigen::VectorXd& nodal_force, const std::array<double, 3>& force,
+           int iterations, double residual);
+  // Atomic write (temporary + rename); throws finverse::Error.
+  void write(const std::filesystem::path& path, const Provenance& provenance) const;
+
+  [[nodiscard]] std::size_t frames() const { return time_.size(); }
+
+ private:
+  int nodes_;
+  double rho_, speed_, area_;
+  std::vector<double> time_, points_, velocity_, nodal_force_, force_, residual_;
+  std::vector<std::int32_t> iterations_;
+};
+
+}  // namespace finverse::fsi::validation
