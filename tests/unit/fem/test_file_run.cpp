@@ -17,6 +17,7 @@
 #include "fem/io/file_run.hpp"
 #include "fem/io/fin_model.hpp"
 #include "fem/io/material_spec.hpp"
+#include "fem/io/periodic_motion.hpp"
 #include "fem/structural_run.hpp"
 
 using namespace finverse;
@@ -226,4 +227,30 @@ TEST_F(FileRun, StructuralLoadCaseNeedsNoFlowFields) {
   o_.out = dir_ / "response_nodal.h5";
   io::run_from_files(o_, {});
   EXPECT_EQ(stage::read<stage::Motion>(o_.out).points, with_flow.points);
+}
+
+TEST(PeriodicMotion, RepeatsWholePeriodsAndKeepsTheSeamOnce) {
+  // Three frames over one period T = 0.3 (t = 0, 0.1, 0.2), covering [0.25, 0.65].
+  stage::Motion m;
+  m.period = 0.3;
+  m.time = NdArray<double>({3}, {0.0, 0.1, 0.2});
+  m.points = NdArray<double>({3, 1, 3}, {0, 0, 0, 1, 0, 0, 2, 0, 0});
+  EXPECT_FALSE(io::needs_periodic_extension(m, 0.0, 0.2));
+  EXPECT_TRUE(io::needs_periodic_extension(m, 0.25, 0.65));
+  const stage::Motion e = io::periodic_extension(m, 0.25, 0.65);
+  ASSERT_GE(e.time.data.size(), 5u);
+  EXPECT_LE(e.time.data.front(), 0.25);
+  EXPECT_GE(e.time.data.back(), 0.65);
+  for (size_t k = 0; k < e.time.data.size(); ++k) {
+    // The frame at t is the original frame at t mod T.
+    const double phase = std::fmod(e.time.data[k] + 1e-12, 0.3);
+    EXPECT_NEAR(e.points(k, 0, 0), std::round(phase / 0.1), 1e-12) << "t = " << e.time.data[k];
+    if (k > 0) {
+      EXPECT_GT(e.time.data[k], e.time.data[k - 1]);
+    }
+  }
+  stage::Motion aperiodic = m;
+  aperiodic.period.reset();
+  EXPECT_FALSE(io::needs_periodic_extension(aperiodic, 0.25, 0.65));
+  EXPECT_THROW(io::periodic_extension(aperiodic, 0.25, 0.65), InvalidInput);
 }

@@ -8,6 +8,7 @@
 #include "fem/errors.hpp"
 #include "fem/io/fin_model.hpp"
 #include "fem/io/material_spec.hpp"
+#include "fem/io/periodic_motion.hpp"
 #include "fem/io/run_output.hpp"
 
 namespace finverse::fem::io {
@@ -32,6 +33,12 @@ FileRunSummary run_from_files(const FileRunOptions& o, const nlohmann::json& con
   if (o.motion) motion = stage::read<stage::Motion>(*o.motion);
   if (!loads && !motion) throw InvalidInput("fin-fem run: give --loads and/or --motion (they define the output times)");
 
+  if (loads && motion && !loads->time.data.empty() &&
+      needs_periodic_extension(*motion, loads->time.data.front(), loads->time.data.back())) {
+    *motion = periodic_extension(*motion, loads->time.data.front(), loads->time.data.back());
+    log::info(o.motion->string() + ": periodic (T = " + std::to_string(*motion->period) +
+              " s), repeated to cover the loads' times");
+  }
   const std::vector<double>& times = loads ? loads->time.data : motion->time.data;
   if (loads && motion &&
       (times.front() < motion->time.data.front() - 1e-12 || times.back() > motion->time.data.back() + 1e-12))

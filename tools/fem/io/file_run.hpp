@@ -2,7 +2,8 @@
 // the materials file, optional loads.h5 and motion.h5; build the model (fin_model.hpp); run the
 // analysis over the output times (structural_run.hpp) with progress and ETA on stderr; write the
 // response (run_output.hpp). Output times: those of loads.h5, else those of motion.h5 (one of
-// the two is required; with both, the load times must lie within the motion's).
+// the two is required; with both, the load times must lie within the motion's, or the motion be
+// periodic (motion.h5 T): it is then repeated to cover them, periodic_motion.hpp).
 #pragma once
 
 #include <array>

@@ -12,6 +12,7 @@
 #include "core/stage_files.hpp"
 #include "fem/errors.hpp"
 #include "fem/io/material_spec.hpp"
+#include "fem/io/periodic_motion.hpp"
 #include "fit/dynamic_objective.hpp"
 #include "fit/errors.hpp"
 #include "fit/fin_parameters.hpp"
@@ -58,29 +59,6 @@ std::vector<double> quasi_static_instants(const FileFitOptions& o, const TargetM
   return t;
 }
 
-// A periodic motion (motion.h5 T) repeated to cover [t_begin, t_end]: fin-cfd reports the loads
-// of its last period, after the start-up ones, while the reconstruction samples one period from
-// t = 0. A frame one period after another (the seam) is kept once.
-stage::Motion periodic_extension(const stage::Motion& m, double t_begin, double t_end) {
-  const double T = *m.period, t0 = m.time.data.front();
-  const std::size_t nf = m.time.data.size(), nv = m.points.dim(1);
-  const int k0 = static_cast<int>(std::floor((t_begin - t0) / T)), k1 = static_cast<int>(std::ceil((t_end - t0) / T));
-  stage::Motion e;
-  e.period = m.period;
-  std::vector<double> times;
-  std::vector<double> points;
-  for (int k = k0; k <= k1; ++k)
-    for (std::size_t f = 0; f < nf; ++f) {
-      const double t = m.time.data[f] + k * T;
-      if (!times.empty() && t <= times.back() + 1e-9 * T) continue;
-      times.push_back(t);
-      points.insert(points.end(), m.points.data.begin() + f * nv * 3, m.points.data.begin() + (f + 1) * nv * 3);
-    }
-  e.time = NdArray<double>({times.size()}, times);
-  e.points = NdArray<double>({times.size(), nv, 3}, points);
-  return e;
-}
-
 }  // namespace
 
 FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& config) {
@@ -88,9 +66,9 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
   auto motion = stage::read<stage::Motion>(o.motion);
   std::optional<stage::Loads> loads;
   if (o.loads) loads = stage::read<stage::Loads>(*o.loads);
-  if (loads && motion.period && !loads->time.data.empty() &&
-      (loads->time.data.front() < motion.time.data.front() || loads->time.data.back() > motion.time.data.back())) {
-    motion = periodic_extension(motion, loads->time.data.front(), loads->time.data.back());
+  if (loads && !loads->time.data.empty() &&
+      fem::io::needs_periodic_extension(motion, loads->time.data.front(), loads->time.data.back())) {
+    motion = fem::io::periodic_extension(motion, loads->time.data.front(), loads->time.data.back());
     log::info(o.motion.string() + ": periodic (T = " + sci(*motion.period) + " s), repeated to cover the loads' times");
   }
   const auto base = fem::io::read_material_spec(o.materials);
