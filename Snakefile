@@ -31,6 +31,7 @@ include: "rules/mesh.smk"
 include: "rules/cfd.smk"
 include: "rules/fem.smk"
 include: "rules/fit.smk"
+include: "rules/fsi.smk"
 include: "rules/bench.smk"
 include: "rules/report.smk"
 

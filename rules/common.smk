@@ -21,7 +21,7 @@ METRIC_MISSED_IS_A_RESULT = "|| [ $? -eq 1 ]"
 _CMAKE_BUILD = "cmake -S {src} -B {build} -G Ninja && cmake --build {build} -j2"
 EXECUTABLES = {
     name: _CMAKE_BUILD
-    for name in ["fin-synth", "fin-track", "fin-mesh", "fin-cfd", "fin-fem", "fin-fit", "fin-cfd-bench",
+    for name in ["fin-synth", "fin-track", "fin-mesh", "fin-cfd", "fin-fem", "fin-fit", "fin-fsi", "fin-cfd-bench",
                  "fin-fem-bench", "fin-fit-bench", "fin-poisson-bench"]
 }
 # Built only where hypre and MPI are installed (tools/apps/cfd.cmake).

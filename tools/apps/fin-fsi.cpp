@@ -30,6 +30,9 @@ int main(int argc, char** argv) {
   th->add_option("--max-iterations", o.max_iterations, "coupling iterations per step")->capture_default_str();
   th->add_option("--cells-per-diameter", o.cells_per_diameter, "flow grid: D / h in the box")->capture_default_str();
   th->add_option("--wake-box", o.wake_box, "uniform box behind the tip [D]")->capture_default_str();
+  th->add_option("--channel-length", o.channel_length, "channel length [m] (< 2.5: tests only)")
+      ->capture_default_str();
+  th->add_option("--ramp-time", o.ramp_time, "inflow ramp time [s]")->capture_default_str();
   th->add_option("--circle-vertices", o.circle_vertices, "cylinder polygon resolution")->capture_default_str();
   th->add_option("--nx", o.mesh.nx, "Q9 elements along the flag")->capture_default_str();
   th->add_option("--ny", o.mesh.ny, "Q9 elements across the flag")->capture_default_str();

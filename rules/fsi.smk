@@ -1,0 +1,52 @@
+# Validation cases of the coupled flow-structure interaction (DESIGN.md section 5.3, issue 32), run
+# by fin-fsi: the Turek-Hron FSI benchmarks with the implicit partitioned coupling.
+#
+#   snakemake -c2 results/validation/fsi_turek_hron_fsi1/summary.json
+#   snakemake -c2 results/validation/fsi_turek_hron_fsi3/summary.json
+#
+# Each writes summary.json and fsi.h5 (schema finverse/fsi) into results/validation/<case>/. A
+# missed metric is recorded in summary.json and makes fin-fsi exit 1, a result and not a failed
+# job (METRIC_MISSED_IS_A_RESULT, rules/common.smk). Costs and numbers: docs/studies/fsi_turek_hron.md.
+
+_FSI_REFERENCE = os.path.join(REPO, "data", "reference", "turek_hron.json")
+
+# case -> (description, flags of the full case, flags of the coarse one). The coarse FSI2 / FSI3
+# runs cover only the start of the inflow ramp (no full period: `missing_periods` misses); they check
+# that the coupled run goes and converges, in under a minute. The full ones run on one core for
+# about 5 min (FSI1, D/32), 15 min (FSI3, D/16, 10 s) and 15 min (FSI2, D/16, 15 s).
+_FSI_CASES = {
+    "fsi_turek_hron_fsi1": ("Turek-Hron FSI1: steady flag deflection at Re 20, coupled",
+                            "--case FSI1 --cells-per-diameter 32 --t-end 8 --output-every 20",
+                            "--case FSI1 --cells-per-diameter 16 --t-end 6 --output-every 20"),
+    "fsi_turek_hron_fsi2": ("Turek-Hron FSI2: flag flapping at Re 100, rho_s/rho_f = 10, coupled",
+                            "--case FSI2 --cells-per-diameter 16 --t-end 15 --output-every 10",
+                            "--case FSI2 --cells-per-diameter 16 --t-end 0.5 --output-every 10"),
+    "fsi_turek_hron_fsi3": ("Turek-Hron FSI3: flag flapping at Re 200, rho_s/rho_f = 1, coupled",
+                            "--case FSI3 --cells-per-diameter 16 --t-end 10 --output-every 10",
+                            "--case FSI3 --cells-per-diameter 16 --t-end 0.3 --output-every 10"),
+}
+
+for _case, (_description, _full, _coarse) in _FSI_CASES.items():
+    register_validation(_case, _description)
+
+
+rule validation_fsi:
+    input:
+        exe=EXE("fin-fsi"),
+        reference=_FSI_REFERENCE,
+    output:
+        summary="results/validation/{case}/summary.json",
+        fsi="results/validation/{case}/fsi.h5",
+    wildcard_constraints:
+        case="|".join(_FSI_CASES),
+    log:
+        "results/logs/validation/{case}.log",
+    threads: 1
+    resources:
+        mem_mb=500,
+    params:
+        flags=lambda wildcards: _FSI_CASES[wildcards.case][2 if COARSE else 1],
+    shell:
+        "{input.exe} --threads {threads} turek_hron {params.flags} --acceleration iqn-ils"
+        " --reference {input.reference} --summary {output.summary} --out {output.fsi}"
+        " > {log} 2>&1 " + METRIC_MISSED_IS_A_RESULT
