@@ -10,5 +10,5 @@ if(TARGET fin-fsi)
                                   --reference ${PROJECT_SOURCE_DIR}/data/reference/turek_hron.json
                                   --cells-per-diameter 10 --channel-length 1.0 --circle-vertices 64
                                   --nx 6 --ny 1 --dt 0.002 --t-end 0.016 --ramp-time 0.1
-                                  --acceleration iqn-ils --summary @OUT@.summary.json --out @OUT@/fsi.h5)
+                                  --acceleration iqn-ils --absolute-tolerance 1e-12 --summary @OUT@.summary.json --out @OUT@/fsi.h5)
 endif()

@@ -27,9 +27,15 @@ int main(int argc, char** argv) {
   th->add_option("--acceleration", o.acceleration, "aitken, iqn-ils or constant")->capture_default_str();
   th->add_option("--omega", o.omega, "omega0 (aitken, iqn-ils) or omega (constant)")->capture_default_str();
   th->add_option("--tolerance", o.tolerance, "relative interface displacement residual")->capture_default_str();
+  th->add_option("--absolute-tolerance", o.absolute_tolerance, "... or interface displacement change [m]")
+      ->capture_default_str();
   th->add_option("--max-iterations", o.max_iterations, "coupling iterations per step")->capture_default_str();
   th->add_option("--cells-per-diameter", o.cells_per_diameter, "flow grid: D / h in the box")->capture_default_str();
   th->add_option("--wake-box", o.wake_box, "uniform box behind the tip [D]")->capture_default_str();
+  th->add_option("--stretch-ratio", o.stretch_ratio, "largest neighbouring cell-width ratio outside the box")
+      ->capture_default_str();
+  th->add_option("--wall-stretch-ratio", o.wall_stretch_ratio, "the same towards the channel walls; 0: --stretch-ratio")
+      ->capture_default_str();
   th->add_option("--channel-length", o.channel_length, "channel length [m] (< 2.5: tests only)")
       ->capture_default_str();
   th->add_option("--ramp-time", o.ramp_time, "inflow ramp time [s]")->capture_default_str();
@@ -45,6 +51,11 @@ int main(int argc, char** argv) {
   th->add_option("--output-every", o.output_every, "fsi.h5 frame every k steps")->capture_default_str();
   th->add_option("--out", out, "fsi.h5 to write (optional)");
   th->add_option("--summary", summary_path, "summary.json to write")->required();
+  th->add_option("--divergence-iterations", o.divergence_iterations,
+                 "residual growing this many iterations in a row: diverged (0: off)")
+      ->capture_default_str();
+  bool strict = false;
+  th->add_flag("--strict", strict, "stop at the iteration cap (default: accept the best iterate)");
   bool iterations = false;
   th->add_flag("--iterations", iterations, "a progress line per coupling iteration too");
 
@@ -53,6 +64,7 @@ int main(int argc, char** argv) {
     o.fsi_h5 = out;
     o.progress = [](const std::string& line) { std::cerr << line << "\n"; };
     o.progress_iterations = iterations;
+    o.accept_at_cap = !strict;
     fv::TurekHronFsiRun run = fv::run_turek_hron_fsi(o);
     finverse::Summary& s = run.summary;
     s.set_timing(run.wall_seconds, finverse::cli::threads_in_use());

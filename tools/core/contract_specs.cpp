@@ -188,6 +188,14 @@ std::vector<FileSpec> build() {
     for (auto& d : force_datasets("nt")) s.datasets.push_back(d);
     s.datasets.push_back({"coupling/iterations", i32, {"nt"}, "", "coupling iterations of each step"});
     s.datasets.push_back({"coupling/residual", f64, {"nt"}, "m", "final interface displacement change of each step"});
+    // Optional, added with the first writer (fin-fsi turek_hron, issue 32); 2-D runs store z = 0
+    // and forces per metre depth.
+    s.datasets.push_back(opt({"coupling/relative_residual", f64, {"nt"}, "1",
+                              "final |x_out - x_in| / |x_out| of the interface displacement of each step"}));
+    s.datasets.push_back(opt({"reference_points", f64, {"nv", "3"}, "m", "node positions of the undeformed structure"}));
+    s.datasets.push_back(opt({"probes/nodes", i32, {"np"}, "", "nodes whose displacement is tracked every step (e.g. the Turek-Hron point A)"}));
+    s.datasets.push_back(opt({"probes/time", f64, {"ns"}, "s", "every coupled step's end time"}));
+    s.datasets.push_back(opt({"probes/displacement", f64, {"ns", "np", "3"}, "m", "displacement of the probe nodes at every step"}));
     specs.push_back(s);
   }
   (void)i64;

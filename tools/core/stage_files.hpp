@@ -180,6 +180,10 @@ struct Fsi : Forces {
   NdArray<double> time, points, velocity;
   NdArray<std::int32_t> coupling_iterations;
   NdArray<double> coupling_residual;
+  // Optional (empty = absent).
+  NdArray<double> coupling_relative_residual, reference_points;
+  NdArray<std::int32_t> probe_nodes;
+  NdArray<double> probe_time, probe_displacement;
 
   template <class V> void fields(V&& v) {
     v("time", time);
@@ -188,6 +192,11 @@ struct Fsi : Forces {
     force_fields(v);
     v("coupling/iterations", coupling_iterations);
     v("coupling/residual", coupling_residual);
+    v("coupling/relative_residual", coupling_relative_residual);
+    v("reference_points", reference_points);
+    v("probes/nodes", probe_nodes);
+    v("probes/time", probe_time);
+    v("probes/displacement", probe_displacement);
   }
 };
 

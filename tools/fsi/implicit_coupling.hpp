@@ -61,6 +61,11 @@ struct CouplingOptions {
   int max_iterations = 50;
   int divergence_iterations = 4;  // residual growing this many iterations in a row: diverged (0: off)
   Predictor predictor = Predictor::ConstantVelocity;
+  // At the iteration cap, instead of CouplingNotConverged: evaluate once more the iterate with the
+  // smallest residual and accept that (StepStatistics::converged false), as preCICE moves on after
+  // its max-iterations. For participants whose H(x) jumps (an immersed boundary whose cells change
+  // between fluid and solid as the surface moves), where no iterate may meet the tolerance.
+  bool accept_at_cap = false;
 };
 
 struct IterationReport {

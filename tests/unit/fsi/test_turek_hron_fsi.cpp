@@ -46,6 +46,9 @@ TurekHronFsiOptions tiny(const std::string& acceleration, int steps) {
   o.t_end = steps * o.dt;
   o.ramp_time = 0.1;
   o.acceleration = acceleration;
+  o.absolute_tolerance = 1e-12;  // the relative measure decides (no cell changes here)
+  o.divergence_iterations = 4;
+  o.accept_at_cap = false;
   return o;
 }
 
@@ -104,6 +107,17 @@ TEST(TurekHronFsi, TinyFsi3IsBitwiseReproducibleAndConservative) {
   EXPECT_GT(a.records.back().force[0], 0);        // the stream drags the body downstream
   EXPECT_GT(std::abs(a.uy_a.back()) + std::abs(a.ux_a.back()), 0);
   EXPECT_EQ(a.ux_a, b.ux_a);
+  // Point A's displacement every step, and the reference positions it is measured from.
+  ASSERT_EQ(fa.probe_displacement.shape, (std::vector<std::size_t>{5, 1, 3}));
+  const auto node = static_cast<std::size_t>(fa.probe_nodes.data[0]);
+  for (std::size_t k = 0; k < 5; ++k) {
+    EXPECT_EQ(fa.probe_displacement.data[3 * k], a.ux_a[k]);
+    EXPECT_EQ(fa.probe_displacement.data[3 * k + 1], a.uy_a[k]);
+    EXPECT_EQ(fa.coupling_relative_residual.data[k], a.statistics[k].residual);
+  }
+  EXPECT_NEAR(fa.reference_points.data[3 * node], 0.6, 1e-12);  // point A = (0.6, 0.2)
+  EXPECT_NEAR(fa.reference_points.data[3 * node + 1], 0.2, 1e-12);
+  EXPECT_NEAR(fa.points.data[(4 * nv + node) * 3 + 1] - 0.2, a.uy_a[4], 1e-15);
 }
 
 TEST(TurekHronFsi, ConstantRelaxationAtUnitDensityRatioDivergesNamingTheStep) {

@@ -8,14 +8,26 @@
 
 namespace finverse::fsi::validation {
 
-FsiOutput::FsiOutput(int nodes, double rho, double speed, double reference_area)
-    : nodes_(nodes), rho_(rho), speed_(speed), area_(reference_area) {
-  if (nodes < 1 || !(rho > 0) || !(speed > 0) || !(reference_area > 0))
+FsiOutput::FsiOutput(const std::vector<Eigen::Vector3d>& reference, std::vector<int> probes, double rho,
+                     double speed, double reference_area)
+    : nodes_(static_cast<int>(reference.size())), reference_(reference), probes_(std::move(probes)), rho_(rho),
+      speed_(speed), area_(reference_area) {
+  if (nodes_ < 1 || !(rho > 0) || !(speed > 0) || !(reference_area > 0))
     throw Error("fsi output: expected nodes >= 1 and positive rho, speed and reference area");
+  for (const int p : probes_)
+    if (p < 0 || p >= nodes_) throw Error("fsi output: probe node " + std::to_string(p) + " out of range");
+}
+
+void FsiOutput::add_probes(const fem::DynamicState& s) {
+  probe_time_.push_back(s.time);
+  for (const int p : probes_) {
+    const auto P = static_cast<std::size_t>(p);
+    for (int c = 0; c < 3; ++c) probe_displacement_.push_back(s.configuration.position[P](c) - reference_[P](c));
+  }
 }
 
 void FsiOutput::add(const fem::DynamicState& s, const Eigen::VectorXd& f, const std::array<double, 3>& force,
-                    int iterations, double residual) {
+                    int iterations, double residual, double relative) {
   const auto n = static_cast<Eigen::Index>(nodes_);
   if (s.configuration.node_count() != nodes_ || s.velocity.size() != 6 * n || f.size() != 6 * n)
     throw Error("fsi output: expected " + std::to_string(nodes_) + " nodes (6 values each) in every frame");
@@ -29,6 +41,7 @@ void FsiOutput::add(const fem::DynamicState& s, const Eigen::VectorXd& f, const 
   force_.insert(force_.end(), force.begin(), force.end());
   iterations_.push_back(iterations);
   residual_.push_back(residual);
+  relative_.push_back(relative);
 }
 
 void FsiOutput::write(const std::filesystem::path& path, const Provenance& provenance) const {
@@ -51,6 +64,16 @@ void FsiOutput::write(const std::filesystem::path& path, const Provenance& prove
   }
   out.coupling_iterations = NdArray<std::int32_t>({nt}, iterations_);
   out.coupling_residual = NdArray<double>({nt}, residual_);
+  out.coupling_relative_residual = NdArray<double>({nt}, relative_);
+  out.reference_points = NdArray<double>({nv, 3});
+  for (std::size_t i = 0; i < nv; ++i)
+    for (std::size_t c = 0; c < 3; ++c) out.reference_points.data[3 * i + c] = reference_[i](static_cast<Eigen::Index>(c));
+  if (!probes_.empty() && !probe_time_.empty()) {
+    const std::size_t np = probes_.size(), ns = probe_time_.size();
+    out.probe_nodes = NdArray<std::int32_t>({np}, std::vector<std::int32_t>(probes_.begin(), probes_.end()));
+    out.probe_time = NdArray<double>({ns}, probe_time_);
+    out.probe_displacement = NdArray<double>({ns, np, 3}, probe_displacement_);
+  }
   out.rho = rho_;
   out.U = speed_;
   out.reference_area = area_;

@@ -104,7 +104,8 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
                                                      .box_y0 = g.yc - D,
                                                      .box_y1 = g.yc + D,
                                                      .h = h,
-                                                     .ratio = opt.stretch_ratio});
+                                                     .ratio = opt.stretch_ratio,
+                                                     .wall_ratio = opt.wall_stretch_ratio});
   const double dt = opt.dt > 0 ? opt.dt : opt.cfl * h / um;
   const double t_end = opt.t_end > 0 ? opt.t_end : (name == "FSI1" ? 6.0 : 10.0);
   cfd::FlowOptions flow_options = cfd::channel_benchmark_options(kNu, opt.cfl, h, um);
@@ -127,16 +128,19 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
   FlowStructureStep step(flow, structure, body, kRho, dt);
   CouplingOptions co;
   co.convergence.relative_tolerance = opt.tolerance;
+  co.convergence.absolute_tolerance = opt.absolute_tolerance;
   co.max_iterations = opt.max_iterations;
   co.divergence_iterations = opt.divergence_iterations;
+  co.accept_at_cap = opt.accept_at_cap;
   const InterfaceLayout layout = step.layout();
   ImplicitCoupling coupling(layout, Eigen::VectorXd::Zero(layout.size()),
                             make_acceleration(opt.acceleration, layout, opt.omega), co);
   if (opt.progress && opt.progress_iterations)
-    coupling.set_progress([&](const IterationReport& r) { opt.progress("  " + progress_line(r)); });
+    coupling.set_progress([&](const IterationReport& r) {
+      opt.progress("  " + progress_line(r) + ", |x_out - x_in| " + format("%.2e", r.absolute) + " m");
+    });
 
-  const int nodes = static_cast<int>(X0.size());
-  FsiOutput output(nodes, kRho, ubar, D * 1.0);
+  FsiOutput output(X0, {flag.point_a}, kRho, ubar, D * 1.0);
   TurekHronFsiRun run;
   const auto steps = static_cast<long>(std::ceil(t_end / dt - 1e-9));
   if (steps < 1) throw Error("turek_hron_fsi: t_end must be at least one time step");
@@ -151,11 +155,13 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
     if (n % opt.output_every == 0 || n == steps) {
       const Eigen::VectorXd load = Eigen::Map<const Eigen::VectorXd>(step.wet_loads().data(), 2 * n_wet);
       output.add(structure.state(), structure.scatter(load), {rec.force[0], rec.force[1], 0.0}, st.iterations,
-                 st.absolute_residual);
+                 st.absolute_residual, st.residual);
     }
+    output.add_probes(structure.state());
     if (opt.progress)
       opt.progress("step " + std::to_string(n) + " t " + format("%.4f", rec.time) + ": " +
-                   std::to_string(st.iterations) + " it, residual " + format("%.2e", st.residual) + ", drag " +
+                   std::to_string(st.iterations) + " it" + (st.converged ? "" : " (cap: best iterate)") +
+                   ", residual " + format("%.2e", st.residual) + ", drag " +
                    format("%.4f", rec.force[0]) + " lift " + format("%.4f", rec.force[1]) + " N/m, A (" +
                    format("%.4e", ua.x()) + ", " + format("%.4e", ua.y()) + ") m, power " +
                    format("%.3e", rec.power) + " W/m");
@@ -223,9 +229,10 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
     s.info("lift_final", lift.back(), "N/m");
   }
   double mean_it = 0, max_it = 0, mismatch = 0, mean_ramped = 0;
-  long ramped = 0;
+  long ramped = 0, at_cap = 0;
   for (std::size_t k = 0; k < run.statistics.size(); ++k) {
     const double it = run.statistics[k].iterations;
+    at_cap += run.statistics[k].converged ? 0 : 1;
     mean_it += it;
     max_it = std::max(max_it, it);
     mismatch = std::max(mismatch, run.records[k].transfer_mismatch);
@@ -239,6 +246,7 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
   s.info("coupling_iterations_max", max_it);
   if (ramped > 0) s.info("coupling_iterations_mean_after_ramp", mean_ramped / static_cast<double>(ramped));
   s.info("transfer_mismatch_max", mismatch);
+  s.info("steps_at_cap", static_cast<double>(at_cap));
   s.info("steps", static_cast<double>(steps));
   s.info("wall_seconds_per_simulated_second", run.wall_seconds / t_end, "s");
   s.info("flow_cells", static_cast<double>(grid.cells()));
@@ -246,6 +254,9 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
                     {"acceleration", opt.acceleration},
                     {"omega0", opt.omega},
                     {"relative_tolerance", opt.tolerance},
+                    {"absolute_tolerance", opt.absolute_tolerance},
+                    {"max_iterations", opt.max_iterations},
+                    {"accept_at_cap", opt.accept_at_cap},
                     {"cells_per_diameter", opt.cells_per_diameter},
                     {"h", h},
                     {"dt", dt},
@@ -256,12 +267,13 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
                     {"structure_substeps", opt.structure_substeps},
                     {"circle_vertices", opt.circle_vertices},
                     {"channel_length", opt.channel_length},
+                    {"stretch_ratio", opt.stretch_ratio},
+                    {"wall_stretch_ratio", opt.wall_stretch_ratio},
                     {"wall_acceleration", "(V^{n+1} - V^n) / dt"}};
   run.summary = s;
 
   if (!opt.fsi_h5.empty()) {
     Provenance p{"fin-fsi", s.parameters(), {opt.reference}};
-    p.config["point_a_node"] = flag.point_a;
     p.config["units"] = "2-D: forces per metre depth (N/m); reference_area = D x 1 m";
     output.write(opt.fsi_h5, p);
   }

@@ -45,6 +45,7 @@ struct TurekHronFsiOptions {
   int cells_per_diameter = 16;
   double wake_box = 1.0;
   double stretch_ratio = 1.05;
+  double wall_stretch_ratio = 0;  // the same between the box and the channel walls (y); 0: stretch_ratio
   double channel_length = 2.5;
   int circle_vertices = 256;
   fem::validation::FlagMesh mesh{20, 2, 3.0};
@@ -57,8 +58,18 @@ struct TurekHronFsiOptions {
   std::string acceleration = "iqn-ils";
   double omega = 0.1;
   double tolerance = 1e-5;  // relative interface displacement residual
-  int max_iterations = 50;
-  int divergence_iterations = 4;
+  // ... or converged when |x_out - x_in| (displacement block, all wet nodes) is below this [m]. The
+  // flow's response to the surface position jumps when a cell centre crosses the moving wall (the
+  // cell changes between fluid and solid): measured 4e-7 m in |x_out - x_in| on FSI1 at D/16 (a
+  // grid uniform towards the walls, step 8, the flag 1e-7 m from rest), where the iterations then
+  // wander at that level and trip the divergence test. Below the jumps they cannot converge.
+  double absolute_tolerance = 1e-7;
+  int max_iterations = 30;
+  int divergence_iterations = 0;  // residual growing this many iterations in a row: diverged (0: off)
+  // At the cap, accept the best iterate (CouplingOptions::accept_at_cap; counted in the summary as
+  // steps_at_cap) instead of stopping with CouplingNotConverged. The cell changes above make H(x)
+  // jump; a flag resting across a cell centre can leave no fixed point at all.
+  bool accept_at_cap = true;
   std::filesystem::path fsi_h5;  // empty: not written
   int output_every = 1;          // fsi.h5 frames: every k-th step (and the last)
   // Progress: one line per step (and per coupling iteration when `iterations`).
