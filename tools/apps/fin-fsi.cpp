@@ -31,6 +31,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   th->add_option("--max-iterations", o.max_iterations, "coupling iterations per step")->capture_default_str();
   th->add_option("--cells-per-diameter", o.cells_per_diameter, "flow grid: D / h in the box")->capture_default_str();
+  th->add_option("--core-cells-per-diameter", o.core_cells_per_diameter, "finer core around the body: D / h_core")
+      ->capture_default_str();
+  th->add_option("--core-wake", o.core_wake, "the core ends this many D behind the tip")->capture_default_str();
   th->add_option("--wake-box", o.wake_box, "uniform box behind the tip [D]")->capture_default_str();
   th->add_option("--stretch-ratio", o.stretch_ratio, "largest neighbouring cell-width ratio outside the box")
       ->capture_default_str();

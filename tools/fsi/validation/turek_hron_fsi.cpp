@@ -95,6 +95,10 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
   cfd::TurekHronGeometry g;
   g.length = opt.channel_length;
   const double D = 2 * g.radius, h = D / opt.cells_per_diameter;
+  const bool core = opt.core_cells_per_diameter > opt.cells_per_diameter;
+  const double hc = core ? D / opt.core_cells_per_diameter : h;
+  if (core && !(opt.core_wake > 0 && opt.core_wake < opt.wake_box))
+    throw Error("turek_hron_fsi: core_wake must be > 0 and end inside the uniform box (wake_box)");
   if (!(g.tip_x() + opt.wake_box * D < g.length))
     throw Error("turek_hron_fsi: the wake box must end before the outlet (wake_box, channel_length)");
   const cfd::StretchedGrid grid = cfd::channel_grid({.length = g.length,
@@ -104,11 +108,16 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
                                                      .box_y0 = g.yc - D,
                                                      .box_y1 = g.yc + D,
                                                      .h = h,
+                                                     .core_x0 = g.xc - 0.75 * D,
+                                                     .core_x1 = g.tip_x() + opt.core_wake * D,
+                                                     .core_y0 = g.yc - 0.75 * D,
+                                                     .core_y1 = g.yc + 0.75 * D,
+                                                     .h_core = core ? hc : 0,
                                                      .ratio = opt.stretch_ratio,
                                                      .wall_ratio = opt.wall_stretch_ratio});
-  const double dt = opt.dt > 0 ? opt.dt : opt.cfl * h / um;
+  const double dt = opt.dt > 0 ? opt.dt : opt.cfl * hc / um;
   const double t_end = opt.t_end > 0 ? opt.t_end : (name == "FSI1" ? 6.0 : 10.0);
-  cfd::FlowOptions flow_options = cfd::channel_benchmark_options(kNu, opt.cfl, h, um);
+  cfd::FlowOptions flow_options = cfd::channel_benchmark_options(kNu, opt.cfl, hc, um);
   flow_options.dt = dt;
   cfd::FlowSolver flow;
   flow.setup(grid, cfd::channel_benchmark_boundary(um, opt.ramp_time), flow_options);
@@ -259,6 +268,8 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
                     {"accept_at_cap", opt.accept_at_cap},
                     {"cells_per_diameter", opt.cells_per_diameter},
                     {"h", h},
+                    {"core_cells_per_diameter", opt.core_cells_per_diameter},
+                    {"h_core", hc},
                     {"dt", dt},
                     {"t_end", t_end},
                     {"ramp_time", opt.ramp_time},
