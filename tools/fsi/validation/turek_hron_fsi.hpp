@@ -5,8 +5,8 @@
 // (flag_flow_body.hpp), and the flag as plane-strain St. Venant-Kirchhoff Q9 solids stepped with
 // generalized-alpha (fem/coupled_structure.hpp, fem/validation/turek_hron_flag.hpp), coupled per
 // time step by FlowStructureStep with Aitken (the seed paper's rule) or IQN-ILS.
-//   FSI1 (Re 20, steady): u_x, u_y of point A, drag and lift at the end against turek_hron.json
-//        (goal 1 %).
+//   FSI1 (Re 20, steady): u_x, u_y of point A, drag and lift, their means over the last second,
+//        against turek_hron.json (goal 1 %); their ranges there as info.
 //   FSI2 (Re 100, rho_s/rho_f = 10) and FSI3 (Re 200, rho_s/rho_f = 1), periodic: over the last full
 //        period of u_y(A) (fem/validation/turek_hron_csm.hpp's last_period, mean_amplitude): u_y
 //        amplitude and frequency (3 %), u_x mean and amplitude (5 %), drag mean (2 %), lift
