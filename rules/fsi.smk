@@ -13,10 +13,11 @@ _FSI_REFERENCE = os.path.join(REPO, "data", "reference", "turek_hron.json")
 # case -> (description, flags of the full case, flags of the coarse one). The coarse FSI2 / FSI3
 # runs cover only the start of the inflow ramp (no full period: `missing_periods` misses); they check
 # that the coupled run goes and converges, in under a minute. The full ones run on one core for
-# about 5 min (FSI1, D/32), 15 min (FSI3, D/16, 10 s) and 15 min (FSI2, D/16, 15 s).
+# about 5 min of CPU (FSI1, D/16 box + D/32 core), 15 min (FSI3, D/16, 10 s) and 15 min (FSI2, D/16, 15 s).
 _FSI_CASES = {
     "fsi_turek_hron_fsi1": ("Turek-Hron FSI1: steady flag deflection at Re 20, coupled",
-                            "--case FSI1 --cells-per-diameter 32 --t-end 8 --output-every 20",
+                            "--case FSI1 --cells-per-diameter 16 --core-cells-per-diameter 32"
+                            " --wall-stretch-ratio 0.98 --t-end 8 --output-every 20",
                             "--case FSI1 --cells-per-diameter 16 --t-end 6 --output-every 20"),
     "fsi_turek_hron_fsi2": ("Turek-Hron FSI2: flag flapping at Re 100, rho_s/rho_f = 10, coupled",
                             "--case FSI2 --cells-per-diameter 16 --t-end 15 --output-every 10",
