@@ -272,6 +272,13 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
   if (ramped > 0) s.info("coupling_iterations_mean_after_ramp", mean_ramped / static_cast<double>(ramped));
   s.info("transfer_mismatch_max", mismatch);
   s.info("steps_at_cap", static_cast<double>(at_cap));
+  // Energy (issue 32, validation 4, not graded yet): the work the fluid did on the flag against its
+  // energy at the end (from rest); with rho_inf < 1 the integrator dissipates part of it.
+  double work = 0;
+  for (const StepRecord& r : run.records) work += r.interface_work;
+  const double energy = structure.kinetic_energy() + structure.strain_energy();
+  s.info("interface_work_total", work, "J/m");
+  s.info("structure_energy_final", energy, "J/m");
   s.info("steps", static_cast<double>(steps));
   s.info("wall_seconds_per_simulated_second", run.wall_seconds / t_end, "s");
   s.info("flow_cells", static_cast<double>(grid.cells()));
