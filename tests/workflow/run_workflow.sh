@@ -4,7 +4,8 @@
 #     error, and with nothing built they plan the same jobs (the whole DAG), each missing
 #     executable standing as one missing_executable job, which fails with one line saying how to
 #     build it,
-#  2. the tiny case runs to completion, its stage files (kinematics, mesh, motion, loads) meet their
+#  2. the tiny case runs to completion, its stage files (kinematics, mesh, motion, loads,
+#     materials) meet their
 #     contracts (fin-contract check) and every summary.json is a valid finverse summary,
 #  3. a second run has nothing to do,
 #  4. `-R <rule>` reruns that rule only,
@@ -30,6 +31,7 @@ done
 # The default target is the pipeline on the default case, no validation case.
 if grep -qE "^validation_" "$work/dry_all.log"; then cat "$work/dry_all.log"; echo "the default target plans validation cases"; exit 1; fi
 grep -qE "^loads +1 " "$work/dry_all.log" || { cat "$work/dry_all.log"; echo "the default target does not reach loads.h5"; exit 1; }
+grep -qE "^fit +1 " "$work/dry_all.log" || { cat "$work/dry_all.log"; echo "the default target does not reach materials.h5"; exit 1; }
 
 echo "== nothing built: the same DAG, and a missing executable says how to build it"
 nobuild=$work/nobuild/build
@@ -48,10 +50,14 @@ grep -qE "^[^ ]*/bin/fin-cfd is missing: run cmake -S [^ ]+ -B [^ ]+ -G Ninja &&
 
 echo "== tiny case"
 "${sm[@]}" --configfile "$src/config/cases/tiny.yaml" > "$work/run1.log" 2>&1 || { cat "$work/run1.log"; exit 1; }
-for stage in kinematics mesh motion loads; do
+for stage in kinematics mesh motion loads materials; do
   "$build/bin/fin-contract" check "$work/results/tiny/$stage.h5" > /dev/null ||
     { echo "results/tiny/$stage.h5 does not meet its contract"; exit 1; }
 done
+# The tiny case's materials.h5 against its golden file (per-dataset tolerances beside it).
+"$build/bin/fin-diff" "$src/tests/regression/fit/tiny_case/materials.h5" "$work/results/tiny/materials.h5" \
+  --tolerances "$src/tests/regression/fit/tiny_case/tolerances.json" > "$work/diff_materials.log" 2>&1 ||
+  { cat "$work/diff_materials.log"; echo "results/tiny/materials.h5 differs from its golden file"; exit 1; }
 shopt -s nullglob
 summaries=("$work"/results/validation/*/summary.json)
 echo "summaries: ${#summaries[@]}"

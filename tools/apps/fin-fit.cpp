@@ -17,6 +17,7 @@
 #include "core/cli.hpp"
 #include "core/summary.hpp"
 #include "fit/io/file_fit.hpp"
+#include "fit/validation/fin_twin_grade.hpp"
 #include "fit/validation/hybrid_plate_fit.hpp"
 #include "fit/validation/uniform_plate_fit.hpp"
 
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
   finverse::fit::io::FileFitOptions o;
   std::string mesh, motion, materials, out, loads, parameters, summary, checkpoint;
   std::vector<std::string> methods{"ga"};
-  std::string root_rotation = "fit";
+  std::string root_rotation = "fit", base = "carried";
   bool no_polish = false;
   auto* rn = app.add_subcommand("run", "fit from stage files (mesh, motion, loads, materials) to materials.h5");
   rn->add_option("--mesh", mesh, "mesh.h5 (finverse/mesh)")->required();
@@ -74,6 +75,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   rn->add_option("--root-rotation", root_rotation,
                  "root rotations: fit (root nodes + the rays' tangents at the root) or zero (the clamp does not turn)")
+      ->capture_default_str();
+  rn->add_option("--base", base,
+                 "quasi_static: the base at t carries its stress from the mesh (carried) or is the stress-free reference "
+                 "of the increment (stress_free)")
+      ->check(CLI::IsMember({"carried", "stress_free"}))
       ->capture_default_str();
   rn->add_option("--methods", methods, "optimisers, run in this order: ga, cmaes")->delimiter(',')->capture_default_str();
   rn->add_option("--runs", o.fit.runs, "independent seeded runs per method")->capture_default_str();
@@ -142,7 +148,23 @@ int main(int argc, char** argv) {
   uc->add_option("--polish-evaluations", up.fit.polish_options.max_evaluations,
                  "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")->capture_default_str();
 
+  // A fin twin's materials.h5 against the modulus field its target was computed with.
+  std::string graded, truth_file, twin_name = "fit_trout_twin";
+  auto* gc = app.add_subcommand("grade_twin", "fin twin: a fin-fit run's materials.h5 against the true materials");
+  gc->add_option("--materials-h5", graded, "materials.h5 of fin-fit run on the twin's target")->required();
+  gc->add_option("--truth", truth_file, "materials JSON the target was computed with")->required();
+  gc->add_option("--name", twin_name, "case name (<out-dir>/<name>/summary.json)")->capture_default_str();
+  gc->add_option("--out-dir", out_dir, "directory that receives <case>/summary.json")->capture_default_str();
+
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
+    if (*gc) {
+      auto summary = finverse::fit::validation::grade_fin_twin(
+          finverse::stage::read<finverse::stage::Materials>(graded), finverse::fem::io::read_material_spec(truth_file),
+          twin_name);
+      summary.parameters()["materials_h5"] = graded;
+      summary.parameters()["truth"] = truth_file;
+      return finish(std::move(summary), twin_name, out_dir, 0.0);
+    }
     if (*uc) {
       const auto start = std::chrono::steady_clock::now();
       up.fit.threads = finverse::cli::threads_in_use();
@@ -173,6 +195,7 @@ int main(int argc, char** argv) {
     if (!checkpoint.empty()) o.fit.checkpoint = checkpoint;
     o.fit.methods = methods;
     o.root_rotation = finverse::fem::parse_root_rotation(root_rotation);
+    o.stress_free_base = base == "stress_free";
     o.fit.polish = !no_polish;
     o.fit.threads = finverse::cli::threads_in_use();
     const auto result = finverse::fit::io::run_fit_from_files(o, finverse::cli::effective_config(app));

@@ -182,3 +182,20 @@ void FinModelFactory::set_moduli(fem::Model& model, const Eigen::VectorXd& p) co
 }
 
 }  // namespace finverse::fit
+
+namespace finverse::fit {
+
+std::shared_ptr<const ModelFactory> FinModelFactory::rebased(const std::vector<fem::Vec3>& positions) const {
+  const size_t nv = mesh_.points.dim(0);
+  if (positions.size() != nv)
+    throw InvalidInput("fin model: rebase to " + std::to_string(positions.size()) + " positions, the mesh has " +
+                       std::to_string(nv) + " nodes");
+  stage::Mesh moved = mesh_;
+  for (size_t i = 0; i < nv; ++i)
+    for (int d = 0; d < 3; ++d) moved.points(i, static_cast<size_t>(d)) = positions[i](d);
+  FinDrive drive = drive_;
+  drive.ramp = ramp_;
+  return std::make_shared<FinModelFactory>(std::move(moved), base_, names_, std::move(drive), mesh_source_);
+}
+
+}  // namespace finverse::fit

@@ -53,6 +53,9 @@ class FinModelFactory : public ModelFactory {
   RayleighDamping damping() const override { return {base_.rayleigh_mass, base_.rayleigh_stiffness}; }
   Eigen::VectorXd rebuild_key(const Eigen::VectorXd& physical) const override;
   void set_moduli(fem::Model& model, const Eigen::VectorXd& physical) const override;
+  // The mesh's points moved to `positions` (the root drive and loads unchanged: the root
+  // displacements are then measured from these positions and the rotation fitted from them).
+  std::shared_ptr<const ModelFactory> rebased(const std::vector<fem::Vec3>& positions) const override;
 
   double ramp() const { return ramp_; }
   // Start of a run from rest: the first output time minus the ramp (as fin-fem run).

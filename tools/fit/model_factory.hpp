@@ -49,6 +49,12 @@ class ModelFactory {
   virtual Eigen::VectorXd rebuild_key(const Eigen::VectorXd& physical) const { return physical; }
   // Sets the moduli of a model built by build(rebuild_key(physical)) to those of `physical`.
   virtual void set_moduli(fem::Model& /*model*/, const Eigen::VectorXd& /*physical*/) const {}
+
+  // The same factory with its reference (stress-free) configuration moved to `positions`, one per
+  // node, the drive re-referenced with it (eq. (2) with a stress-free base). Null: not supported.
+  virtual std::shared_ptr<const ModelFactory> rebased(const std::vector<fem::Vec3>& /*positions*/) const {
+    return nullptr;
+  }
 };
 
 // The nodes of a model with all three translations prescribed or fixed (a helper for factories).

@@ -18,6 +18,15 @@ struct QuasiStaticObjective::Workspace {
   // relax_rotations: a second model with the bases' translations held, and its solver.
   std::unique_ptr<fem::Model> held;
   std::unique_ptr<RotationRelaxation> relaxation;  // refers to *held
+  // stress_free_base: one model per instant, built on that instant's shape, and its increment.
+  std::vector<std::unique_ptr<fem::Model>> instant_models;
+  std::vector<std::unique_ptr<fem::QuasiStaticIncrement>> instant_increments;
+  void set_moduli(const ModelFactory& f, const std::vector<std::shared_ptr<const ModelFactory>>& rebased,
+                  const Eigen::VectorXd& p) {
+    f.set_moduli(*model, p);
+    if (held) f.set_moduli(*held, p);
+    for (size_t j = 0; j < instant_models.size(); ++j) rebased[j]->set_moduli(*instant_models[j], p);
+  }
 };
 
 QuasiStaticObjective::~QuasiStaticObjective() = default;
@@ -66,10 +75,22 @@ QuasiStaticObjective::QuasiStaticObjective(std::shared_ptr<const ModelFactory> f
   const StateFromPositions from_positions(*model);
   for (double t : instants_) {
     const std::vector<fem::Vec3> x0 = target.positions_at(t), x1 = target.positions_at(t + dt_);
-    fem::NodalState base = from_positions(x0);
-    // The drive's own values at t (t1 = t2: no spin), so that the FE root increment is the drive's.
-    fem::apply_prescribed(*model, t, t, base);
-    base_.push_back(std::move(base));
+    if (options_.stress_free_base) {
+      // The instant's shape is the model's reference: the base is its reference state with the
+      // drive's values at t (the root's displacement from that shape, zero up to the drive's fit).
+      auto rebased = factory_->rebased(x0);
+      if (!rebased) throw InvalidInput(src + ": this model cannot take a stress-free base (no rebased factory)");
+      const std::unique_ptr<fem::Model> at_t = rebased->build(rebased->default_parameters());
+      fem::NodalState base = at_t->reference_state();
+      fem::apply_prescribed(*at_t, t, t, base);
+      base_.push_back(std::move(base));
+      rebased_.push_back(std::move(rebased));
+    } else {
+      fem::NodalState base = from_positions(x0);
+      // The drive's own values at t (t1 = t2: no spin), so that the FE root increment is the drive's.
+      fem::apply_prescribed(*model, t, t, base);
+      base_.push_back(std::move(base));
+    }
     std::vector<fem::Vec3> dx(x0.size());
     for (size_t i = 0; i < dx.size(); ++i) dx[i] = x1[i] - x0[i];
     target_dx_.push_back(std::move(dx));
@@ -87,8 +108,7 @@ std::unique_ptr<QuasiStaticObjective::Workspace> QuasiStaticObjective::acquire(c
       if ((*it)->key.size() == key.size() && (*it)->key == key) {
         std::unique_ptr<Workspace> w = std::move(*it);
         idle_.erase(it);
-        factory_->set_moduli(*w->model, p);
-        if (w->held) factory_->set_moduli(*w->held, p);
+        w->set_moduli(*factory_, rebased_, p);
         return w;
       }
   }
@@ -96,14 +116,18 @@ std::unique_ptr<QuasiStaticObjective::Workspace> QuasiStaticObjective::acquire(c
   w->key = key;
   w->model = factory_->build(key);
   w->increment = std::make_unique<fem::QuasiStaticIncrement>(*w->model, options_.static_options);
-  if (options_.relax_rotations) {
+  for (const auto& f : rebased_) {
+    w->instant_models.push_back(f->build(key));
+    w->instant_increments.push_back(
+        std::make_unique<fem::QuasiStaticIncrement>(*w->instant_models.back(), options_.static_options));
+  }
+  if (options_.relax_rotations && rebased_.empty()) {
     w->held = factory_->build(key);
     w->relaxation = std::make_unique<RotationRelaxation>(*w->held, instants_, base_, options_.static_options);
   }
   ++builds_;
   // Always through set_moduli, also right after a build: the result then depends on p alone.
-  factory_->set_moduli(*w->model, p);
-  if (w->held) factory_->set_moduli(*w->held, p);
+  w->set_moduli(*factory_, rebased_, p);
   return w;
 }
 
@@ -120,7 +144,9 @@ std::vector<std::vector<fem::Vec3>> QuasiStaticObjective::increments(const Eigen
   // On an exception the workspace is dropped (its solver may hold a failed factorisation).
   for (size_t j = 0; j < instants_.size(); ++j) {
     const double t = instants_[j];
-    if (w->relaxation)
+    if (!w->instant_increments.empty())
+      dx.push_back(w->instant_increments[j]->displacement_increment(base_[j], t, t + dt_));
+    else if (w->relaxation)
       dx.push_back(w->increment->displacement_increment(w->relaxation->relax(base_[j], t), t, t + dt_));
     else
       dx.push_back(w->increment->displacement_increment(base_[j], t, t + dt_));

@@ -90,6 +90,7 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
   std::ostringstream what;
   if (o.objective == "quasi_static") {
     QuasiStaticOptions qs;
+    qs.stress_free_base = o.stress_free_base;
     qs.dt = o.dt > 0 ? o.dt : target.frame_spacing();
     double t_lo = target.times.front(), t_hi = target.times.back();
     if (loads) {
@@ -97,7 +98,8 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
       t_hi = std::min(t_hi, loads->time.data.back());
     }
     qs.instants = quasi_static_instants(o, target, qs.dt, t_lo, t_hi);
-    what << "eq. (2) quasi-static increments of " << sci(qs.dt) << " s at " << qs.instants.size() << " instant(s)";
+    what << "eq. (2) quasi-static increments of " << sci(qs.dt) << " s at " << qs.instants.size() << " instant(s)"
+         << (qs.stress_free_base ? " from stress-free bases" : "");
     objective = std::make_unique<QuasiStaticObjective>(factory, std::move(target), qs);
   } else if (o.objective == "dynamic") {
     DynamicObjectiveOptions dy;

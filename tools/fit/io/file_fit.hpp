@@ -40,6 +40,8 @@ struct FileFitOptions {
   // Root rotations of the drive: fit (root nodes + the rays' tangents at the root) or zero (a
   // clamp that does not turn), fem/root_motion.hpp.
   fem::RootRotation root_rotation = fem::RootRotation::fit;
+  // quasi_static: the base as the stress-free reference of the increment (QuasiStaticOptions).
+  bool stress_free_base = false;
   FitOptions fit;
 };
 
