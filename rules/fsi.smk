@@ -14,16 +14,16 @@ _FSI_REFERENCE = os.path.join(REPO, "data", "reference", "turek_hron.json")
 # runs cover only the start of the inflow ramp (no full period: `missing_periods` misses); they check
 # that the coupled run goes and converges, in under a minute. The full ones run on one core for
 # about 5 min of CPU (FSI1, D/16 box + D/32 core), 30 min (FSI3, D/16, 10 s) and 10 min (FSI2,
-# D/16, 15 s). FSI3 needs dt = 0.3 h / U_max at D/16: at 0.5 the flow blows up at t = 1.77 s, with
-# the flag rigid too (docs/studies/fsi_turek_hron.md).
+# D/16, 15 s). FSI2 and FSI3 need dt = 0.3 h / U_max at D/16: at 0.5 the flow blows up (FSI3 at
+# t = 1.77 s, with the flag rigid too; FSI2 at 2.48 s; docs/studies/fsi_turek_hron.md).
 _FSI_CASES = {
     "fsi_turek_hron_fsi1": ("Turek-Hron FSI1: steady flag deflection at Re 20, coupled",
                             "--case FSI1 --cells-per-diameter 16 --core-cells-per-diameter 32"
                             " --wall-stretch-ratio 0.98 --t-end 8 --output-every 20",
                             "--case FSI1 --cells-per-diameter 16 --t-end 6 --output-every 20"),
     "fsi_turek_hron_fsi2": ("Turek-Hron FSI2: flag flapping at Re 100, rho_s/rho_f = 10, coupled",
-                            "--case FSI2 --cells-per-diameter 16 --t-end 15 --output-every 10",
-                            "--case FSI2 --cells-per-diameter 16 --t-end 0.5 --output-every 10"),
+                            "--case FSI2 --cells-per-diameter 16 --cfl 0.3 --t-end 15 --output-every 10",
+                            "--case FSI2 --cells-per-diameter 16 --cfl 0.3 --t-end 0.5 --output-every 10"),
     "fsi_turek_hron_fsi3": ("Turek-Hron FSI3: flag flapping at Re 200, rho_s/rho_f = 1, coupled",
                             "--case FSI3 --cells-per-diameter 16 --cfl 0.3 --t-end 10 --output-every 10",
                             "--case FSI3 --cells-per-diameter 16 --cfl 0.3 --t-end 0.3 --output-every 10"),
