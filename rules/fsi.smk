@@ -20,7 +20,7 @@ _FSI_CASES = {
     "fsi_turek_hron_fsi1": ("Turek-Hron FSI1: steady flag deflection at Re 20, coupled",
                             "--case FSI1 --cells-per-diameter 16 --core-cells-per-diameter 32"
                             " --wall-stretch-ratio 0.98 --t-end 8 --output-every 20",
-                            "--case FSI1 --cells-per-diameter 16 --t-end 6 --output-every 20"),
+                            "--case FSI1 --cells-per-diameter 16 --t-end 3 --output-every 20"),
     "fsi_turek_hron_fsi2": ("Turek-Hron FSI2: flag flapping at Re 100, rho_s/rho_f = 10, coupled",
                             "--case FSI2 --cells-per-diameter 16 --cfl 0.3 --t-end 15 --output-every 10",
                             "--case FSI2 --cells-per-diameter 16 --cfl 0.3 --t-end 0.5 --output-every 10"),
