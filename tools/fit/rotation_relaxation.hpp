@@ -1,16 +1,9 @@
 // Rotations of a base state known by its positions, relaxed to moment balance (eq. (2)'s base).
-// Video gives node positions only; state_from_positions.hpp estimates each node's rotation by a
-// rigid fit of its 1-ring, which is the local tangent rotation to O(h). On the fin the rays are
-// three orders stiffer than the membrane, so an O(h) error of a ray node's rotation is a large
-// bending moment: the base then sits far from equilibrium and the quasi-static increment from it
-// is biased (measured on the trout twin: objective at the true moduli 2.0e-6 m with the 1-ring
-// rotations, 4.9e-8 m relaxed) and needs ~12 Newton iterations instead of 5-7. Relaxing the
-// rotations with every translation held at the tracked position -- the rotations the structure
-// itself takes with those positions, a static solve over the rotational DOFs -- leaves the
-// positions untouched and removes the moment imbalance, so "the base is taken to be in
-// equilibrium" (seed paper sec. 2.2) is needed for the forces only. The relaxed rotations depend
-// on the moduli (the ray/membrane stiffness ratio), so the objective relaxes with the moduli it
-// evaluates: one held model per workspace, its translations prescribed at every instant's base.
+// The 1-ring rigid fits (state_from_positions.hpp) are the tangent rotation to O(h), a large
+// bending moment on rays a thousand times stiffer than the membrane. Relaxing the free rotations
+// with every translation held removes that moment imbalance and leaves the positions untouched.
+// The result depends on the moduli, so the objective relaxes under the moduli it evaluates.
+// Measured effect: docs/studies/fit_on_the_fin.md.
 #pragma once
 
 #include <memory>

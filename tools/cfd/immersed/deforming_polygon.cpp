@@ -9,16 +9,6 @@
 namespace finverse::cfd {
 
 namespace {
-double signed_area_of(const std::vector<std::array<double, 2>>& v) {
-  double a = 0;
-  for (std::size_t k = 0; k < v.size(); ++k) {
-    const auto& p = v[k];
-    const auto& q = v[(k + 1) % v.size()];
-    a += p[0] * q[1] - q[0] * p[1];
-  }
-  return 0.5 * a;
-}
-
 // The polygon of the positions, checked first so that the error says what was wrong.
 Polygon checked_polygon(const PolygonState& s, const std::string& what, std::size_t expected) {
   const std::size_t n = s.position.size();
@@ -32,7 +22,7 @@ Polygon checked_polygon(const PolygonState& s, const std::string& what, std::siz
       if (!std::isfinite((*q)[k][0]) || !std::isfinite((*q)[k][1]))
         throw Error(what + ": vertex " + std::to_string(k) + " has a non-finite " +
                     (q == &s.position ? "position" : q == &s.velocity ? "velocity" : "acceleration"));
-  if (!(std::abs(signed_area_of(s.position)) > 0)) throw Error(what + ": the polygon has zero area");
+  if (!(std::abs(polygon_signed_area(s.position)) > 0)) throw Error(what + ": the polygon has zero area");
   return Polygon(s.position);
 }
 }  // namespace
@@ -49,7 +39,7 @@ PolygonState rigid_polygon_state(const MovingBody& body, const RigidState& s) {
 
 DeformingPolygon::DeformingPolygon(const PolygonState& s, const std::string& what, std::size_t expected)
     : state_(s), polygon_(checked_polygon(s, what, expected)) {
-  signed_area_ = signed_area_of(s.position);
+  signed_area_ = polygon_signed_area(s.position);
   reversed_ = signed_area_ < 0;
   const std::size_t n = s.position.size();
   const auto stored = [&](const std::vector<std::array<double, 2>>& q) {

@@ -10,8 +10,7 @@
 
 namespace finverse::cfd {
 
-namespace {
-double signed_area(const std::vector<std::array<double, 2>>& v) {
+double polygon_signed_area(const std::vector<std::array<double, 2>>& v) {
   double a = 0;
   for (std::size_t k = 0; k < v.size(); ++k) {
     const auto& p = v[k];
@@ -20,11 +19,10 @@ double signed_area(const std::vector<std::array<double, 2>>& v) {
   }
   return 0.5 * a;
 }
-}  // namespace
 
 Polygon::Polygon(std::vector<std::array<double, 2>> vertices) : v_(std::move(vertices)) {
   if (v_.size() < 3) throw Error("immersed body: a polygon needs at least 3 vertices");
-  const double a = signed_area(v_);
+  const double a = polygon_signed_area(v_);
   if (!(std::abs(a) > 0)) throw Error("immersed body: polygon has zero area");
   if (a < 0) std::reverse(v_.begin(), v_.end());
 }
@@ -39,7 +37,7 @@ Polygon Polygon::circle(double cx, double cy, double r, int n) {
   return Polygon(std::move(v));
 }
 
-double Polygon::area() const { return signed_area(v_); }
+double Polygon::area() const { return polygon_signed_area(v_); }
 
 bool Polygon::contains(double x, double y) const {
   bool in = false;

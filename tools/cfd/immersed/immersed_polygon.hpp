@@ -20,6 +20,9 @@ struct SurfacePoint {
   double edge_t = 0;
 };
 
+// Shoelace area of a vertex loop: > 0 counter-clockwise, < 0 clockwise.
+double polygon_signed_area(const std::vector<std::array<double, 2>>& vertices);
+
 class Polygon {
  public:
   // At least 3 distinct vertices, no self-intersections (not checked); either orientation (stored
