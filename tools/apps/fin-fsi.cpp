@@ -13,56 +13,61 @@
 #include "core/summary.hpp"
 #include "fsi/validation/turek_hron_fsi.hpp"
 
-int main(int argc, char** argv) {
-  namespace fv = finverse::fsi::validation;
-  CLI::App app{"fin-fsi: implicit partitioned flow-structure coupling (Aitken, IQN-ILS)"};
-  finverse::cli::Standard standard(app, "fin-fsi");
-  app.require_subcommand(1);
+namespace {
 
+namespace fv = finverse::fsi::validation;
+
+// fin-fsi turek_hron: the 2-D flag behind the cylinder (FSI1, FSI2, FSI3). One block per
+// subcommand: its options, then what it runs.
+struct TurekHronCommand {
   fv::TurekHronFsiOptions o;
   std::string reference, out, summary_path;
-  auto* th = app.add_subcommand("turek_hron", "Turek-Hron FSI1 (steady), FSI2, FSI3 (periodic)");
-  th->add_option("--case", o.case_name, "FSI1, FSI2 or FSI3")->capture_default_str();
-  th->add_option("--reference", reference, "turek_hron.json")->required();
-  th->add_option("--acceleration", o.acceleration, "aitken, iqn-ils or constant")->capture_default_str();
-  th->add_option("--omega", o.omega, "omega0 (aitken, iqn-ils) or omega (constant)")->capture_default_str();
-  th->add_option("--tolerance", o.tolerance, "relative interface displacement residual")->capture_default_str();
-  th->add_option("--absolute-tolerance", o.absolute_tolerance, "... or interface displacement change [m]")
-      ->capture_default_str();
-  th->add_option("--max-iterations", o.max_iterations, "coupling iterations per step")->capture_default_str();
-  th->add_option("--cells-per-diameter", o.cells_per_diameter, "flow grid: D / h in the box")->capture_default_str();
-  th->add_option("--core-cells-per-diameter", o.core_cells_per_diameter, "finer core around the body: D / h_core")
-      ->capture_default_str();
-  th->add_option("--core-wake", o.core_wake, "the core ends this many D behind the tip")->capture_default_str();
-  th->add_option("--wake-box", o.wake_box, "uniform box behind the tip [D]")->capture_default_str();
-  th->add_option("--stretch-ratio", o.stretch_ratio, "largest neighbouring cell-width ratio outside the box")
-      ->capture_default_str();
-  th->add_option("--wall-stretch-ratio", o.wall_stretch_ratio, "the same towards the channel walls; 0: --stretch-ratio")
-      ->capture_default_str();
-  th->add_option("--channel-length", o.channel_length, "channel length [m] (< 2.5: tests only)")
-      ->capture_default_str();
-  th->add_option("--ramp-time", o.ramp_time, "inflow ramp time [s]")->capture_default_str();
-  th->add_option("--circle-vertices", o.circle_vertices, "cylinder polygon resolution")->capture_default_str();
-  th->add_option("--nx", o.mesh.nx, "Q9 elements along the flag")->capture_default_str();
-  th->add_option("--ny", o.mesh.ny, "Q9 elements across the flag")->capture_default_str();
-  th->add_option("--dt", o.dt, "time step [s]; 0: cfl h / U_max")->capture_default_str();
-  th->add_option("--cfl", o.cfl, "CFL number for the default dt")->capture_default_str();
-  th->add_option("--t-end", o.t_end, "simulated time [s]; 0: the case's default")->capture_default_str();
-  th->add_option("--spectral-radius", o.spectral_radius, "structure's generalized-alpha rho_inf")
-      ->capture_default_str();
-  th->add_option("--substeps", o.structure_substeps, "structure sub-steps per step")->capture_default_str();
-  th->add_option("--output-every", o.output_every, "fsi.h5 frame every k steps")->capture_default_str();
-  th->add_option("--out", out, "fsi.h5 to write (optional)");
-  th->add_option("--summary", summary_path, "summary.json to write")->required();
-  th->add_option("--divergence-iterations", o.divergence_iterations,
-                 "residual growing this many iterations in a row: diverged (0: off)")
-      ->capture_default_str();
   bool strict = false;
-  th->add_flag("--strict", strict, "stop at the iteration cap (default: accept the best iterate)");
   bool iterations = false;
-  th->add_flag("--iterations", iterations, "a progress line per coupling iteration too");
+  CLI::App* th = nullptr;
 
-  return finverse::cli::run(app, standard, argc, argv, [&] {
+  void add(CLI::App& app) {
+    th = app.add_subcommand("turek_hron", "Turek-Hron FSI1 (steady), FSI2, FSI3 (periodic)");
+    th->add_option("--case", o.case_name, "FSI1, FSI2 or FSI3")->capture_default_str();
+    th->add_option("--reference", reference, "turek_hron.json")->required();
+    th->add_option("--acceleration", o.acceleration, "aitken, iqn-ils or constant")->capture_default_str();
+    th->add_option("--omega", o.omega, "omega0 (aitken, iqn-ils) or omega (constant)")->capture_default_str();
+    th->add_option("--tolerance", o.tolerance, "relative interface displacement residual")->capture_default_str();
+    th->add_option("--absolute-tolerance", o.absolute_tolerance, "... or interface displacement change [m]")
+        ->capture_default_str();
+    th->add_option("--max-iterations", o.max_iterations, "coupling iterations per step")->capture_default_str();
+    th->add_option("--cells-per-diameter", o.cells_per_diameter, "flow grid: D / h in the box")->capture_default_str();
+    th->add_option("--core-cells-per-diameter", o.core_cells_per_diameter, "finer core around the body: D / h_core")
+        ->capture_default_str();
+    th->add_option("--core-wake", o.core_wake, "the core ends this many D behind the tip")->capture_default_str();
+    th->add_option("--wake-box", o.wake_box, "uniform box behind the tip [D]")->capture_default_str();
+    th->add_option("--stretch-ratio", o.stretch_ratio, "largest neighbouring cell-width ratio outside the box")
+        ->capture_default_str();
+    th->add_option("--wall-stretch-ratio", o.wall_stretch_ratio, "the same towards the channel walls; 0: --stretch-ratio")
+        ->capture_default_str();
+    th->add_option("--channel-length", o.channel_length, "channel length [m] (< 2.5: tests only)")
+        ->capture_default_str();
+    th->add_option("--ramp-time", o.ramp_time, "inflow ramp time [s]")->capture_default_str();
+    th->add_option("--circle-vertices", o.circle_vertices, "cylinder polygon resolution")->capture_default_str();
+    th->add_option("--nx", o.mesh.nx, "Q9 elements along the flag")->capture_default_str();
+    th->add_option("--ny", o.mesh.ny, "Q9 elements across the flag")->capture_default_str();
+    th->add_option("--dt", o.dt, "time step [s]; 0: cfl h / U_max")->capture_default_str();
+    th->add_option("--cfl", o.cfl, "CFL number for the default dt")->capture_default_str();
+    th->add_option("--t-end", o.t_end, "simulated time [s]; 0: the case's default")->capture_default_str();
+    th->add_option("--spectral-radius", o.spectral_radius, "structure's generalized-alpha rho_inf")
+        ->capture_default_str();
+    th->add_option("--substeps", o.structure_substeps, "structure sub-steps per step")->capture_default_str();
+    th->add_option("--output-every", o.output_every, "fsi.h5 frame every k steps")->capture_default_str();
+    th->add_option("--out", out, "fsi.h5 to write (optional)");
+    th->add_option("--summary", summary_path, "summary.json to write")->required();
+    th->add_option("--divergence-iterations", o.divergence_iterations,
+                   "residual growing this many iterations in a row: diverged (0: off)")
+        ->capture_default_str();
+    th->add_flag("--strict", strict, "stop at the iteration cap (default: accept the best iterate)");
+    th->add_flag("--iterations", iterations, "a progress line per coupling iteration too");
+  }
+
+  int run() {
     o.reference = reference;
     o.fsi_h5 = out;
     o.progress = [](const std::string& line) { std::cerr << line << "\n"; };
@@ -81,5 +86,19 @@ int main(int argc, char** argv) {
     std::cerr << "fin-fsi turek_hron " << o.case_name << ": " << (s.pass() ? "pass" : "missed") << ", "
               << run.wall_seconds << " s, wrote " << summary_path << "\n";
     return s.pass() ? 0 : 1;
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fin-fsi: implicit partitioned flow-structure coupling (Aitken, IQN-ILS)"};
+  finverse::cli::Standard standard(app, "fin-fsi");
+  app.require_subcommand(1);
+  TurekHronCommand turek_hron;
+  turek_hron.add(app);
+  return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
+    if (turek_hron.th->parsed()) return turek_hron.run();
+    return 2;
   });
 }
