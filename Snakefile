@@ -3,7 +3,8 @@
 #
 #   snakemake -c2                 the pipeline on the default case (config/config.yaml):
 #                                 fin-synth -> fin-track -> fin-mesh -> fin-cfd fin, to results/<case>/
-#                                 (fin-fit: snakemake -c2 results/<case>/materials.h5, rules/fit.smk)
+#                                 -> fin-fit run -> fin-report (results/<case>/report/index.html,
+#                                 rules/report.smk: the scores and the paper's figures)
 #                                 (the loads take about 50 min: docs/studies/cfd_run_cost.md)
 #   snakemake -c2 validation      every validation case (hours on 2 cores) and results/validation/index.txt
 #   snakemake -c2 bench           every benchmark and results/bench/index.txt (needs the peers:

@@ -1,0 +1,47 @@
+// The report of one case (issue 33 "Deliver" 3; DESIGN.md sections 1 and 5.6): from the case's
+// stage files it grades the scores of the issue's table that the present files allow and gathers
+// the data of the paper's figures (Fig. 10 pressure jump, 11 moduli, 12 root pitch, 14 trailing
+// edge, 15 profiles and W shape, 16 force coefficients) for tools/scripts/report_figures.py.
+// Every FSI-against-reconstruction score needs fsi.h5; without it the score is "not available"
+// with that reason, and the reconstruction's own numbers (and the truth's) are given as info.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/stage_files.hpp"
+#include "report/score.hpp"
+
+namespace finverse::report {
+
+struct ReportInputs {
+  std::string case_name;
+  std::optional<stage::Truth> truth;
+  std::optional<stage::Kinematics> kinematics;
+  std::optional<stage::Mesh> mesh;
+  std::optional<stage::Motion> motion;
+  std::optional<stage::Loads> loads;
+  std::optional<stage::Materials> materials;
+  std::optional<stage::Fsi> fsi;
+  std::map<std::string, double> truth_materials;  // parameter name -> value (empty: none)
+  std::string truth_materials_source;             // where they come from, for the notes
+  double chord = 0;                               // [m]; 0: mesh.h5's chord attribute
+};
+
+struct Report {
+  std::vector<Score> scores;
+  nlohmann::json figures;  // figure data, one key per figure
+};
+
+// Throws finverse::Error when present files disagree in shape (e.g. fsi.h5 on other nodes).
+Report build_report(const ReportInputs& in);
+
+// summary.json: {"schema": "finverse/report", "case", "scores": [...], "counts": {met, missed,
+// not available}, "inputs": {stage: present}}.
+nlohmann::json summary_json(const ReportInputs& in, const Report& r);
+
+}  // namespace finverse::report
