@@ -43,7 +43,7 @@ rule fit:
 _TWIN = "results/validation/fit_trout_twin"
 _TWIN_TRUTH = os.path.join(REPO, "data", "cases", "trout_fin_materials.json")
 _TWIN_FLAGS = (
-    "--objective quasi_static --instant-count 4 --runs 1 --population 2 --generations 1 --polish-evaluations 60"
+    "--objective quasi_static --instant-count 1 --runs 1 --population 2 --generations 1 --polish-evaluations 24"
     if COARSE
     else "--objective quasi_static --instant-count 4 --runs 1 --population 44 --generations 8 --polish-evaluations 400"
 )
