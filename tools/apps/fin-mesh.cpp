@@ -171,7 +171,8 @@ int main(int argc, char** argv) {
       motion.points = mesh::carry_motion(binding, src.points);
       motion.velocity = mesh::velocities(src.time.data, motion.points, src.period);
       motion.period = src.period;
-      Provenance mprov{"fin-mesh", prov.config, {motion_source}};
+      // mesh_out among the inputs: readers of both check that this motion is on that mesh.
+      Provenance mprov{"fin-mesh", prov.config, {motion_source, mesh_out}};
       stage::write(motion_out, motion, mprov);
       if (!motion_pvd.empty()) {
         const std::size_t nf = motion.time.size(), nv = m.points.dim(0);

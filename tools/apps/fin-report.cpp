@@ -7,7 +7,8 @@
 //              --truth-materials data/cases/trout_fin_materials.json [--fsi fsi.h5] --out-dir report
 //
 // Every input is optional: a section whose file is not given is marked "not available" with the
-// missing file named. A given file that does not exist or breaks its contract: one line, exit 2.
+// missing file named. A given file that does not exist or breaks its contract, or files that
+// disagree (loads from another motion, materials for another mesh): one line, exit 2.
 #include <cstdio>
 #include <filesystem>
 
@@ -15,6 +16,7 @@
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/stage_files.hpp"
+#include "core/stage_identity.hpp"
 #include "fem/io/material_spec.hpp"
 #include "report/fin_report.hpp"
 #include "report/modulus_scores.hpp"
@@ -55,6 +57,12 @@ int main(int argc, char** argv) {
     read_if(loads, in.loads);
     read_if(materials, in.materials);
     read_if(fsi, in.fsi);
+    // Stages that disagree (issue 33 "Bad input"): each product against the inputs it records.
+    const std::vector<std::pair<std::filesystem::path, std::filesystem::path>> made_from{
+        {motion, kinematics}, {motion, mesh}, {loads, mesh},      {loads, motion}, {materials, mesh},
+        {materials, motion},  {materials, loads}, {fsi, mesh}, {fsi, materials}};
+    for (const auto& [product, input] : made_from)
+      if (!product.empty() && !input.empty()) check_made_from(product, input);
     if (in.truth && !report::truth_parameters(*in.truth).empty()) {
       in.truth_materials = report::truth_parameters(*in.truth);
       in.truth_materials_source = truth.string() + " (materials)";

@@ -3,10 +3,22 @@
 
 #include <unistd.h>
 
+#include <fstream>
+
 #include "core/sha256.hpp"
+#include "core/stage_identity.hpp"
 #include "core/version.hpp"
 
 namespace finverse {
+
+namespace {
+// The HDF5 signature at offset 0 (files written by finverse have no user block).
+bool starts_as_hdf5(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  char sig[8] = {};
+  return in.read(sig, 8) && std::string(sig, 8) == std::string("\x89HDF\r\n\x1a\n", 8);
+}
+}  // namespace
 
 std::string producer_string(const std::string& tool) {
   std::string s = std::string("finverse ") + version_string() + " (git " + git_describe() + ")";
@@ -26,7 +38,12 @@ const std::vector<std::string>& provenance_attribute_names() {
 
 nlohmann::json hash_inputs(const std::vector<std::filesystem::path>& inputs) {
   auto arr = nlohmann::json::array();
-  for (const auto& p : inputs) arr.push_back({{"path", p.string()}, {"sha256", sha256_file(p)}});
+  for (const auto& p : inputs) {
+    nlohmann::json e{{"path", p.string()}, {"sha256", sha256_file(p)}};
+    // A stage file's schema and content identity: what its consumers check (stage_identity.hpp).
+    if (starts_as_hdf5(p)) e.update(stage_identity(p));
+    arr.push_back(e);
+  }
   return arr;
 }
 

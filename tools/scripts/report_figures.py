@@ -25,8 +25,9 @@ import numpy as np  # noqa: E402
 PNG_META = {"Software": None}
 
 
-def save(fig, path):
-    fig.tight_layout()
+def save(fig, path, tight=True):
+    if tight:  # not with a colour bar spanning several axes (Fig. 10)
+        fig.tight_layout()
     fig.savefig(path + ".tmp.png", dpi=90, metadata=PNG_META)
     plt.close(fig)
     os.replace(path + ".tmp.png", path)
@@ -49,7 +50,7 @@ def fig10(d, out):
         ax.set_xlabel("x [mm]")
         ax.set_ylabel("z [mm]")
     fig.colorbar(m, ax=axes, label="pressure jump [Pa]")
-    save(fig, os.path.join(out, "fig10_pressure_jump.png"))
+    save(fig, os.path.join(out, "fig10_pressure_jump.png"), tight=False)
     return "fig10_pressure_jump.png"
 
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/stage_identity.hpp"
 
 namespace finverse::cfd::io {
 
@@ -137,6 +138,7 @@ FinInput make_fin_input(const stage::Mesh& mesh, const stage::Motion& motion, co
 FinInput read_fin_input(const std::filesystem::path& mesh, const std::filesystem::path& motion) {
   const auto m = stage::read<stage::Mesh>(mesh);
   const auto q = stage::read<stage::Motion>(motion);
+  check_made_from(motion, mesh);  // the motion carried onto this mesh, not another template's
   return make_fin_input(m, q, mesh.string(), motion.string());
 }
 

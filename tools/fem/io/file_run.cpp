@@ -5,6 +5,7 @@
 
 #include "core/log.hpp"
 #include "core/stage_files.hpp"
+#include "core/stage_identity.hpp"
 #include "fem/errors.hpp"
 #include "fem/io/fin_model.hpp"
 #include "fem/io/material_spec.hpp"
@@ -31,6 +32,10 @@ FileRunSummary run_from_files(const FileRunOptions& o, const nlohmann::json& con
     }
   }
   if (o.motion) motion = stage::read<stage::Motion>(*o.motion);
+  // Stages that disagree (issue 33): the motion or loads of another mesh, loads of another motion.
+  if (o.motion) check_made_from(*o.motion, o.mesh);
+  if (o.loads) check_made_from(*o.loads, o.mesh);
+  if (o.loads && o.motion) check_made_from(*o.loads, *o.motion);
   if (!loads && !motion) throw InvalidInput("fin-fem run: give --loads and/or --motion (they define the output times)");
 
   if (loads && motion && !loads->time.data.empty() &&

@@ -10,6 +10,7 @@
 #include "core/log.hpp"
 #include "core/provenance.hpp"
 #include "core/stage_files.hpp"
+#include "core/stage_identity.hpp"
 #include "fem/errors.hpp"
 #include "fem/io/material_spec.hpp"
 #include "fem/io/periodic_motion.hpp"
@@ -66,6 +67,9 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
   auto motion = stage::read<stage::Motion>(o.motion);
   std::optional<stage::Loads> loads;
   if (o.loads) loads = stage::read<stage::Loads>(*o.loads);
+  // Stages that disagree (issue 33): the motion on another mesh, loads from another mesh or motion.
+  check_made_from(o.motion, o.mesh);
+  if (o.loads) check_made_from(*o.loads, o.mesh), check_made_from(*o.loads, o.motion);
   if (loads && !loads->time.data.empty() &&
       fem::io::needs_periodic_extension(motion, loads->time.data.front(), loads->time.data.back())) {
     motion = fem::io::periodic_extension(motion, loads->time.data.front(), loads->time.data.back());
