@@ -289,6 +289,8 @@ StepStats FlowSolver::step() {
                           deforming_->state().position.size());
     deforming_ = std::move(next);
     next_polygon_.reset();
+    kinds_polygon_ = std::move(next_kinds_);
+    next_kinds_.reset();
   }
   if (moving_ || deforming_) {
     move_body(t_new);
@@ -562,6 +564,13 @@ std::vector<StateArray> FlowSolver::state() const {
   // A deforming body whose state the caller sets: its vertex state at time() (the geometry of the
   // next step's t^n, from which restore() re-places it).
   if (deforming_) s.push_back({"body_vertices", polygon_state_values(deforming_->state())});
+  // ... and the polygon its cell kinds came from (set_body_state's kinds_at), if another: a flag,
+  // then the stored (counter-clockwise) vertices, as many as the body has.
+  if (deforming_) {
+    std::vector<double> k{kinds_polygon_ ? 1.0 : 0.0};
+    for (const auto& v : (kinds_polygon_ ? *kinds_polygon_ : deforming_->polygon()).vertices()) k.insert(k.end(), {v[0], v[1]});
+    s.push_back({"body_kinds", std::move(k)});
+  }
   if (caller_surface_) s.push_back({"body_vertices", surface_state_values(surface_state_)});
   return s;
 }
@@ -593,7 +602,15 @@ void FlowSolver::restore(const std::vector<StateArray>& s) {
     place_body(time_);
     fresh_.clear();
   } else if (deforming_) {
-    DeformingPolygon saved(polygon_state_from(s.back().values, deforming_->state()),
+    const std::vector<double>& k = s.back().values;
+    kinds_polygon_.reset();
+    next_kinds_.reset();
+    if (k[0] != 0) {
+      std::vector<std::array<double, 2>> v;
+      for (std::size_t m = 1; m + 1 < k.size(); m += 2) v.push_back({k[m], k[m + 1]});
+      kinds_polygon_ = Polygon(std::move(v));
+    }
+    DeformingPolygon saved(polygon_state_from(s[s.size() - 2].values, deforming_->state()),
                            "flow solver restore: deforming body at t = " + std::to_string(time_),
                            deforming_->state().position.size());
     deforming_ = std::move(saved);

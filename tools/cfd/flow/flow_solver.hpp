@@ -244,7 +244,12 @@ class FlowSolver {
   // every step() (the step consumes it). Throws a one-line finverse::Error naming t^{n+1} when the
   // vertex count (connectivity) changes or a value is not finite; the step throws, naming the time,
   // when the body leaves the domain or turns inside out.
-  void set_body_state(const PolygonState& next);
+  // kinds_at (2-D, optional): the cells' kinds (fluid / ghost / solid) of that placement are those
+  // of this polygon instead of next's; the ghost geometry, the apertures and the wall data follow
+  // next. A coupling step passes its first iterate for all its iterations, so that the flow's
+  // response is continuous in next (a cell centre crossing the wall does not flip the cell's kind
+  // between iterations; ghost_cells.hpp); the kinds are part of state().
+  void set_body_state(const PolygonState& next, const PolygonState* kinds_at = nullptr);
   void set_body_state(const SurfaceState& next);
   // The time step the next step() takes (a function of the state at time()).
   double next_dt() const { return choose_time_step(); }
@@ -406,6 +411,9 @@ class FlowSolver {
   // (2-D or 3-D); caller_surface_: the 3-D body takes its states from set_body_state.
   std::optional<DeformingPolygon> deforming_;
   std::optional<PolygonState> next_polygon_;
+  // The polygon whose cell kinds the placement at time() uses (set_body_state's kinds_at; empty:
+  // the body's own), and the one for the next step.
+  std::optional<Polygon> kinds_polygon_, next_kinds_;
   std::optional<SurfaceState> next_surface_;
   bool caller_surface_ = false;
   double deforming_net_flux_ = 0;

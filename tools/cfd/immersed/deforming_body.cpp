@@ -20,6 +20,8 @@ void FlowSolver::immerse_deforming(const PolygonState& reference) {
   if (dim() != 2) throw Error("flow solver: a deforming polygon needs a 2-D grid");
   deforming_.emplace(reference, at_time(time_));
   next_polygon_.reset();
+  kinds_polygon_.reset();
+  next_kinds_.reset();
   moving_.reset();
   wall_dpdn_.reset();
   wall_dpdn_3d_.reset();
@@ -33,7 +35,7 @@ void FlowSolver::immerse_deforming(const PolygonState& reference) {
   place_body(time_);
 }
 
-void FlowSolver::set_body_state(const PolygonState& next) {
+void FlowSolver::set_body_state(const PolygonState& next, const PolygonState* kinds_at) {
   if (!deforming_) throw Error("flow solver: set_body_state(PolygonState) needs immerse_deforming(PolygonState) first");
   const double t = time_ + next_dt();
   // Validated now, so that a bad state names the caller's call; the step re-checks the placement.
@@ -41,6 +43,8 @@ void FlowSolver::set_body_state(const PolygonState& next) {
   if ((checked.signed_area() > 0) != (deforming_->signed_area() > 0))
     throw Error(at_time(t) + ": the polygon's orientation flipped (the body turned inside out)");
   next_polygon_ = next;
+  next_kinds_.reset();
+  if (kinds_at) next_kinds_ = DeformingPolygon(*kinds_at, at_time(t) + " (kinds)", checked.state().position.size()).polygon();
 }
 
 void FlowSolver::immerse_deforming(const SurfaceState& reference) {

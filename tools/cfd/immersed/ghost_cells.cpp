@@ -29,13 +29,23 @@ GhostCellSet::GhostCellSet(const StretchedGrid& grid, const Polygon& body)
     : GhostCellSet(grid, std::vector<SolidRegion>{SolidRegion{body, false}}) {}
 
 GhostCellSet::GhostCellSet(const StretchedGrid& grid, const std::vector<SolidRegion>& regions) : grid_(grid) {
+  classify(regions, regions, false);
+}
+
+GhostCellSet::GhostCellSet(const StretchedGrid& grid, const Polygon& body, const Polygon& kinds_from) : grid_(grid) {
+  classify({SolidRegion{kinds_from, false}}, {SolidRegion{body, false}}, true);
+}
+
+void GhostCellSet::classify(const std::vector<SolidRegion>& kinds_from, const std::vector<SolidRegion>& regions,
+                            bool frozen) {
+  const StretchedGrid& grid = grid_;
   if (grid.dim() != 2) throw Error("immersed boundary: the polygon body needs a 2-D grid");
-  if (regions.empty()) throw Error("immersed boundary: no solid region given");
+  if (regions.empty() || kinds_from.empty()) throw Error("immersed boundary: no solid region given");
   const int nx = grid.nx(), ny = grid.ny();
   kind_.assign(grid.cells(), CellKind::Fluid);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)
-      for (const SolidRegion& r : regions)
+      for (const SolidRegion& r : kinds_from)
         if (r.contains(grid.xc(i), grid.yc(j))) kind_[static_cast<std::size_t>(i + nx * j)] = CellKind::Solid;
   const auto closest = [&](double x, double y) {
     SurfacePoint best = regions.front().closest(x, y);
@@ -58,6 +68,10 @@ GhostCellSet::GhostCellSet(const StretchedGrid& grid, const std::vector<SolidReg
       const double x = grid.xc(i), y = grid.yc(j);
       g.boundary = closest(x, y);
       g.image = {2 * g.boundary.point[0] - x, 2 * g.boundary.point[1] - y};
+      if (frozen && g.boundary.distance > 0) {  // G midway between B and I
+        g.image = {2 * x - g.boundary.point[0], 2 * y - g.boundary.point[1]};
+        g.probe = g.boundary.distance;
+      }
       const int i0 = lower_centre(grid.axis(0), g.image[0]), j0 = lower_centre(grid.axis(1), g.image[1]);
       if (i0 < 0 || j0 < 0)
         throw Error("immersed boundary: the image point of ghost cell (" + std::to_string(i) + ", " + std::to_string(j) +
@@ -77,6 +91,12 @@ GhostCellSet::GhostCellSet(const StretchedGrid& grid, const std::vector<SolidReg
     g.stencil_all_fluid = fluid(i0, j0) && fluid(i0 + 1, j0) && fluid(i0, j0 + 1) && fluid(i0 + 1, j0 + 1);
     g.dirichlet = stencil(g.image, g.boundary, BoundaryCondition::Dirichlet, {g.i, g.j});
     g.neumann = stencil(g.image, g.boundary, BoundaryCondition::Neumann, {g.i, g.j});
+    if (g.probe >= 0) {
+      // Written in the form phi_G = 2 phi_B - S(phi, phi_B) that every user of the Dirichlet
+      // stencil applies: S = 3/2 phi_B - phi_I / 2 gives phi_G = (phi_B + phi_I) / 2.
+      for (int n = 0; n < g.dirichlet.count; ++n) g.dirichlet.weight[static_cast<std::size_t>(n)] *= -0.5;
+      g.dirichlet.boundary_weight = 1.5 - 0.5 * g.dirichlet.boundary_weight;
+    }
   }
 }
 

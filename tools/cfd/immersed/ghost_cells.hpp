@@ -60,7 +60,8 @@ struct PointStencil {
 struct GhostCell {
   int i = 0, j = 0, k = 0;
   SurfacePoint boundary;               // intercept B, outward normal, signed distance of G (<= 0) (3-D: x, y of them)
-  std::array<double, 2> image{};       // I = 2B - G
+                                       // (> 0 only with frozen kinds: G on the fluid side of the wall)
+  std::array<double, 2> image{};       // I = 2B - G (G outside the wall: I = 2G - B)
   std::array<int, 2> stencil{};        // lower-left cell (i0, j0) of the bilinear stencil of I
   std::array<double, 4> weights{};     // for (i0,j0), (i0+1,j0), (i0,j0+1), (i0+1,j0+1)
   bool stencil_all_fluid = true;       // false: needs the boundary-intercept substitution
@@ -70,7 +71,8 @@ struct GhostCell {
   std::array<double, 3> intercept{}, normal{}, image_point{};
   int triangle = -1;
   std::array<double, 3> barycentric{};
-  double probe_length() const { return 2 * std::abs(boundary.distance); }  // |I - G|
+  double probe = -1;                   // |I - G| where set (frozen kinds, G outside the wall)
+  double probe_length() const { return probe >= 0 ? probe : 2 * std::abs(boundary.distance); }  // |I - G|
 };
 
 class GhostCellSet {
@@ -78,6 +80,13 @@ class GhostCellSet {
   // Classifies the cells of a 2-D grid against the body. Throws finverse::Error when an image point
   // leaves the grid (the body too close to the domain boundary).
   GhostCellSet(const StretchedGrid& grid, const Polygon& body);
+  // The cells' kinds from the polygon kinds_from, the ghost geometry (intercepts, normals, image
+  // points) from body: the set of a coupling iteration whose kinds stay those of the step's first
+  // iterate (FlowSolver::set_body_state), so that the ghost values change continuously with body.
+  // A ghost centre that body has left (on the fluid side, distance d > 0) gets the image point
+  // I = 2G - B, so G lies midway between B and I: phi_G = (phi_B + phi_I) / 2 (Dirichlet),
+  // phi_G = phi_I - d dphi/dn (Neumann); as d -> 0 both tend to phi_B, as the usual rule does.
+  GhostCellSet(const StretchedGrid& grid, const Polygon& body, const Polygon& kinds_from);
   // Several solid regions (disjoint; each ghost cell takes the surface closest to it).
   GhostCellSet(const StretchedGrid& grid, const std::vector<SolidRegion>& regions);
   // Classifies the cells of a 3-D grid against a closed triangulated surface.
@@ -97,7 +106,7 @@ class GhostCellSet {
   double image_value(const Field& q, const GhostCell& g) const;
   // Ghost values imposing phi_B at the boundary intercept, or dphi/dn there.
   double dirichlet_ghost(const Field& q, const GhostCell& g, double boundary_value) const {
-    return 2 * boundary_value - image_value(q, g);
+    return g.probe >= 0 ? 0.5 * (boundary_value + image_value(q, g)) : 2 * boundary_value - image_value(q, g);
   }
   double neumann_ghost(const Field& q, const GhostCell& g, double normal_derivative) const {
     return image_value(q, g) - g.probe_length() * normal_derivative;
@@ -126,6 +135,9 @@ class GhostCellSet {
   void fill_solid(Field& q, double value) const;
 
  private:
+  // Kinds from kinds_from, ghost geometry from regions; frozen: G may lie outside the wall.
+  void classify(const std::vector<SolidRegion>& kinds_from, const std::vector<SolidRegion>& regions, bool frozen);
+
   StretchedGrid grid_;
   std::vector<CellKind> kind_;
   std::vector<GhostCell> ghosts_;

@@ -63,7 +63,8 @@ void FlowSolver::place_body(double t) {
         }
       }
     }
-    ib_.emplace(grid_, body_now_);
+    if (deforming_ && kinds_polygon_) ib_.emplace(grid_, body_now_, *kinds_polygon_);
+    else ib_.emplace(grid_, body_now_);
   } catch (const Error& e) {
     throw Error(std::string("flow solver: ") + (moving_ ? "moving" : "deforming") + " body at t = " + std::to_string(t) +
                 ": " + e.what());

@@ -45,6 +45,7 @@ void FlowStructureStep::begin_step(const StepInfo& info) {
     throw Error("fsi: step " + std::to_string(info.step) + " asks for dt = " + std::to_string(info.dt) +
                 " but flow and structure run at " + std::to_string(dt_));
   step_mismatch_ = 0;
+  kinds_.reset();
 }
 
 std::string FlowStructureStep::where() const {
@@ -68,7 +69,9 @@ Eigen::VectorXd FlowStructureStep::evaluate(const Eigen::VectorXd& x) {
   const Eigen::Matrix2Xd acceleration = (V - velocity_start_) / dt_;
   double t_new = 0;
   try {
-    flow_.set_body_state(body_.state(position, V, acceleration));
+    const cfd::PolygonState state = body_.state(position, V, acceleration);
+    if (frozen_kinds_ && !kinds_) kinds_ = state;
+    flow_.set_body_state(state, frozen_kinds_ ? &*kinds_ : nullptr);
     t_new = flow_.step().time;
   } catch (const std::exception& e) {
     throw Error(where() + ": flow: " + e.what());

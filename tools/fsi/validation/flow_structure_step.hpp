@@ -9,12 +9,17 @@
 //   of fsi/interface_transfer.hpp (force and moment about the cylinder centre kept: the mismatch is
 //   measured every evaluation); the structure advances over the step under those loads; H(x) is
 //   its wet nodes' [X; V] at t^{n+1}.
+// The cells' kinds (fluid / ghost / solid) of all evaluations of a step are those of its first
+// iterate (FlowSolver::set_body_state's kinds_at), so that H is continuous in x: a cell centre
+// crossing the wall between iterations does not flip the cell's kind (docs/studies/fsi_turek_hron.md
+// section 7); the cells whose kind changes from step to step get the cleared/covered treatment once.
 // Per accepted step a StepRecord: force on the whole body (cylinder + flag: drag, lift) and on the
 // flag alone, the interface power sum_i F_i . v_i (structure side, N/m * m/s = W/m), the
 // structure's interface work over the step, and the worst force / moment transfer mismatch.
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +61,8 @@ class FlowStructureStep final : public CoupledStep {
   [[nodiscard]] const std::vector<StepRecord>& records() const { return records_; }
   // Wet-node loads of the last evaluation, 2 x n_wet [N/m].
   [[nodiscard]] const Eigen::Matrix2Xd& wet_loads() const { return loads_; }
+  // false: every evaluation classifies the cells at its own x (the jumping H, for comparison).
+  void set_frozen_kinds(bool on) { frozen_kinds_ = on; }
 
  private:
   [[nodiscard]] std::string where() const;  // "fsi: step N (t = ...)", for participants' errors
@@ -67,6 +74,8 @@ class FlowStructureStep final : public CoupledStep {
   double rho_, dt_;
   std::vector<cfd::StateArray> saved_flow_;
   Eigen::Matrix2Xd velocity_start_;  // V^n (the converged wall velocity)
+  bool frozen_kinds_ = true;
+  std::optional<cfd::PolygonState> kinds_;  // the step's first iterate
   StepInfo info_;
   Eigen::Matrix2Xd loads_;
   StepRecord current_;
