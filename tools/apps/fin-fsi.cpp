@@ -4,6 +4,7 @@
 //
 //   fin-fsi turek_hron --case FSI1 --reference data/reference/turek_hron.json
 //       --acceleration iqn-ils --cells-per-diameter 16 --out fsi.h5 --summary summary.json
+//       [--checkpoint ckpt.h5 --checkpoint-every N] [--restart ckpt.h5 [--restart-new-coupling]]
 #include <iostream>
 #include <string>
 
@@ -63,6 +64,18 @@ struct TurekHronCommand {
     th->add_option("--divergence-iterations", o.divergence_iterations,
                    "residual growing this many iterations in a row: diverged (0: off)")
         ->capture_default_str();
+    th->add_option("--checkpoint", o.checkpoint, "checkpoint file (replaced atomically) for --restart");
+    th->add_option("--checkpoint-every", o.checkpoint_every, "checkpoint every N steps (0: after the last only)")
+        ->capture_default_str();
+    th->add_option("--restart", o.restart, "continue from this checkpoint (same options; t_end may grow)")
+        ->check(CLI::ExistingFile);
+    th->add_flag("--restart-new-coupling", o.restart_new_coupling,
+                 "the restart may change acceleration, omega, tolerances and caps (drops the carried history)");
+    th->add_option("--paraview", o.paraview_dir, "ParaView series (structure.pvd, flow.pvd) into this directory");
+    th->add_option("--paraview-every", o.paraview_every, "ParaView frame every k-th fsi.h5 frame")
+        ->capture_default_str();
+    th->add_flag("--hold-flag-rigid", o.hold_flag_rigid,
+                 "benchmark: from --restart on, the flow alone with the flag frozen (wall time per step)");
     th->add_flag("--strict", strict, "stop at the iteration cap (default: accept the best iterate)");
     th->add_flag("--iterations", iterations, "a progress line per coupling iteration too");
   }

@@ -114,6 +114,21 @@ void CoupledStructure::restore() {
   load_ = saved_.load;
 }
 
+void CoupledStructure::restart(const DynamicState& state, const GeneralizedAlpha::Snapshot& integrator,
+                               const Eigen::VectorXd& f) {
+  check_load(f, "restart interface load");
+  const int nt = kDofsPerNode * model_.node_count();
+  if (state.configuration.node_count() != model_.node_count() ||
+      static_cast<int>(state.configuration.rotation.size()) != model_.node_count() || state.velocity.size() != nt ||
+      state.acceleration.size() != nt)
+    throw InvalidInput("coupled structure: restart state must have " + std::to_string(model_.node_count()) +
+                       " nodes and full-length velocities and accelerations");
+  integrator_.restore(integrator);
+  state_ = state;
+  load_ = f;
+  save();
+}
+
 CoupledStepReport CoupledStructure::advance(double t_new, const Eigen::VectorXd& f_new) {
   if (!has_saved_)
     throw InvalidInput("coupled structure: advance() before save(): no start state for the step");

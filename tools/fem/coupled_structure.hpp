@@ -94,6 +94,11 @@ class CoupledStructure {
   void save();
   // Back to the saved state (throws InvalidInput when nothing was saved).
   void restore();
+  // Continue from a checkpoint of an accepted step (FSI restart): `state`, the integrator's memory
+  // and the interface load become the current and the saved state exactly as save() after accept()
+  // held them, so the run goes on bit for bit. Throws InvalidInput for sizes that do not fit.
+  void restart(const DynamicState& state, const GeneralizedAlpha::Snapshot& integrator,
+               const Eigen::VectorXd& interface_load);
   // One coupling step from the saved state to t_new = saved time + time_step with the interface
   // load F_I^{n+1} (dim * wet-node count entries). Throws InvalidInput before save(), for a wrong
   // size, a non-finite entry or a t_new off the step; NotConverged from the integrator.

@@ -5,9 +5,14 @@
 //   reset_time_step();  then per iteration  x_next = accelerate(x_in, x_out)  until converged;
 //   then end_time_step(x_in, x_out) with the converged pair, which keeps what later steps reuse
 //   (IQN-ILS's columns). The converged pair is not relaxed: the step's result is x_out.
+// carried_state() / restore_carried_state(): what survives from one time step into the next (the
+// reused columns, the last omega), as named flat arrays for checkpoints; a restart that restores
+// it continues bit for bit.
 #pragma once
 
+#include <map>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -24,6 +29,12 @@ class Acceleration {
   // The relaxation factor of the last update (1 for a quasi-Newton update); for progress lines.
   [[nodiscard]] virtual double last_omega() const = 0;
   [[nodiscard]] virtual std::string name() const = 0;
+
+  using CarriedState = std::map<std::string, std::vector<double>>;
+  // Between time steps (after end_time_step); default: nothing is carried.
+  [[nodiscard]] virtual CarriedState carried_state() const { return {}; }
+  // Throws finverse::Error when the arrays do not fit this acceleration's layout.
+  virtual void restore_carried_state(const CarriedState& /*state*/) {}
 };
 
 }  // namespace finverse::fsi

@@ -110,4 +110,11 @@ Eigen::VectorXd AitkenRelaxation::accelerate(const Eigen::VectorXd& x_in,
   return x_in + omega_ * residual;
 }
 
+void AitkenRelaxation::restore_carried_state(const CarriedState& state) {
+  const auto it = state.find("aitken_omega");
+  if (it == state.end() || it->second.size() != 1)
+    throw Error("fsi Aitken: carried state does not fit: expected one value aitken_omega");
+  omega_ = it->second[0];
+}
+
 }  // namespace finverse::fsi

@@ -54,6 +54,9 @@ class AitkenRelaxation final : public Acceleration {
   void end_time_step(const Eigen::VectorXd&, const Eigen::VectorXd&) override {}
   [[nodiscard]] double last_omega() const override { return omega_; }
   [[nodiscard]] std::string name() const override;
+  // The last omega (a time step starts from it with reuse_last_omega).
+  [[nodiscard]] CarriedState carried_state() const override { return {{"aitken_omega", {omega_}}}; }
+  void restore_carried_state(const CarriedState& state) override;
 
  private:
   double bounded(double omega) const;

@@ -56,6 +56,21 @@ ImplicitCoupling::ImplicitCoupling(InterfaceLayout layout, Eigen::VectorXd initi
   }
 }
 
+void ImplicitCoupling::restart(Eigen::VectorXd state, Eigen::VectorXd previous, Eigen::VectorXd accepted_input,
+                               double time, long steps) {
+  layout_.check(state, "restart interface motion");
+  if (previous.size() != 0) layout_.check(previous, "restart previous interface motion");
+  if (accepted_input.size() != 0) layout_.check(accepted_input, "restart accepted input");
+  if (steps < 0 || !std::isfinite(time))
+    throw Error("fsi coupling: restart expects steps >= 0 and a finite time, got " + std::to_string(steps) + " and " +
+                std::to_string(time));
+  state_ = std::move(state);
+  previous_ = std::move(previous);
+  accepted_input_ = std::move(accepted_input);
+  time_ = time;
+  steps_ = steps;
+}
+
 Eigen::VectorXd ImplicitCoupling::predict(double dt) const {
   switch (options_.predictor) {
     case Predictor::ConstantVelocity: {
@@ -109,6 +124,7 @@ StepStatistics ImplicitCoupling::advance(CoupledStep& step, double dt) {
       acceleration_->end_time_step(x, x_out);
       step.accept(x, x_out);
       stats.converged = true;
+      accepted_input_ = x;
       previous_ = state_;
       state_ = std::move(x_out);
       time_ = stats.time;
@@ -140,6 +156,7 @@ StepStatistics ImplicitCoupling::advance(CoupledStep& step, double dt) {
       stats.residual_history = measure_.relative_history();
       acceleration_->end_time_step(best, x_out);
       step.accept(best, x_out);
+      accepted_input_ = best;
       previous_ = state_;
       state_ = std::move(x_out);
       time_ = stats.time;

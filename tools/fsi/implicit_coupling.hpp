@@ -119,6 +119,13 @@ class ImplicitCoupling {
     progress_ = std::move(progress);
   }
   [[nodiscard]] const Eigen::VectorXd& state() const { return state_; }  // x^N accepted
+  [[nodiscard]] const Eigen::VectorXd& previous_state() const { return previous_; }  // x^{N-1}
+  // The input of the accepted iteration of step N (x_in, whose output x^N met the tolerance).
+  [[nodiscard]] const Eigen::VectorXd& accepted_input() const { return accepted_input_; }
+  // Continue a run from a checkpoint taken after step `steps` at `time` (state, previous_state and
+  // accepted_input as they were then); the acceleration's carried state is restored separately.
+  void restart(Eigen::VectorXd state, Eigen::VectorXd previous, Eigen::VectorXd accepted_input, double time,
+               long steps);
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] long steps() const { return steps_; }
   [[nodiscard]] Acceleration& acceleration() { return *acceleration_; }
@@ -130,6 +137,7 @@ class ImplicitCoupling {
   InterfaceLayout layout_;
   Eigen::VectorXd state_;     // x^{N-1}
   Eigen::VectorXd previous_;  // x^{N-2} (empty before the second step)
+  Eigen::VectorXd accepted_input_;  // x_in of step N-1's accepted iteration
   std::unique_ptr<Acceleration> acceleration_;
   CouplingOptions options_;
   ConvergenceMeasure measure_;

@@ -131,4 +131,44 @@ void IqnIls::end_time_step(const Eigen::VectorXd& x_in, const Eigen::VectorXd& x
   }
 }
 
+Acceleration::CarriedState IqnIls::carried_state() const {
+  CarriedState s;
+  std::vector<double>&v = s["iqn_ils_v"], &w = s["iqn_ils_w"], &step = s["iqn_ils_column_step"];
+  for (const Column& c : columns_) {
+    v.insert(v.end(), c.v.data(), c.v.data() + c.v.size());
+    w.insert(w.end(), c.w.data(), c.w.data() + c.w.size());
+    step.push_back(static_cast<double>(c.step));
+  }
+  s["iqn_ils_counters"] = {static_cast<double>(step_), static_cast<double>(filtered_), last_omega_};
+  return s;
+}
+
+void IqnIls::restore_carried_state(const CarriedState& s) {
+  const auto get = [&](const char* key) -> const std::vector<double>& {
+    static const std::vector<double> empty;
+    const auto it = s.find(key);
+    return it == s.end() ? empty : it->second;
+  };
+  const std::vector<double>&v = get("iqn_ils_v"), &w = get("iqn_ils_w"), &step = get("iqn_ils_column_step");
+  const std::vector<double>& counters = get("iqn_ils_counters");
+  const auto n = static_cast<std::size_t>(layout_.size());
+  if (counters.size() != 3 || v.size() != step.size() * n || w.size() != v.size())
+    throw Error("fsi IQN-ILS: carried state does not fit: expected 3 counters and " + std::to_string(n) +
+                " values per column, got " + std::to_string(counters.size()) + " counters, " +
+                std::to_string(v.size()) + " and " + std::to_string(w.size()) + " values for " +
+                std::to_string(step.size()) + " columns");
+  columns_.clear();
+  for (std::size_t c = 0; c < step.size(); ++c) {
+    const auto off = static_cast<std::ptrdiff_t>(c * n);
+    columns_.push_back({Eigen::Map<const Eigen::VectorXd>(v.data() + off, layout_.size()),
+                        Eigen::Map<const Eigen::VectorXd>(w.data() + off, layout_.size()),
+                        static_cast<long>(step[c])});
+  }
+  step_ = static_cast<long>(counters[0]);
+  filtered_ = static_cast<int>(counters[1]);
+  last_omega_ = counters[2];
+  has_previous_ = false;
+  row_scale_.resize(0);
+}
+
 }  // namespace finverse::fsi

@@ -44,6 +44,9 @@ class IqnIls final : public Acceleration {
   void end_time_step(const Eigen::VectorXd& x_in, const Eigen::VectorXd& x_out) override;
   [[nodiscard]] double last_omega() const override { return last_omega_; }
   [[nodiscard]] std::string name() const override { return "iqn-ils"; }
+  // The reused columns (v, w, their step), the step counter, the filter count and the last omega.
+  [[nodiscard]] CarriedState carried_state() const override;
+  void restore_carried_state(const CarriedState& state) override;
 
   // Columns held now (this step's and reused) and columns the filter has dropped so far.
   [[nodiscard]] int columns() const { return static_cast<int>(columns_.size()); }

@@ -80,4 +80,52 @@ void FsiOutput::write(const std::filesystem::path& path, const Provenance& prove
   stage::write(path, out, provenance);
 }
 
+std::vector<std::string> FsiOutput::array_names() {
+  std::vector<std::string> names;
+  for (const auto& [name, v] : FsiOutput({Eigen::Vector3d::Zero()}, {}, 1, 1, 1).saved_frames()) names.push_back(name);
+  return names;
+}
+
+FsiOutput::Arrays FsiOutput::saved_frames() const {
+  Arrays a{{"output_time", time_},
+           {"output_points", points_},
+           {"output_velocity", velocity_},
+           {"output_nodal_force", nodal_force_},
+           {"output_force", force_},
+           {"output_residual", residual_},
+           {"output_relative", relative_},
+           {"output_iterations", std::vector<double>(iterations_.begin(), iterations_.end())},
+           {"output_probe_time", probe_time_},
+           {"output_probe_displacement", probe_displacement_}};
+  return a;
+}
+
+void FsiOutput::restore_frames(const Arrays& a) {
+  const auto get = [&](const char* key) {
+    const auto it = a.find(key);
+    return it == a.end() ? std::vector<double>{} : it->second;
+  };
+  std::vector<double> time = get("output_time"), points = get("output_points"), velocity = get("output_velocity"),
+                      nodal = get("output_nodal_force"), force = get("output_force"), residual = get("output_residual"),
+                      relative = get("output_relative"), iterations = get("output_iterations"),
+                      probe_time = get("output_probe_time"), probe = get("output_probe_displacement");
+  const std::size_t nt = time.size(), nv = 3 * static_cast<std::size_t>(nodes_), ns = probe_time.size();
+  if (points.size() != nt * nv || velocity.size() != nt * nv || nodal.size() != nt * nv || force.size() != 3 * nt ||
+      residual.size() != nt || relative.size() != nt || iterations.size() != nt ||
+      probe.size() != 3 * ns * probes_.size())
+    throw Error("fsi output: saved frames do not fit " + std::to_string(nodes_) + " nodes and " +
+                std::to_string(probes_.size()) + " probes (" + std::to_string(nt) + " frames, " +
+                std::to_string(ns) + " probe samples)");
+  time_ = std::move(time);
+  points_ = std::move(points);
+  velocity_ = std::move(velocity);
+  nodal_force_ = std::move(nodal);
+  force_ = std::move(force);
+  residual_ = std::move(residual);
+  relative_ = std::move(relative);
+  iterations_.assign(iterations.begin(), iterations.end());
+  probe_time_ = std::move(probe_time);
+  probe_displacement_ = std::move(probe);
+}
+
 }  // namespace finverse::fsi::validation

@@ -5,11 +5,14 @@
 // positions and, at every step, the displacement of a few probe nodes (e.g. point A). A 2-D run (the plane-strain flag) stores z = 0
 // and forces per metre depth [N/m]; its reference area is then D x 1 m. The file is written to a
 // temporary and renamed (stage::write, core/atomic_file.hpp): nothing half-written under the final
-// name. No checkpoint/restart yet.
+// name. frames()/restore_frames(): the frames so far as named arrays, for a run's checkpoint
+// (fsi_checkpoint.hpp), so that a restarted run writes the uninterrupted run's file.
 #pragma once
 
 #include <array>
 #include <filesystem>
+#include <map>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -37,6 +40,12 @@ class FsiOutput {
   void write(const std::filesystem::path& path, const Provenance& provenance) const;
 
   [[nodiscard]] std::size_t frames() const { return time_.size(); }
+  // Everything added so far, as named flat arrays, and back (throws finverse::Error when the sizes
+  // do not fit this output's nodes and probes).
+  using Arrays = std::map<std::string, std::vector<double>>;
+  [[nodiscard]] Arrays saved_frames() const;
+  [[nodiscard]] static std::vector<std::string> array_names();
+  void restore_frames(const Arrays& arrays);
 
  private:
   int nodes_;

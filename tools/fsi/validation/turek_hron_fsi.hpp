@@ -78,6 +78,23 @@ struct TurekHronFsiOptions {
   // jump; a flag resting across a cell centre can leave no fixed point at all.
   bool accept_at_cap = true;
   std::filesystem::path fsi_h5;  // empty: not written
+  // Checkpoints (fsi_checkpoint.hpp): to `checkpoint` (replaced atomically) every checkpoint_every
+  // steps (0: only after the last step) and after the last step. `restart`: continue from such a
+  // file; the options must be the writer's except t_end, the output and checkpoint paths and, with
+  // restart_new_coupling, the coupling's (acceleration, omega, tolerances, caps, accept_at_cap:
+  // another acceleration starts without the carried history). A restart with the writer's options
+  // writes the uninterrupted run's fsi.h5 bit for bit.
+  std::filesystem::path checkpoint;
+  int checkpoint_every = 0;
+  std::filesystem::path restart;
+  bool restart_new_coupling = false;
+  // ParaView series (fsi_paraview.hpp) into this directory (empty: none), every paraview_every-th
+  // fsi.h5 frame.
+  std::filesystem::path paraview_dir;
+  int paraview_every = 1;
+  // Benchmark: from the restart on, step the flow alone with the flag frozen in its shape (no
+  // structure, no coupling); the summary holds only the wall time per step.
+  bool hold_flag_rigid = false;
   int output_every = 1;          // fsi.h5 frames: every k-th step (and the last)
   // Progress: one line per step (and per coupling iteration when `iterations`).
   std::function<void(const std::string&)> progress;
@@ -89,11 +106,14 @@ struct TurekHronFsiRun {
   std::vector<StepRecord> records;         // per step: forces, power, transfer mismatch
   std::vector<StepStatistics> statistics;  // per step: coupling iterations, residuals
   std::vector<double> ux_a, uy_a;          // point A's displacement per step [m]
-  double wall_seconds = 0;
+  std::vector<double> energy;              // the flag's kinetic + strain energy per step [J/m]
+  long first_step = 0;                     // steps done before this run (a restart's checkpoint)
+  double wall_seconds = 0;                 // this run's
 };
 
-// Throws finverse::Error (bad options, a mismatched structure), CouplingDiverged /
-// CouplingNotConverged (naming the step), or the participants' errors prefixed with the step.
+// Throws finverse::Error (bad options, a mismatched structure, a checkpoint of other options),
+// CouplingDiverged / CouplingNotConverged (naming the step), or the participants' errors prefixed
+// with the step; a failure after a checkpoint names it (the file is kept as it was).
 TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& options);
 
 }  // namespace finverse::fsi::validation
