@@ -283,3 +283,95 @@ rule bench_fit:
     shell:
         "(OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} --case {input.case} {params.sizes}"
         " --out {output.json} " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
+
+# The coupled FSI (issue 32): coupling iterations per step at relative residual 1e-5, Aitken against
+# IQN-ILS, on Turek-Hron FSI2 and FSI3 over their limit cycle, and the wall time of one coupled FSI3
+# step against one step of the same flow with the flag held rigid (tools/fsi/validation/
+# fsi_bench.hpp). Affordable on one core: each case runs once with IQN-ILS to its limit cycle and
+# writes a checkpoint (FSI3 D/16 cfl 0.3 to t = 6 s, FSI2 to 9 s: the grids of rules/fsi.smk), then
+# every arm restarts from it for 0.5 s (fin-fsi --restart --restart-new-coupling). The coarse variant
+# runs the same chain on a short start (a smoke test; its numbers are not the benchmark's).
+# Numbers and commands: docs/studies/fsi_restart_cost_conservation.md.
+register_bench("fsi", "coupled FSI: Aitken vs IQN-ILS iterations on Turek-Hron FSI2/FSI3, coupled vs rigid-flag step cost")
+EXECUTABLES["fin-fsi-bench"] = _CMAKE_BUILD
+
+# case -> (fin-fsi flags, limit-cycle time [s], restart length [s]; full, then coarse).
+_FSI_BENCH = {
+    "fsi3": ("--case FSI3 --cells-per-diameter 16 --cfl 0.3 --output-every 10", (6.0, 0.5), (0.1, 0.05)),
+    "fsi2": ("--case FSI2 --cells-per-diameter 16 --cfl 0.3 --output-every 10", (9.0, 0.5), (0.1, 0.05)),
+}
+_FSI_BENCH_REFERENCE = os.path.join(REPO, "data", "reference", "turek_hron.json")
+
+
+def _fsi_bench_times(case):
+    return _FSI_BENCH[case][2 if COARSE else 1]
+
+
+rule bench_fsi_limit_cycle:
+    input:
+        exe=EXE("fin-fsi"),
+        reference=_FSI_BENCH_REFERENCE,
+    output:
+        checkpoint="results/bench/fsi/{case}_limit_cycle.h5",
+        summary="results/bench/fsi/{case}_limit_cycle/summary.json",
+    wildcard_constraints:
+        case="fsi2|fsi3",
+    log:
+        "results/logs/bench/fsi_{case}_limit_cycle.log",
+    threads: 1
+    resources:
+        mem_mb=500,
+    params:
+        flags=lambda wildcards: _FSI_BENCH[wildcards.case][0],
+        t_end=lambda wildcards: _fsi_bench_times(wildcards.case)[0],
+    shell:
+        "(OMP_WAIT_POLICY=PASSIVE {input.exe} --threads 1 turek_hron {params.flags} --acceleration iqn-ils"
+        " --t-end {params.t_end} --checkpoint {output.checkpoint} --checkpoint-every 1000"
+        " --reference {input.reference} --summary {output.summary} " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
+
+
+rule bench_fsi_restart:
+    input:
+        exe=EXE("fin-fsi"),
+        reference=_FSI_BENCH_REFERENCE,
+        checkpoint="results/bench/fsi/{case}_limit_cycle.h5",
+    output:
+        summary="results/bench/fsi/{case}_{arm}/summary.json",
+    wildcard_constraints:
+        case="fsi2|fsi3",
+        arm="aitken|iqn-ils|rigid",
+    log:
+        "results/logs/bench/fsi_{case}_{arm}.log",
+    threads: 1
+    resources:
+        mem_mb=500,
+    params:
+        flags=lambda wildcards: _FSI_BENCH[wildcards.case][0],
+        t_end=lambda wildcards: sum(_fsi_bench_times(wildcards.case)),
+        arm=lambda wildcards: "--acceleration iqn-ils --hold-flag-rigid" if wildcards.arm == "rigid"
+        else f"--acceleration {wildcards.arm}",
+    shell:
+        "(OMP_WAIT_POLICY=PASSIVE {input.exe} --threads 1 turek_hron {params.flags} {params.arm}"
+        " --t-end {params.t_end} --restart {input.checkpoint} --restart-new-coupling"
+        " --reference {input.reference} --summary {output.summary} " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
+
+
+rule bench_fsi:
+    input:
+        exe=EXE("fin-fsi-bench"),
+        fsi3_iqn="results/bench/fsi/fsi3_iqn-ils/summary.json",
+        fsi3_aitken="results/bench/fsi/fsi3_aitken/summary.json",
+        fsi2_iqn="results/bench/fsi/fsi2_iqn-ils/summary.json",
+        fsi2_aitken="results/bench/fsi/fsi2_aitken/summary.json",
+        fsi3_rigid="results/bench/fsi/fsi3_rigid/summary.json",
+    output:
+        json="results/bench/fsi.json",
+    log:
+        "results/logs/bench/fsi.log",
+    threads: 1
+    resources:
+        mem_mb=200,
+    shell:
+        "({input.exe} --fsi3-iqn-ils {input.fsi3_iqn} --fsi3-aitken {input.fsi3_aitken}"
+        " --fsi2-iqn-ils {input.fsi2_iqn} --fsi2-aitken {input.fsi2_aitken} --fsi3-rigid {input.fsi3_rigid}"
+        " --out {output.json} " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
