@@ -1,0 +1,98 @@
+// One coupled time step of the 3-D flow and a shell (or shell + beam) structure whose wet surface is
+// a triangulated mid-surface (seed paper section 2.3, steps 1-5; DESIGN.md 5.3; issue 32), as the
+// operator H of the implicit coupling (fsi/implicit_coupling.hpp): x = [X; V], the mid-surface
+// nodes' displacement from the reference and their velocity, node by node (3 entries each).
+//   evaluate(x): the flow is restored to the step's start; its body, the closed thin body around
+//   the mid-surface (core/thin_body.hpp, cfd/immersed/thin_body.hpp), is placed at t^{n+1} for the
+//   nodes at X_ref + X moving with V and accelerating with (V - V^n) / dt (V^n: the converged
+//   velocity of the previous step, so H depends on x only); one flow step; the surface triangles'
+//   forces go to the mid-surface nodes (cfd/forces/nodal_loads.hpp: thirds to the vertices, each
+//   vertex to its node; force kept exactly, the moment about any point kept when the flow side
+//   applies each triangle's force at the mean of its nodes' positions); the structure advances over
+//   the step; H(x) is its wet nodes' [X; V].
+// Generic: the structure's driven nodes (a pitching leading edge, a fin's root) follow their own
+// prescribed motion inside the structure model; this step only exchanges the wet surface.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "cfd/flow/flow_solver.hpp"
+#include "cfd/immersed/thin_body.hpp"
+#include "fem/coupled_structure.hpp"
+#include "fsi/implicit_coupling.hpp"
+
+namespace finverse::fsi::validation {
+
+struct SurfaceStepRecord {
+  long step = 0;
+  double time = 0;                   // t^{n+1}
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // on the body [N]
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // about the moment centre [N m]
+  double power = 0;                  // sum_i F_i . v_i at t^{n+1} [W]
+  double interface_work = 0;         // the structure's W_I over the step [J]
+  double transfer_mismatch = 0;      // max over the step's evaluations: |dF| / |F| and |dM| / (|F| L)
+};
+
+// The thin body's forces moved onto the mid-surface nodes, with both sides' totals.
+struct SurfaceLoadTransfer {
+  Eigen::Matrix3Xd loads;  // 3 x nodes [N]
+  Eigen::Vector3d flow_force = Eigen::Vector3d::Zero(), flow_moment = Eigen::Vector3d::Zero();
+  Eigen::Vector3d node_force = Eigen::Vector3d::Zero(), node_moment = Eigen::Vector3d::Zero();
+  // max(|dF| / |F|, |dM| / (|F| length)).
+  [[nodiscard]] double mismatch(double length) const;
+};
+
+// forces: per body triangle; nodes: 3 x node_count mid-surface positions at the same instant.
+SurfaceLoadTransfer transfer_surface_loads(const cfd::ThinBody& body, const cfd::SurfaceForces& forces,
+                                           const Eigen::Matrix3Xd& nodes, const Eigen::Vector3d& centre);
+
+class SurfaceFlowStructureStep final : public CoupledStep {
+ public:
+  // flow: set up, with immerse_deforming(place_thin_body(body, reference)) and initialise() done,
+  // fixed time step dt; structure: dim 3, its wet nodes are the mid-surface nodes 0..n-1 in order
+  // (n = body.node_count), time_step dt; mid: the mid-surface triangles; wet_reference: 3 x n;
+  // rho: fluid density (the flow's pressure is kinematic); length: the moment mismatch's scale.
+  // All referenced objects must outlive this one. Throws finverse::Error on mismatched sizes.
+  SurfaceFlowStructureStep(cfd::FlowSolver& flow, fem::CoupledStructure& structure, const cfd::ThinBody& body,
+                           std::vector<std::array<int, 3>> mid, Eigen::Matrix3Xd wet_reference, double rho,
+                           double dt, Eigen::Vector3d moment_centre, double length);
+
+  void begin_step(const StepInfo& info) override;
+  void save() override;
+  void restore() override;
+  [[nodiscard]] Eigen::VectorXd evaluate(const Eigen::VectorXd& interface_motion) override;
+  void accept(const Eigen::VectorXd& x_in, const Eigen::VectorXd& x_out) override;
+
+  [[nodiscard]] InterfaceLayout layout() const;
+  [[nodiscard]] const std::vector<SurfaceStepRecord>& records() const { return records_; }
+  [[nodiscard]] const Eigen::Matrix3Xd& wet_loads() const { return loads_; }  // last evaluation [N]
+
+  // The body's surface state for mid-surface positions, velocities and accelerations (3 x n each).
+  [[nodiscard]] cfd::SurfaceState body_state(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                                             const Eigen::Matrix3Xd& a) const;
+
+ private:
+  [[nodiscard]] std::string where() const;
+
+  cfd::FlowSolver& flow_;
+  fem::CoupledStructure& structure_;
+  const cfd::ThinBody& body_;
+  std::vector<std::array<int, 3>> mid_;
+  Eigen::Matrix3Xd reference_;
+  double rho_, dt_, length_;
+  Eigen::Vector3d centre_;
+  std::vector<cfd::StateArray> saved_flow_;
+  Eigen::Matrix3Xd velocity_start_;
+  StepInfo info_;
+  Eigen::Matrix3Xd loads_;
+  SurfaceStepRecord current_;
+  double step_mismatch_ = 0;
+  std::vector<SurfaceStepRecord> records_;
+};
+
+}  // namespace finverse::fsi::validation
