@@ -53,3 +53,29 @@ rule validation_fsi:
         "{input.exe} --threads {threads} turek_hron {params.flags} --acceleration iqn-ils"
         " --reference {input.reference} --summary {output.summary} --out {output.fsi}"
         " > {log} 2>&1 " + METRIC_MISSED_IS_A_RESULT
+
+
+# The 3-D flexible plate pitching about its leading edge (seed paper sec. 3.2; issue 32, validation
+# 3): every K in one run and one summary.json (A/L, phase, stiff limit, resonance against the modal
+# estimate). Full: L/16, 100 steps per period, 4 periods, about 4 min of one core per K (7 runs with
+# the rigid one); coarse (CI): L/8, 24 steps per period, 2 periods, three K, well under a minute.
+# Numbers: docs/studies/fsi_pitching_plate.md.
+register_validation("fsi_pitching_plate", "Flexible plate pitching in a stream, K = 0.5..50, coupled 3-D")
+
+rule validation_fsi_pitching_plate:
+    input:
+        exe=EXE("fin-fsi"),
+    output:
+        summary="results/validation/fsi_pitching_plate/summary.json",
+    log:
+        "results/logs/validation/fsi_pitching_plate.log",
+    threads: 1
+    resources:
+        mem_mb=1000,
+    params:
+        flags=("--K 0.5,2,50 --cells-per-chord 8 --steps-per-period 24 --periods 2 --downstream 1.5"
+               " --half-height 1 --half-width 1.5" if COARSE
+               else "--K 0.5,1,2,4,10,50 --periods 4"),
+    shell:
+        "{input.exe} --threads {threads} pitching_plate {params.flags} --rigid"
+        " --summary {output.summary} > {log} 2>&1 " + METRIC_MISSED_IS_A_RESULT
