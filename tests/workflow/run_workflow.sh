@@ -5,8 +5,10 @@
 #     executable standing as one missing_executable job, which fails with one line saying how to
 #     build it,
 #  2. the tiny case runs to completion, its stage files (kinematics, mesh, motion, loads,
-#     materials) meet their
-#     contracts (fin-contract check) and every summary.json is a valid finverse summary,
+#     materials) meet their contracts (fin-contract check) and equal their golden files
+#     (tests/regression/<stage>/tiny_case, per-dataset tolerances beside each), its report
+#     (fin-report) has index.html, summary.json and the figures, and every summary.json is a
+#     valid finverse summary; stage files that disagree are refused by their first common reader,
 #  3. a second run has nothing to do,
 #  4. `-R <rule>` reruns that rule only,
 #  5. a rebuilt executable (newer mtime) makes its stage rerun.
@@ -32,6 +34,7 @@ done
 if grep -qE "^validation_" "$work/dry_all.log"; then cat "$work/dry_all.log"; echo "the default target plans validation cases"; exit 1; fi
 grep -qE "^loads +1 " "$work/dry_all.log" || { cat "$work/dry_all.log"; echo "the default target does not reach loads.h5"; exit 1; }
 grep -qE "^fit +1 " "$work/dry_all.log" || { cat "$work/dry_all.log"; echo "the default target does not reach materials.h5"; exit 1; }
+grep -qE "^report +1 " "$work/dry_all.log" || { cat "$work/dry_all.log"; echo "the default target does not reach the report"; exit 1; }
 
 echo "== nothing built: the same DAG, and a missing executable says how to build it"
 nobuild=$work/nobuild/build
@@ -54,10 +57,43 @@ for stage in kinematics mesh motion loads materials; do
   "$build/bin/fin-contract" check "$work/results/tiny/$stage.h5" > /dev/null ||
     { echo "results/tiny/$stage.h5 does not meet its contract"; exit 1; }
 done
-# The tiny case's materials.h5 against its golden file (per-dataset tolerances beside it).
-"$build/bin/fin-diff" "$src/tests/regression/fit/tiny_case/materials.h5" "$work/results/tiny/materials.h5" \
-  --tolerances "$src/tests/regression/fit/tiny_case/tolerances.json" > "$work/diff_materials.log" 2>&1 ||
-  { cat "$work/diff_materials.log"; echo "results/tiny/materials.h5 differs from its golden file"; exit 1; }
+# Every stage file of the tiny case against its golden file (per-dataset tolerances beside it,
+# justified in tests/regression/README.md).
+for golden in vision/tiny_case/kinematics mesh/tiny_case/mesh mesh/tiny_case/motion cfd/tiny_case/loads \
+              fit/tiny_case/materials; do
+  dir=$src/tests/regression/$(dirname "$golden") file=$(basename "$golden").h5
+  "$build/bin/fin-diff" "$dir/$file" "$work/results/tiny/$file" --tolerances "$dir/tolerances.json" \
+    > "$work/diff_$file.log" 2>&1 || { cat "$work/diff_$file.log"; echo "results/tiny/$file differs from its golden file $dir/$file"; exit 1; }
+done
+# The report: its page, its scores and the figures of every stage present.
+for f in index.html summary.json fig10_pressure_jump.png fig11_moduli.png fig12_root_pitch.png \
+         fig14_trailing_edge.png fig15_profiles.png fig16_forces.png; do
+  test -s "$work/results/tiny/report/$f" || { echo "results/tiny/report/$f is missing"; exit 1; }
+done
+python3 -c 'import json, sys; s = json.load(open(sys.argv[1])); assert s["schema"] == "finverse/report" and s["scores"]' \
+  "$work/results/tiny/report/summary.json" || { echo "results/tiny/report/summary.json is not a finverse report"; exit 1; }
+# Stages that disagree (issue 33 "Bad input"): a mesh of another fin, a motion of another run; the
+# first reader of both files refuses them with one line naming both, exit 2.
+t=$work/results/tiny
+/usr/bin/python3 - "$t" "$work" <<'PY'
+import shutil, sys, h5py
+t, work = sys.argv[1:3]
+for name in ("mesh", "motion"):
+    shutil.copy(f"{t}/{name}.h5", f"{work}/other_{name}.h5")
+    with h5py.File(f"{work}/other_{name}.h5", "r+") as f:
+        f["points"][...] = f["points"][...] * 1.01
+PY
+expect_refusal() {  # <log name> <file named in the message> <command...>
+  local log=$work/refuse_$1.log named=$2; shift 2
+  set +e; "$@" > "$log" 2>&1; local rc=$?; set -e
+  [ $rc -eq 2 ] && grep -q "was made from another .*$named" "$log" ||
+    { cat "$log"; echo "stages that disagree were not refused (exit $rc): $*"; exit 1; }
+}
+expect_refusal cfd other_mesh.h5 "$build/bin/fin-cfd" fin --mesh "$work/other_mesh.h5" --motion "$t/motion.h5" --out "$work/x.h5"
+expect_refusal fit other_motion.h5 "$build/bin/fin-fit" run --mesh "$t/mesh.h5" --motion "$work/other_motion.h5" \
+  --loads "$t/loads.h5" --materials "$src/data/cases/trout_fin_materials.json" --out "$work/x.h5"
+expect_refusal report other_mesh.h5 "$build/bin/fin-report" --case x --mesh "$work/other_mesh.h5" --materials "$t/materials.h5" \
+  --out-dir "$work/x"
 shopt -s nullglob
 summaries=("$work"/results/validation/*/summary.json)
 echo "summaries: ${#summaries[@]}"
