@@ -7,6 +7,7 @@
 #include "report/fin_profiles.hpp"
 #include "report/force_statistics.hpp"
 #include "report/modulus_scores.hpp"
+#include "report/motion_distance.hpp"
 #include "report/ray_sections.hpp"
 #include "report/root_pitch.hpp"
 #include "report/trailing_edge.hpp"
@@ -199,22 +200,24 @@ Report build_report(const ReportInputs& in) {
     scores.push_back(unavailable("mean C_T, FSI vs reconstruction", 0.10, kIssue, why));
     scores.push_back(unavailable("C_T peak, FSI vs reconstruction", 0.05, kIssue, why));
   }
-  // The FSI motion against the truth needs both on the same nodes (truth.h5 is on the template's).
-  if (in.fsi && in.motion && in.fsi->points.dim(1) == in.motion->points.dim(1)) {
-    const std::size_t nf = std::min(in.fsi->points.dim(0), in.motion->points.dim(0)), nv = in.motion->points.dim(1);
-    double sum = 0;
-    for (std::size_t f = 0; f < nf; ++f)
-      for (std::size_t v = 0; v < nv; ++v) {
-        double d2 = 0;
-        for (std::size_t a = 0; a < 3; ++a) d2 += std::pow(in.fsi->points(f, v, a) - in.motion->points(f, v, a), 2);
-        sum += std::sqrt(d2);
-      }
-    scores.push_back(info("FSI vs reconstructed motion, mean node distance", sum / double(nf * nv) / chord, "c",
-                          "frame by frame over the first common frames; not the truth's motion"));
-  }
-  scores.push_back(unavailable("FSI motion vs truth motion, mean vertex distance", 0.01, kIssue,
-                               in.fsi ? "truth.h5 is on the template's vertices, fsi.h5 on the mesh's nodes: no map yet"
-                                      : kNeedsFsi));
+  // Motions against each other on the mesh's nodes: the truth carried onto them (motion_distance).
+  std::optional<NdArray<double>> truth_nodes;
+  if (in.truth && in.mesh) truth_nodes = truth_on_mesh(*in.truth, *in.mesh);
+  if (truth_nodes && in.motion)
+    scores.push_back(info("reconstructed motion (motion.h5) vs truth, mean node distance",
+                          mean_node_distance(in.motion->time, in.motion->points, in.truth->time, *truth_nodes) / chord,
+                          "c", "truth carried onto the mesh's nodes"));
+  if (in.fsi && in.motion)
+    scores.push_back(info("FSI vs reconstructed motion, mean node distance",
+                          mean_node_distance(in.fsi->time, in.fsi->points, in.motion->time, in.motion->points) / chord,
+                          "c", "the reconstruction interpolated in time to the FSI's frames"));
+  const std::string fsi_truth = "FSI motion vs truth motion, mean vertex distance";
+  if (in.fsi && truth_nodes)
+    scores.push_back(graded(fsi_truth,
+                            mean_node_distance(in.fsi->time, in.fsi->points, in.truth->time, *truth_nodes) / chord,
+                            0.01, kIssue, "in chords; truth carried onto the mesh's nodes", "c"));
+  else
+    scores.push_back(unavailable(fsi_truth, 0.01, kIssue, in.fsi ? "needs truth.h5 and mesh.h5" : kNeedsFsi));
 
   // The reconstruction's own numbers (and the truth's), for reading the graded ones.
   if (loads_ct) {

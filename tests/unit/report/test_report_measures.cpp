@@ -10,6 +10,7 @@
 #include "report/fin_profiles.hpp"
 #include "report/force_statistics.hpp"
 #include "report/modulus_scores.hpp"
+#include "report/motion_distance.hpp"
 #include "report/score.hpp"
 #include "report/trailing_edge.hpp"
 #include "report/w_shape.hpp"
@@ -108,6 +109,25 @@ TEST(ModulusScores, MedianWorstIdentifiedAndMembraneAreGradedAgainstTheirGoals) 
   EXPECT_EQ(modulus_scores(modulus_rows(m, truth), "test")[1].status, Status::missed);
   m.identified = NdArray<std::int32_t>({5}, {1, 0, 0, 0, 1});
   EXPECT_EQ(modulus_scores(modulus_rows(m, truth), "test")[1].status, Status::not_available);
+}
+
+TEST(MotionDistance, AnOffsetMotionOnOtherFramesIsItsOffsetAfterInterpolation) {
+  // a: 5 nodes moving y = t at times 0, 0.1, ..., 1.0; b: the same motion + 0.002 m in z at times
+  // 0, 0.25, ..., 1.0 (linear in time: interpolation is exact); a's frames beyond 1.0 are skipped.
+  const std::size_t nv = 5;
+  NdArray<double> ta({12}), a({12, nv, 3}), tb({5}), b({5, nv, 3});
+  for (std::size_t f = 0; f < 12; ++f) {
+    ta(f) = 0.1 * double(f);
+    for (std::size_t v = 0; v < nv; ++v) a(f, v, 0) = double(v), a(f, v, 1) = ta(f);
+  }
+  for (std::size_t f = 0; f < 5; ++f) {
+    tb(f) = 0.25 * double(f);
+    for (std::size_t v = 0; v < nv; ++v) b(f, v, 0) = double(v), b(f, v, 1) = tb(f), b(f, v, 2) = 0.002;
+  }
+  EXPECT_NEAR(mean_node_distance(ta, a, tb, b), 0.002, 1e-15);
+  NdArray<double> tc({1}, {5.0});
+  EXPECT_TRUE(std::isnan(mean_node_distance(tc, NdArray<double>({1, nv, 3}), tb, b)));
+  EXPECT_THROW(mean_node_distance(ta, a, tb, NdArray<double>({5, nv + 1, 3})), Error);
 }
 
 TEST(Score, MetMissedAndNotAvailableAreMarked) {
