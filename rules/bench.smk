@@ -293,7 +293,6 @@ rule bench_fit:
 # runs the same chain on a short start (a smoke test; its numbers are not the benchmark's).
 # Numbers and commands: docs/studies/fsi_restart_cost_conservation.md.
 register_bench("fsi", "coupled FSI: Aitken vs IQN-ILS iterations on Turek-Hron FSI2/FSI3, coupled vs rigid-flag step cost")
-EXECUTABLES["fin-fsi-bench"] = _CMAKE_BUILD
 
 # case -> (fin-fsi flags, limit-cycle time [s], restart length [s]; full, then coarse).
 _FSI_BENCH = {
