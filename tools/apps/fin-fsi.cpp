@@ -5,6 +5,7 @@
 //   fin-fsi turek_hron --case FSI1 --reference data/reference/turek_hron.json
 //       --acceleration iqn-ils --cells-per-diameter 16 --out fsi.h5 --summary summary.json
 //       [--checkpoint ckpt.h5 --checkpoint-every N] [--restart ckpt.h5 [--restart-new-coupling]]
+#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -13,6 +14,7 @@
 #include "core/cli.hpp"
 #include "core/summary.hpp"
 #include "fsi/validation/pitching_plate_fsi.hpp"
+#include "fsi/validation/seed_table1.hpp"
 #include "fsi/validation/turek_hron_fsi.hpp"
 
 namespace {
@@ -97,6 +99,9 @@ struct TurekHronCommand {
       if (auto p = m.pass()) std::cerr << (*p ? "  pass" : "  MISSED");
       std::cerr << "\n";
     }
+    std::ifstream reference_file(reference);
+    for (const auto& line : fv::seed_table1_lines(nlohmann::json::parse(reference_file), o.case_name, s))
+      std::cerr << line << "\n";
     std::cerr << "fin-fsi turek_hron " << o.case_name << ": " << (s.pass() ? "pass" : "missed") << ", "
               << run.wall_seconds << " s, wrote " << summary_path << "\n";
     return s.pass() ? 0 : 1;
