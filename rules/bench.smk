@@ -374,3 +374,27 @@ rule bench_fsi:
         "({input.exe} --fsi3-iqn-ils {input.fsi3_iqn} --fsi3-aitken {input.fsi3_aitken}"
         " --fsi2-iqn-ils {input.fsi2_iqn} --fsi2-aitken {input.fsi2_aitken} --fsi3-rigid {input.fsi3_rigid}"
         " --out {output.json} " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
+
+# Wall time per pipeline stage (issue 33, "Benchmark"): the benchmark file of every stage rule
+# (PIPELINE_STAGES, common.smk) in one summary, with the slowest stage named. It covers the case of
+# the current config: `snakemake -c2 results/bench/pipeline.json` times the default case (its loads
+# take about 50 min), `... --configfile config/cases/tiny.yaml` the tiny one; each run overwrites it
+# (parameters.case says which). Stages already built are not rerun: their files time the last run.
+register_bench("pipeline", "wall and CPU time of each pipeline stage on the case (synth to report), slowest stage named")
+
+rule bench_pipeline:
+    input:
+        script=os.path.join(SCRIPTS, "pipeline_bench.py"),
+        stages=[stage_benchmark(s) for s in PIPELINE_STAGES],
+    output:
+        json="results/bench/pipeline.json",
+    log:
+        "results/logs/bench/pipeline.log",
+    threads: 1
+    resources:
+        mem_mb=200,
+    params:
+        stages=" ".join(f"--stage {s}={stage_benchmark(s)}" for s in PIPELINE_STAGES),
+    shell:
+        "/usr/bin/python3 {input.script} --case {config[case]} --threads " + str(THREADS) +
+        " {params.stages} --out {output.json} 2> {log}"

@@ -147,6 +147,8 @@ rule loads:
         summary=f"{_CFD_CASE_OUT}/loads_summary.json",
     log:
         f"results/logs/{config['case']}/loads.log",
+    benchmark:
+        stage_benchmark("loads"),
     threads: THREADS
     resources:
         mem_mb=2500,

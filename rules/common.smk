@@ -89,6 +89,18 @@ def register_bench(name, description):
     BENCHMARKS[name] = description
 
 
+# The pipeline's stages in the order they run. Each stage rule has a Snakemake benchmark file
+# (wall s, max RSS, CPU s of the job), which rule bench_pipeline (rules/bench.smk) gathers.
+PIPELINE_STAGES = ("synth", "track", "mesh", "loads", "fit", "report")
+
+
+def stage_benchmark(stage):
+    """The benchmark file of pipeline stage <stage> on the case: results/<case>/benchmarks/<stage>.tsv."""
+    if stage not in PIPELINE_STAGES:
+        raise ValueError(f"stage_benchmark({stage!r}): not one of PIPELINE_STAGES {PIPELINE_STAGES}")
+    return f"results/{config['case']}/benchmarks/{stage}.tsv"
+
+
 def validation_targets():
     """The cases of `snakemake validation` and of results/validation/index.txt: config
     validation.cases, or every registered case when that list is empty."""

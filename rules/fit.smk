@@ -25,6 +25,8 @@ rule fit:
         summary=f"{_FIT_OUT}/fit_summary.json",
     log:
         f"results/logs/{config['case']}/fit.log",
+    benchmark:
+        stage_benchmark("fit"),
     threads: THREADS
     resources:
         mem_mb=1500,

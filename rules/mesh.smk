@@ -32,6 +32,8 @@ rule synth:
         frames=directory(f"{_OUT}/frames"),
     log:
         f"results/logs/{_CASE}/synth.log",
+    benchmark:
+        stage_benchmark("synth"),
     threads: THREADS
     resources:
         mem_mb=1500,
@@ -59,6 +61,8 @@ rule mesh:
         pvd=f"{_OUT}/motion.pvd",
     log:
         f"results/logs/{_CASE}/mesh.log",
+    benchmark:
+        stage_benchmark("mesh"),
     threads: THREADS
     resources:
         mem_mb=1000,

@@ -29,6 +29,8 @@ rule report:
         figures=f"{_REPORT_OUT}/report/figures.json",
     log:
         f"results/logs/{config['case']}/report.log",
+    benchmark:
+        stage_benchmark("report"),
     threads: 1
     resources:
         mem_mb=1000,

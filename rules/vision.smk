@@ -38,6 +38,8 @@ rule track:
         kinematics=f"{_VOUT}/kinematics.h5",
     log:
         f"results/logs/{_VCASE}/track.log",
+    benchmark:
+        stage_benchmark("track"),
     threads: THREADS
     resources:
         mem_mb=1000,
