@@ -1,21 +1,14 @@
 // One coupled time step of a 2-D flow and the elastic flag (seed paper section 2.3, steps 1-5;
-// DESIGN.md 5.3; issue 32) as the operator H of the implicit coupling (fsi/implicit_coupling.hpp):
-// x = [X; V], the wet nodes' displacement from the reference and their velocity, node by node.
-//   evaluate(x): the flow is restored to the step's start, its body placed at t^{n+1} with the wet
-//   nodes at X_ref + X moving with V, and the acceleration from the finite difference over the step
-//   a = (V - V^n) / dt (V^n: the converged wall velocity of the previous step; the structure's own
-//   acceleration would make H depend on the previous iterate, not only on x); one flow step; the
-//   flag segments' traction samples (edge_traction) go to the wet nodes with the linear transfer
-//   of fsi/interface_transfer.hpp (force and moment about the cylinder centre kept: the mismatch is
-//   measured every evaluation); the structure advances over the step under those loads; H(x) is
-//   its wet nodes' [X; V] at t^{n+1}.
-// The cells' kinds (fluid / ghost / solid) of all evaluations of a step are those of its first
-// iterate (FlowSolver::set_body_state's kinds_at), so that H is continuous in x: a cell centre
-// crossing the wall between iterations does not flip the cell's kind (docs/studies/fsi_turek_hron.md
-// section 7); the cells whose kind changes from step to step get the cleared/covered treatment once.
-// Per accepted step a StepRecord: force on the whole body (cylinder + flag: drag, lift) and on the
-// flag alone, the interface power sum_i F_i . v_i (structure side, N/m * m/s = W/m), the
-// structure's interface work over the step, and the worst force / moment transfer mismatch.
+// DESIGN.md 5.3) as the operator H of the implicit coupling on x = [X; V], the wet nodes'
+// displacement and velocity. evaluate(x) restores the flow to the step's start, places the body at
+// X_ref + X moving with V, accelerating with (V - V^n) / dt (V^n: last step's converged velocity,
+// so H depends on x only), takes one flow step, hands the flag's traction to the wet nodes
+// (fsi/interface_transfer.hpp: force and moment kept, mismatch measured) and advances the
+// structure; H(x) is its wet [X; V]. All evaluations of a step use the cell kinds of its first
+// iterate (FlowSolver::set_body_state's kinds_at), so H is continuous in x (a centre crossing the
+// wall between iterations does not flip its cell; docs/studies/fsi_turek_hron.md section 7).
+// Per accepted step a StepRecord: body and flag forces, the interface power sum F_i . v_i [W/m],
+// the structure's interface work over the step and the worst force / moment mismatch.
 #pragma once
 
 #include <array>

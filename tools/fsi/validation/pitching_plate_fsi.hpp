@@ -1,24 +1,13 @@
 // The flexible plate pitching about its leading edge in a uniform stream (seed paper section 3.2,
-// after Dai et al. 2012; issue 32 "Validation" 3): chord L, span W = 0.54 L, pitch
-// alpha = alpha0 r(t) sin(2 pi f0 t), alpha0 = 12 deg, f = f0 L / U = 1 (r: a cosine ramp over
-// whole periods, so the start has no jump), mass ratio rho_s h / (rho_f L) = 0.1, and
-//     K = D / (rho_f U^2 L^3),   D = E h^3 / (12 (1 - nu^2))   (per unit span),
-// the common definition with the fluid density (Dai et al.'s). The seed prints rho_s in K, which
-// with its mass ratio would scale K by 10 (h / L = 0.01 here) and move its resonance out of the
-// 0.5 .. 50 sweep; fit/validation/uniform_plate_twin.hpp takes the same reading.
-// Runs, in units L = U = rho_f = 1: the 3-D flow (tools/cfd) around the closed thin body of the
-// mid-surface (thickness a few cells), the plate as corotational shell triangles (fem: the uniform
-// plate of fem/validation/hybrid_plate_model.hpp without beams) whose leading edge is held and
-// turned by -alpha about the span, coupled per step by SurfaceFlowStructureStep (IQN-ILS).
-// Per stiffness over the last period: trailing-edge amplitude A / L (half the peak-to-peak y of the
-// mid-span trailing-edge node) and its phase against the rigid trailing-edge motion -L sin(alpha)
-// (first Fourier harmonics; negative: the trailing edge lags), thrust and lift coefficients on
-// rho U^2 L W / 2. The rigid run prescribes the rigid kinematics (no structure).
-// Grading (summary.json): the stiffest K and the rigid run within 2 % of A / L = sin(alpha0); the
-// sweep's amplitude peak where the wet first natural frequency meets f0: the dry frequency by the
-// modal analysis (fem/modal.hpp) of the same shell model, the added mass by strip theory across the
-// span (a flat strip of width W moving normal to itself carries pi rho_f W^2 / 4 per unit length;
-// Newman, Marine Hydrodynamics, 1977, sec. 4.13), f_wet = f_dry / sqrt(1 + pi W / (4 m L)).
+// after Dai et al. 2012; issue 32, validation 3): W = 0.54 L, alpha = 12 deg r(t) sin(2 pi f0 t),
+// f0 L / U = 1, rho_s h / (rho_f L) = 0.1, K = D / (rho_f U^2 L^3) with D = E h^3 / (12 (1 - nu^2))
+// (the fluid-density definition; the seed's rho_s would scale K by 10 h / L and move the
+// resonance out of the 0.5-50 sweep). The 3-D flow around the closed thin body of the
+// mid-surface and the shell plate, driven at its leading edge, coupled per step by
+// SurfaceFlowStructureStep. Per K over the last period: trailing-edge A / L and phase against the
+// rigid motion; graded: the stiffest K and the rigid run within 2 % of sin(alpha0), and the
+// amplitude peak against f_wet = f_dry / sqrt(1 + pi W / (4 m L)) (modal analysis + strip-theory
+// added mass, Newman 1977 sec. 4.13). Set-up, grid and numbers: docs/studies/fsi_pitching_plate.md.
 #pragma once
 
 #include <functional>

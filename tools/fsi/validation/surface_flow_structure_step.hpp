@@ -1,17 +1,12 @@
 // One coupled time step of the 3-D flow and a shell (or shell + beam) structure whose wet surface is
-// a triangulated mid-surface (seed paper section 2.3, steps 1-5; DESIGN.md 5.3; issue 32), as the
-// operator H of the implicit coupling (fsi/implicit_coupling.hpp): x = [X; V], the mid-surface
-// nodes' displacement from the reference and their velocity, node by node (3 entries each).
-//   evaluate(x): the flow is restored to the step's start; its body, the closed thin body around
-//   the mid-surface (core/thin_body.hpp, cfd/immersed/thin_body.hpp), is placed at t^{n+1} for the
-//   nodes at X_ref + X moving with V and accelerating with (V - V^n) / dt (V^n: the converged
-//   velocity of the previous step, so H depends on x only); one flow step; the surface triangles'
-//   forces go to the mid-surface nodes (cfd/forces/nodal_loads.hpp: thirds to the vertices, each
-//   vertex to its node; force kept exactly, the moment about any point kept when the flow side
-//   applies each triangle's force at the mean of its nodes' positions); the structure advances over
-//   the step; H(x) is its wet nodes' [X; V].
-// Generic: the structure's driven nodes (a pitching leading edge, a fin's root) follow their own
-// prescribed motion inside the structure model; this step only exchanges the wet surface.
+// its triangulated mid-surface (seed paper section 2.3, steps 1-5; DESIGN.md 5.3): the operator H
+// of the implicit coupling on x = [X; V], the wet nodes' displacement and velocity.
+// evaluate(x) restores the flow to the step's start, places the closed thin body around the
+// mid-surface at X_ref + X moving with V (acceleration (V - V^n) / dt, so H depends on x only),
+// takes one flow step, hands the triangles' forces to the nodes (force exact, moment exact about
+// any point: cfd/forces/nodal_loads.hpp), advances the structure and returns its wet [X; V].
+// Generic: driven nodes (a pitching leading edge, a fin's root) follow their prescribed motion
+// inside the structure model; this step only exchanges the wet surface.
 #pragma once
 
 #include <array>
