@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/cli.hpp"
+#include "core/summary_print.hpp"
 #include "fsi/validation/fsi_bench.hpp"
 
 int main(int argc, char** argv) {
@@ -31,11 +32,7 @@ int main(int argc, char** argv) {
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     const finverse::Summary b = finverse::fsi::validation::fsi_bench(in);
     b.write(out);
-    for (const auto& m : b.metrics()) {
-      std::cerr << "  " << m.name << " = " << m.value;
-      if (auto p = m.pass()) std::cerr << (*p ? "  met" : "  MISSED");
-      std::cerr << "\n";
-    }
+    finverse::print_metrics(b, std::cerr);
     std::cerr << "fin-fsi-bench: " << (b.pass() ? "every goal met" : "a goal missed") << ", wrote " << out << "\n";
     return b.pass() ? 0 : 1;
   });

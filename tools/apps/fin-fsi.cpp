@@ -13,6 +13,7 @@
 
 #include "core/cli.hpp"
 #include "core/summary.hpp"
+#include "core/summary_print.hpp"
 #include "fsi/validation/pitching_plate_fsi.hpp"
 #include "fsi/validation/seed_table1.hpp"
 #include "fsi/validation/turek_hron_fsi.hpp"
@@ -93,12 +94,7 @@ struct TurekHronCommand {
     finverse::Summary& s = run.summary;
     s.set_timing(run.wall_seconds, finverse::cli::threads_in_use());
     s.write(summary_path);
-    for (const auto& m : s.metrics()) {
-      std::cerr << "  " << m.name << " = " << m.value;
-      if (m.reference) std::cerr << " (reference " << *m.reference << ", error " << m.error() << ")";
-      if (auto p = m.pass()) std::cerr << (*p ? "  pass" : "  MISSED");
-      std::cerr << "\n";
-    }
+    finverse::print_metrics(s, std::cerr);
     std::ifstream reference_file(reference);
     for (const auto& line : fv::seed_table1_lines(nlohmann::json::parse(reference_file), o.case_name, s))
       std::cerr << line << "\n";
@@ -153,12 +149,7 @@ struct PitchingPlateCommand {
     finverse::Summary& s = run.summary;
     s.set_timing(run.wall_seconds, finverse::cli::threads_in_use());
     s.write(summary_path);
-    for (const auto& m : s.metrics()) {
-      std::cerr << "  " << m.name << " = " << m.value;
-      if (m.reference) std::cerr << " (reference " << *m.reference << ", error " << m.error() << ")";
-      if (auto p = m.pass()) std::cerr << (*p ? "  pass" : "  MISSED");
-      std::cerr << "\n";
-    }
+    finverse::print_metrics(s, std::cerr);
     std::cerr << "fin-fsi pitching_plate: " << (s.pass() ? "pass" : "missed") << ", " << run.wall_seconds
               << " s, wrote " << summary_path << "\n";
     return s.pass() ? 0 : 1;
