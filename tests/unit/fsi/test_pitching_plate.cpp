@@ -1,4 +1,4 @@
-// Tests of the 3-D coupled step (SurfaceFlowStructureStep, tools/fsi/validation; issue 32) and the
+// Tests of the 3-D coupled step (SurfaceFlowStructureStep, tools/fsi; issue 32) and the
 // pitching plate built on it, on a tiny grid (L/8, a short domain, 4 x 2 shell cells):
 //   - the thin body's triangle forces moved onto the mid-surface nodes keep the force and the
 //     moment (about any point, the flow side applying each triangle's force at its nodes' mean) to
@@ -14,7 +14,7 @@
 
 #include "cfd/immersed/thin_body.hpp"
 #include "fsi/validation/pitching_plate_fsi.hpp"
-#include "fsi/validation/surface_flow_structure_step.hpp"
+#include "fsi/surface_flow_structure_step.hpp"
 
 namespace finverse::fsi::validation {
 namespace {

@@ -17,7 +17,7 @@
 #include "fem/coupled_structure.hpp"
 #include "fem/modal.hpp"
 #include "fem/validation/hybrid_plate_model.hpp"
-#include "fsi/validation/surface_flow_structure_step.hpp"
+#include "fsi/surface_flow_structure_step.hpp"
 #include "fsi/validation/turek_hron_fsi.hpp"
 
 namespace finverse::fsi::validation {

@@ -21,7 +21,7 @@
 #include "fem/coupled_structure.hpp"
 #include "fsi/implicit_coupling.hpp"
 
-namespace finverse::fsi::validation {
+namespace finverse::fsi {
 
 struct SurfaceStepRecord {
   long step = 0;
@@ -90,4 +90,4 @@ class SurfaceFlowStructureStep final : public CoupledStep {
   std::vector<SurfaceStepRecord> records_;
 };
 
-}  // namespace finverse::fsi::validation
+}  // namespace finverse::fsi

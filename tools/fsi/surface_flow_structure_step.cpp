@@ -1,5 +1,5 @@
 // The 3-D flow + shell coupled step H(x); see surface_flow_structure_step.hpp.
-#include "fsi/validation/surface_flow_structure_step.hpp"
+#include "fsi/surface_flow_structure_step.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 #include "fsi/interface_transfer.hpp"
 
-namespace finverse::fsi::validation {
+namespace finverse::fsi {
 
 namespace {
 
@@ -146,4 +146,4 @@ void SurfaceFlowStructureStep::accept(const Eigen::VectorXd& x_in, const Eigen::
   records_.push_back(current_);
 }
 
-}  // namespace finverse::fsi::validation
+}  // namespace finverse::fsi
