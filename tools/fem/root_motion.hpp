@@ -12,6 +12,15 @@
 //         base state singular). If all points are collinear the spin about that line is not
 //         observable; then R(t) is the smallest rotation that turns the reference line into the
 //         current one, i.e. that spin is taken as zero. A single point gives R = I.
+//   per_ray  each ray's root node gets its own rotation (the paper's per-ray root pitch, Fig. 12):
+//         R0(t) fitted to the root nodes alone (on a line: it turns the line, spin about it zero),
+//         then turned by the smallest rotation that takes R0 times the ray's support direction
+//         (root -> its support point) onto the tracked one: exact for a rigid root and for
+//         rays that pitch differently about the root line (a rigid R0 fitted with the support
+//         points would mistake those differences for a roll). Root nodes without a support
+//         point (membrane between two rays) take the
+//         rotation vector interpolated linearly between their neighbours along the root line
+//         (held beyond the last one). Needs RotationSupport::root_index.
 //   zero  R(t) = I: the root rotations are held at the reference orientation.
 // Samples are interpolated linearly in time: displacements directly, rotations through their
 // rotation vectors (adequate for the small rotation change between video frames; rotations of
@@ -27,17 +36,37 @@
 
 namespace finverse::fem {
 
-enum class RootRotation { fit, zero };
-RootRotation parse_root_rotation(const std::string& name);  // "fit" | "zero", else InvalidInput
+enum class RootRotation { fit, per_ray, zero };
+RootRotation parse_root_rotation(const std::string& name);  // "fit" | "per_ray" | "zero", else InvalidInput
 
 // Least-squares rotation taking the reference point set onto the current one (see above).
 Mat3 fit_rigid_rotation(const std::vector<Vec3>& reference, const std::vector<Vec3>& current);
 
+// Smallest rotation taking direction a onto direction b (I when either is zero).
+Mat3 smallest_rotation(const Vec3& a, const Vec3& b);
+
 // Further points that move rigidly with the root, used only for the rotation fit: their rest
-// positions and their positions per frame ([frame][point]).
+// positions and their positions per frame ([frame][point]); root_index (per_ray only): the root
+// node (index into the root node list) each point belongs to.
 struct RotationSupport {
   std::vector<Vec3> reference;
   std::vector<std::vector<Vec3>> positions;
+  std::vector<int> root_index{};
+};
+
+// The fin's root line (the principal direction of the root nodes' rest positions) and linear
+// interpolation along it: value at s = (1 - w) value[a] + w value[b] over carriers sorted by
+// their coordinate, held beyond the first and last carrier.
+struct RootLine {
+  Vec3 centre = Vec3::Zero(), direction = Vec3::UnitZ();
+  static RootLine fit(const std::vector<Vec3>& points);
+  [[nodiscard]] double coordinate(const Vec3& p) const { return (p - centre).dot(direction); }
+  struct Weights {
+    int a = 0, b = 0;
+    double w = 0;
+  };
+  // carriers: their coordinates (any order, at least one); returns the weights at s.
+  [[nodiscard]] static Weights weights(const std::vector<double>& carriers, double s);
 };
 
 class RootMotion {
@@ -52,14 +81,15 @@ class RootMotion {
   void apply(Model& model) const;
 
   Vec3 displacement(int root_index, double t) const;
-  Vec3 rotation_vector(double t) const;
+  Vec3 rotation_vector(int root_index, double t) const;
+  Vec3 rotation_vector(double t) const { return rotation_vector(0, t); }  // fit, zero: shared by all
   const std::vector<int>& nodes() const { return nodes_; }
 
  private:
   std::vector<int> nodes_;
   std::vector<double> times_;
   std::vector<std::vector<Vec3>> displacement_;  // [frame][root node]
-  std::vector<Vec3> rotation_;                   // [frame]
+  std::vector<std::vector<Vec3>> rotation_;      // [frame][root node]
   double ramp_ = 0;
 };
 

@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/flow_scales.hpp"
+#include "core/root_pitch_profile.hpp"
 
 namespace finverse::vision {
 namespace {
@@ -31,13 +32,14 @@ PrescribedKinematics::PrescribedKinematics(const KinematicParams& p) : p_(p) {
   frequency_ = flapping_frequency(p.strouhal, speed_, p.excursion_over_chord * p.chord_m);
 }
 
+// The U and W shapes are core/root_pitch_profile.hpp's, shared with the FEM root drive.
 double PrescribedKinematics::pitch_amplitude(double eta) const {
-  return (p_.pitch_center_deg + (p_.pitch_edge_deg - p_.pitch_center_deg) * eta * eta) * kDeg;
+  return RootPitchProfile{p_.pitch_center_deg, p_.pitch_edge_deg, p_.pitch_phase_deg, p_.pitch_phase_w_deg}
+      .amplitude(eta);
 }
 
 double PrescribedKinematics::pitch_phase(double eta) const {
-  // cos(2 pi eta) is +1 at both edges and the middle, -1 at the quarter spans: a "W".
-  return (p_.pitch_phase_deg + p_.pitch_phase_w_deg * std::cos(2 * std::numbers::pi * eta)) * kDeg;
+  return RootPitchProfile{p_.pitch_center_deg, p_.pitch_edge_deg, p_.pitch_phase_deg, p_.pitch_phase_w_deg}.phase(eta);
 }
 
 double PrescribedKinematics::bending_deflection(double eta, double s, double wt) const {

@@ -187,7 +187,9 @@ void apply_root_motion(Model& model, const stage::Mesh& mesh, const stage::Motio
       tangents.push_back(t);
     }
   RotationSupport support;
-  if (rotation == RootRotation::fit) {
+  if (rotation == RootRotation::per_ray && tangents.empty())
+    throw InvalidInput(source + ": --root-rotation per_ray needs rays (beams) leaving the root nodes; the mesh has none");
+  if (rotation != RootRotation::zero) {
     auto tip = [&](const Tangent& t, auto&& at) {
       Vec3 d = t.w0 * at(t.r) + t.w1 * at(t.n1);
       if (t.n2 >= 0) d += t.w2 * at(t.n2);
@@ -199,6 +201,8 @@ void apply_root_motion(Model& model, const stage::Mesh& mesh, const stage::Motio
         const Vec3 D = tip(t, [&](int n) { return Xref[n]; });
         scale.push_back(t.length / D.norm());
         support.reference.push_back(Xref[t.r] + scale.back() * D);
+        support.root_index.push_back(
+            static_cast<int>(std::find(root.begin(), root.end(), t.r) - root.begin()));
       }
       support.positions.resize(nf);
       for (size_t k = 0; k < nf; ++k)

@@ -34,7 +34,8 @@ double apply_loads(Model& model, const stage::Loads& loads, double ramp, const s
 
 // Root-node positions of motion.h5 as prescribed root displacements and rotations; with
 // RootRotation::fit the rotation is fitted to the root nodes and the nodes of the elements at the
-// root (root_motion.hpp).
+// root (root_motion.hpp); with RootRotation::per_ray each ray's root node turns with that ray's
+// tangent at the root and the membrane root nodes between rays interpolate.
 void apply_root_motion(Model& model, const stage::Mesh& mesh, const stage::Motion& motion,
                        RootRotation rotation, double ramp, const std::string& source);
 
