@@ -5,18 +5,34 @@
 //   fin-fsi turek_hron --case FSI1 --reference data/reference/turek_hron.json
 //       --acceleration iqn-ils --cells-per-diameter 16 --out fsi.h5 --summary summary.json
 //       [--checkpoint ckpt.h5 --checkpoint-every N] [--restart ckpt.h5 [--restart-new-coupling]]
+//   fin-fsi --threads N fin --mesh mesh.h5 --materials (M.json | materials.h5 [--base-materials M.json])
+//       (--root-drive drive.json | --motion motion.h5) --out fsi.h5 [fin-cfd fin's flow flags]
+//       [--periods P --output-periods 1] [--summary s.json]
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "cfd/io/fin_flow_case.hpp"
+#include "core/atomic_file.hpp"
 #include "core/cli.hpp"
+#include "core/error.hpp"
+#include "core/hdf5_file.hpp"
+#include "core/provenance.hpp"
+#include "core/stage_identity.hpp"
+#include "fem/io/material_spec.hpp"
+#include "fem/io/root_drive_file.hpp"
+#include "fsi/fin_fsi_run.hpp"
 #include "core/summary.hpp"
 #include "core/summary_print.hpp"
 #include "fsi/validation/pitching_plate_fsi.hpp"
 #include "fsi/validation/seed_table1.hpp"
 #include "fsi/validation/turek_hron_fsi.hpp"
+#ifdef FINVERSE_FSI_HAS_FIT
+#include "fit/fin_parameters.hpp"
+#endif
 
 namespace {
 
@@ -156,6 +172,130 @@ struct PitchingPlateCommand {
   }
 };
 
+
+// fin-fsi fin: the fin's coupled run from mesh.h5, its materials and a root drive (analytic or
+// the tracked root motion) to fsi.h5 (tools/fsi/fin_fsi_run.hpp).
+struct FinCommand {
+  finverse::fsi::FinFsiOptions o;
+  std::string mesh, materials, base_materials, root_drive, motion, out, summary_path;
+  CLI::App* fin = nullptr;
+
+  void add(CLI::App& app) {
+    fin = app.add_subcommand("fin", "the fin's coupled flow-structure run (mesh, materials, root drive -> fsi.h5)");
+    fin->add_option("--mesh", mesh, "mesh.h5 (fin-mesh)")->required()->check(CLI::ExistingFile);
+    fin->add_option("--materials", materials, "materials JSON (fin-fem) or materials.h5 (fin-fit: its best values)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    fin->add_option("--base-materials", base_materials,
+                    "with a materials.h5: the materials JSON fin-fit started from (default: the one its config names)")
+        ->check(CLI::ExistingFile);
+    auto* rd = fin->add_option("--root-drive", root_drive, "root drive JSON (heave + per-ray pitch)")
+                   ->check(CLI::ExistingFile);
+    auto* mo = fin->add_option("--motion", motion, "motion.h5: drive the root by its tracked root motion (per ray)")
+                   ->check(CLI::ExistingFile);
+    rd->excludes(mo);
+    fin->add_option("--out", out, "fsi.h5 to write")->required();
+    fin->add_option("--summary", summary_path, "also write a summary JSON (C_T, TE excursion, iterations, timing)");
+    o.flow.output_interval = 0;
+    for (const auto& n : finverse::cfd::io::fin_flow_flags(o.flow))
+      fin->add_option(n.flag, *n.value, n.help)->capture_default_str();
+    fin->add_option("--thickness-cells", o.thickness_cells, "closed thin body thickness [cells]")->capture_default_str();
+    fin->add_option("--ramp-periods", o.ramp_periods, "--motion: periods of the root's ramp from rest before its first frame")
+        ->capture_default_str();
+    fin->add_option("--acceleration", o.acceleration, "iqn-ils, aitken or constant")->capture_default_str();
+    fin->add_option("--omega", o.omega, "omega0 (aitken, iqn-ils) or omega (constant)")->capture_default_str();
+    fin->add_option("--tolerance", o.tolerance, "relative interface displacement residual")->capture_default_str();
+    fin->add_option("--absolute-tolerance", o.absolute_tolerance, "... or interface displacement change [c]")
+        ->capture_default_str();
+    fin->add_option("--max-iterations", o.max_iterations, "coupling iterations per step")->capture_default_str();
+    fin->add_flag("--strict", o.strict, "stop at the iteration cap (default: accept the best iterate, counted)");
+    fin->add_option("--spectral-radius", o.spectral_radius, "structure's generalized-alpha rho_inf")->capture_default_str();
+    fin->add_option("--structure-tolerance", o.structure_tolerance, "structure Newton residual tolerance")
+        ->capture_default_str();
+  }
+
+  // The base materials JSON of a materials.h5: --base-materials, else the "materials" entry of
+  // its config (fin-fit's effective flags).
+  std::string base_of(const std::string& h5) const {
+    if (!base_materials.empty()) return base_materials;
+    const auto f = finverse::h5::File::open_read(h5);
+    const auto config = f.attr_string(".", "config");
+    std::string found;
+    if (config) {
+      const std::function<void(const nlohmann::json&)> walk = [&](const nlohmann::json& j) {
+        if (!j.is_object()) return;
+        for (const auto& [k, v] : j.items()) {
+          if (k == "materials" && v.is_string() && found.empty()) found = v.get<std::string>();
+          walk(v);
+        }
+      };
+      walk(nlohmann::json::parse(*config, nullptr, false));
+    }
+    if (found.empty() || !std::filesystem::exists(found))
+      throw finverse::Error(h5 + ": config names no readable base materials file (" + found +
+                            "); give --base-materials M.json");
+    return found;
+  }
+
+  int run() {
+    namespace fs = finverse::fsi;
+    fs::FinFsiInputs in;
+    in.mesh = finverse::stage::read<finverse::stage::Mesh>(mesh);
+    in.mesh_name = mesh;
+    std::vector<std::filesystem::path> inputs{mesh, materials};
+    nlohmann::json materials_config = {{"materials", materials}};
+    if (std::filesystem::path(materials).extension() == ".h5") {
+#ifdef FINVERSE_FSI_HAS_FIT
+      finverse::check_made_from(materials, mesh);
+      const std::string base = base_of(materials);
+      inputs.push_back(base);
+      in.materials = finverse::fem::io::read_material_spec(base);
+      const auto fit = finverse::stage::read<finverse::stage::Materials>(materials);
+      const Eigen::VectorXd best = Eigen::Map<const Eigen::VectorXd>(fit.best.data.data(),
+                                                                     static_cast<Eigen::Index>(fit.best.data.size()));
+      const auto factory = std::make_shared<finverse::fit::FinModelFactory>(in.mesh, in.materials, fit.names,
+                                                                            finverse::fit::FinDrive{}, mesh);
+      in.build_model = [factory, best]() { return std::move(*factory->build(best)); };
+      materials_config["base_materials"] = base;
+      for (std::size_t k = 0; k < fit.names.size(); ++k) materials_config["fitted"][fit.names[k]] = fit.best.data[k];
+#else
+      throw finverse::Error(materials + ": a materials.h5 needs the fit area (built without it)");
+#endif
+    } else {
+      in.materials = finverse::fem::io::read_material_spec(materials);
+    }
+    if (!root_drive.empty()) {
+      in.drive = finverse::fem::io::read_root_drive(root_drive);
+      inputs.push_back(root_drive);
+    } else if (!motion.empty()) {
+      finverse::check_made_from(motion, mesh);
+      in.motion = finverse::stage::read<finverse::stage::Motion>(motion);
+      in.motion_name = motion;
+      inputs.push_back(motion);
+    } else {
+      throw finverse::Error("fin-fsi fin: expected --root-drive drive.json or --motion motion.h5");
+    }
+    o.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+    fs::FinFsiResult r = fs::run_fin_fsi(in, o);
+    nlohmann::json config = r.config;
+    config["inputs"] = materials_config;
+    config["threads"] = finverse::cli::threads_in_use();
+    finverse::stage::write(out, r.fsi, finverse::Provenance{"fin-fsi", config, inputs});
+    nlohmann::json summary = r.summary();
+    summary["config"] = config;
+    summary["trusted"] = r.steps_at_cap * 20 <= r.steps;  // at most 5 % of the steps at the cap
+    if (!summary_path.empty()) finverse::write_text_atomic(summary_path, summary.dump(2) + "\n");
+    if (!summary["trusted"].get<bool>())
+      std::cerr << "fin-fsi fin: WARNING: " << r.steps_at_cap << " of " << r.steps
+                << " steps ended at the coupling cap (best iterate accepted): the result is not converged\n";
+    std::cerr << "fin-fsi fin: mean C_T over the last period " << r.ct_mean << ", peak " << r.ct_peak
+              << "; trailing-edge peak-to-peak " << r.te_peak_to_peak_mean << " c (rays " << r.te_peak_to_peak_min
+              << " .. " << r.te_peak_to_peak_max << "); coupling iterations mean " << r.iterations_mean << ", max "
+              << r.iterations_max << "; " << r.wall_seconds << " s, wrote " << out << "\n";
+    return 0;
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -166,9 +306,12 @@ int main(int argc, char** argv) {
   turek_hron.add(app);
   PitchingPlateCommand pitching_plate;
   pitching_plate.add(app);
+  FinCommand fin;
+  fin.add(app);
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     if (turek_hron.th->parsed()) return turek_hron.run();
     if (pitching_plate.pp->parsed()) return pitching_plate.run();
+    if (fin.fin->parsed()) return fin.run();
     return 2;
   });
 }

@@ -60,22 +60,6 @@ std::array<double, 2> pair_of(const nlohmann::json& c, const char* key, const st
 
 }  // namespace
 
-std::unique_ptr<Acceleration> make_acceleration(const std::string& name, const InterfaceLayout& layout,
-                                                double omega) {
-  if (name == "aitken") {
-    AitkenOptions o;
-    o.initial_omega = omega;
-    return std::make_unique<AitkenRelaxation>(layout, o);
-  }
-  if (name == "iqn-ils") {
-    IqnIlsOptions o;
-    o.initial_omega = omega;
-    return std::make_unique<IqnIls>(layout, o);
-  }
-  if (name == "constant") return std::make_unique<ConstantRelaxation>(omega);
-  throw Error("fsi: acceleration '" + name + "': expected aitken, iqn-ils or constant");
-}
-
 namespace {
 
 // The run's options as stored in fsi.h5, summary.json and checkpoints (compared on restart).

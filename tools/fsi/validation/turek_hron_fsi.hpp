@@ -27,14 +27,11 @@
 #include "fsi/acceleration.hpp"
 #include "fsi/coupling_data.hpp"
 #include "fsi/implicit_coupling.hpp"
+#include "fsi/acceleration_factory.hpp"  // make_acceleration (finverse::fsi)
 #include "fsi/validation/flow_structure_step.hpp"
 
 namespace finverse::fsi::validation {
 
-// "aitken" (seed paper rule, omega0 = omega), "iqn-ils" (omega0 = omega) or "constant" (omega).
-// Throws finverse::Error naming the expected names.
-std::unique_ptr<Acceleration> make_acceleration(const std::string& name, const InterfaceLayout& layout,
-                                                double omega);
 
 struct TurekHronFsiOptions {
   std::filesystem::path reference;  // turek_hron.json

@@ -1,0 +1,84 @@
+// The fin's coupled flow-structure simulation (issue 33; seed paper sections 2.3 and 4.4; DESIGN.md
+// 5.3): the shell + beam fin of mesh.h5 with its materials (fem/io/fin_model.hpp), driven at the
+// root either by the analytic drive (heave + per-ray pitch, fem/root_drive.hpp) or by the tracked
+// root motion of motion.h5 (per-ray rotation, fem/root_motion.hpp), in a uniform stream. Each
+// time step is the implicit coupling of SurfaceFlowStructureStep: the closed thin body around the
+// mid-surface (thickness_cells cells thick) in the flow, the triangle forces on the nodes, the
+// structure's generalized-alpha step, IQN-ILS (or Aitken) on the nodes' [X; V].
+//
+// Flow as fin-cfd fin (cfd/io/fin_flow_case.hpp): Re, U, nu, grid flags; the uniform core around
+// the swept box of the drive (the rigid fin carried by the root drive, sampled over a period), or
+// of motion.h5's frames; inlet / convective outlet / slip sides; the stream impulsive at the start.
+// Time: the drive starts at t = 0 from rest with its own cosine ramp; a tracked motion (periodic,
+// attribute T, tiled over the run) starts one ramp (ramp_periods T) before its first frame, the
+// root ramping linearly from rest (load_history.hpp convention). The run is `periods` periods
+// long (the ramp included); the last `output_periods` are written at the output interval (the
+// motion's frame spacing shortened to divide T, or T / 100 for the drive unless given). The
+// fixed dt is a whole fraction of it with (U + 2 v_max) dt / h <= cfl, v_max the drive's fastest
+// node speed.
+// Failures (a coupling that diverges, the cap under strict, the flow's CFL guard, a structure that
+// does not converge or turns non-finite) end in one finverse::Error naming the step.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cfd/io/fin_flow_case.hpp"
+#include "core/stage_files.hpp"
+#include "fem/model.hpp"
+#include "fem/io/material_spec.hpp"
+#include "fem/io/root_drive_file.hpp"
+
+namespace finverse::fsi {
+
+struct FinFsiOptions {
+  cfd::io::FinFlowOptions flow;   // cells_per_chord 0: c / 16; output_interval 0: see above
+  double thickness_cells = 2;     // closed thin body thickness [h]
+  double ramp_periods = 1;        // tracked motion only (the drive has its own)
+  std::string acceleration = "iqn-ils";
+  double omega = 0.1;             // first iteration's relaxation
+  double tolerance = 1e-3;        // relative interface displacement residual
+  double absolute_tolerance = 1e-5;  // ... or |X_out - X_in| below this [c]
+  int max_iterations = 15;
+  bool strict = false;            // the cap is an error (default: accept the best iterate, counted)
+  double spectral_radius = 0.8;   // generalized-alpha rho_inf
+  double structure_tolerance = 1e-7;
+  std::function<void(const std::string&)> progress;
+};
+
+struct FinFsiInputs {
+  stage::Mesh mesh;
+  std::string mesh_name = "mesh.h5";
+  fem::io::MaterialSpec materials;
+  // The structure, root clamped (empty: fem::io::build_fin_model(mesh, materials)); e.g. fin-fit's
+  // model factory with a materials.h5's best values. The root drive replaces the clamp.
+  std::function<fem::Model()> build_model;
+  std::optional<fem::io::RootDriveSpec> drive;  // exactly one of drive and motion
+  std::optional<stage::Motion> motion;
+  std::string motion_name = "motion.h5";
+};
+
+struct FinFsiResult {
+  stage::Fsi fsi;
+  // Over every step and over the last period (every step of it).
+  double iterations_mean = 0;
+  int iterations_max = 0;
+  long steps = 0, steps_at_cap = 0;
+  double ct_mean = 0, ct_peak = 0, cl_amplitude = 0;  // last period
+  double te_peak_to_peak_mean = 0, te_peak_to_peak_min = 0, te_peak_to_peak_max = 0;  // rays' tips, / c
+  double transfer_mismatch = 0;
+  double wall_seconds = 0, h = 0, dt = 0, period = 0, chord = 0, U = 0, frequency = 0;
+  long cells = 0;
+  std::array<long, 3> grid{};
+  nlohmann::json config;  // the effective parameters (stored in fsi.h5 and the summary)
+  [[nodiscard]] nlohmann::json summary() const;
+};
+
+// Throws finverse::Error (bad input, failures as above).
+FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& options);
+
+}  // namespace finverse::fsi
