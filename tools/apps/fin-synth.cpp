@@ -1,18 +1,26 @@
 // fin-synth: the virtual experiment (DESIGN.md sections 1 and 5.5). Builds the truth fin from the
-// template, moves it with a motion source (today the prescribed trout kinematics of the seed
-// paper, section 4.4, at Re = 1000, St = 0.44 on a 1.0 c trailing-edge excursion: f = 4.4 Hz,
-// 500 fps) and renders every calibrated view.
+// template, moves it with a motion source and renders every calibrated view. Two sources:
+//   prescribed  the reconstructed trout kinematics of the seed paper, section 4.4 (Re = 1000,
+//               St = 0.44 on a 1.0 c trailing-edge excursion: f = 4.4 Hz, 500 fps);
+//   fsi         the fin's flow-structure simulation (issue 33): fsi.h5 from fin-fsi fin on the
+//               mesh.h5 it ran on, with the known materials and root drive it was given, which
+//               truth.h5 records (materials/*, root/*, root_drive).
 //
 //   fin-synth --out-dir results/trout_caudal --periods 1 --views side,back,ventral
+//   fin-synth --out-dir results/c --motion-source fsi --fsi truth/fsi.h5 --fsi-mesh truth/mesh.h5
+//             --materials data/cases/trout_fin_materials.json --root-drive truth/drive.json
 //
 // Writes <out-dir>/truth.h5 (stage::Truth), cameras.yml, frames/<view>/NNNNNN.png, template.json
 // and truth.pvd (ParaView). Same inputs, seed and threads give byte-identical files.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/atomic_file.hpp"
@@ -21,14 +29,90 @@
 #include "core/log.hpp"
 #include "core/stage_files.hpp"
 #include "core/vtk_output.hpp"
+#include "fem/io/material_spec.hpp"
 #include "mesh/template_options.hpp"
 #include "vision/camera.hpp"
 #include "vision/fin_surface.hpp"
+#include "vision/fsi_motion_source.hpp"
 #include "vision/kinematic_model.hpp"
 #include "vision/renderer.hpp"
 
 namespace fs = std::filesystem;
 using namespace finverse;
+
+namespace {
+
+// The root drive file (fin-fsi fin --root-drive; keys of fem/io/root_drive_file.hpp) onto the
+// prescribed model's parameters: the same heave and U/W root pitch, and the frequency it implies.
+struct Drive {
+  vision::KinematicParams kin;
+  double frequency_hz = 0;  // > 0 overrides St
+  nlohmann::json json;
+};
+Drive read_drive(const fs::path& path, vision::KinematicParams kin) {
+  std::ifstream in(path);
+  if (!in) throw Error(path.string() + ": cannot open the root drive file");
+  Drive d;
+  try {
+    d.json = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path.string() + ": not JSON (" + std::string(e.what()) + ")");
+  }
+  if (!d.json.is_object()) throw Error(path.string() + ": expected a JSON object of root drive parameters");
+  auto number = [&](const char* key, double& value) {
+    if (!d.json.contains(key)) return;
+    if (!d.json[key].is_number()) throw Error(path.string() + ": " + key + ": expected a number");
+    value = d.json[key].get<double>();
+  };
+  number("heave_over_chord", kin.heave_over_chord);
+  number("pitch_center_deg", kin.pitch_center_deg);
+  number("pitch_edge_deg", kin.pitch_edge_deg);
+  number("pitch_phase_deg", kin.pitch_phase_deg);
+  number("pitch_phase_w_deg", kin.pitch_phase_w_deg);
+  number("strouhal", kin.strouhal);
+  number("excursion_over_chord", kin.excursion_over_chord);
+  number("frequency_hz", d.frequency_hz);
+  d.kin = kin;
+  return d;
+}
+
+// Every ray's E, the membrane's E and nu (the names fin-fit uses), the rays' nu and the densities.
+void record_materials(const fs::path& path, const std::vector<int>& ray_ids, stage::Truth& truth) {
+  const auto spec = fem::io::read_material_spec(path);
+  auto add = [&](const std::string& name, const std::string& unit, double value) {
+    truth.material_names.push_back(name);
+    truth.material_units.push_back(unit);
+    truth.material_values.data.push_back(value);
+  };
+  truth.material_values = NdArray<double>({0});
+  add("E_membrane", "Pa", spec.membrane.youngs_modulus);
+  for (int id : ray_ids) add("E_ray" + std::to_string(id), "Pa", spec.ray_material(id).youngs_modulus);
+  add("nu", "1", spec.membrane.poisson_ratio);
+  add("nu_rays", "1", spec.rays.poisson_ratio);
+  add("density_membrane", "kg m-3", spec.membrane.density);
+  add("density_rays", "kg m-3", spec.rays.density);
+  truth.material_values.shape = {truth.material_values.data.size()};
+}
+
+// Root heave and per-ray root pitch (U-shaped amplitude, W-shaped phase) of the rays, eta linear
+// in the ray's rank from +1 (first id, dorsal) to -1.
+void record_root(const vision::PrescribedKinematics& model, double heave_m, const std::vector<int>& ray_ids,
+                 stage::Truth& truth) {
+  const std::size_t n = ray_ids.size();
+  truth.root_ray_ids = NdArray<std::int32_t>({n});
+  truth.root_eta = truth.root_heave_amplitude = truth.root_heave_phase = NdArray<double>({n}, 0.0);
+  truth.root_pitch_amplitude = truth.root_pitch_phase = NdArray<double>({n}, 0.0);
+  for (std::size_t r = 0; r < n; ++r) {
+    const double eta = n > 1 ? 1.0 - 2.0 * r / (n - 1.0) : 0.0;
+    truth.root_ray_ids(r) = ray_ids[r];
+    truth.root_eta(r) = eta;
+    truth.root_heave_amplitude(r) = heave_m;
+    truth.root_pitch_amplitude(r) = model.pitch_amplitude(eta);
+    truth.root_pitch_phase(r) = model.pitch_phase(eta);
+  }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"fin-synth: simulate the fin's motion and render synchronized camera frames"};
@@ -42,6 +126,9 @@ int main(int argc, char** argv) {
   int width = 512, height = 512, blur_samples = 1, subdivisions = 4;
   std::uint64_t seed = 1;
   bool vtk = true;
+  std::string motion_source = "prescribed";
+  fs::path fsi_file, fsi_mesh, materials_file, drive_file;
+  double max_fsi_distance = 0.05;
   std::vector<std::string> views{"side", "back", "ventral"};
   app.add_option("--out-dir", out_dir, "output directory (truth.h5, cameras.yml, frames/)")->required();
   app.add_option("--reynolds", kin.reynolds, "Re = U c / nu")->capture_default_str();
@@ -74,20 +161,66 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "seed of the sensor noise")->capture_default_str();
   app.add_option("--surface-subdivisions", subdivisions, "truth surface columns per gap between rays (even)")->capture_default_str();
   app.add_option("--vtk", vtk, "also write truth.pvd for ParaView")->capture_default_str();
+  app.add_option("--motion-source", motion_source, "what moves the truth fin: prescribed kinematics or the fin FSI")
+      ->check(CLI::IsMember({"prescribed", "fsi"}))
+      ->capture_default_str();
+  app.add_option("--fsi", fsi_file, "fsi: fsi.h5 of fin-fsi fin (the truth motion)")->check(CLI::ExistingFile);
+  app.add_option("--fsi-mesh", fsi_mesh, "fsi: the mesh.h5 the FSI ran on")->check(CLI::ExistingFile);
+  app.add_option("--materials", materials_file, "fsi: the materials file the FSI ran with (recorded in truth.h5)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--root-drive", drive_file, "fsi: the root drive file the FSI ran with (recorded in truth.h5)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--max-fsi-distance", max_fsi_distance,
+                 "fsi: largest allowed distance of the truth surface from the FSI mesh's rest mid-surface / c")
+      ->capture_default_str();
 
   return cli::run(app, standard, argc, argv, [&] {
     const auto fin = mesh::make_template(tmpl);
     kin.chord_m = fin.chord;
-    const vision::PrescribedKinematics model(kin);
-    const vision::MotionSource& source = model;
     const auto surface = vision::make_fin_surface(fin, subdivisions);
+    const bool from_fsi = motion_source == "fsi";
+    const std::vector<std::string> prescribed_only{"--heave-over-chord",    "--pitch-center-deg",    "--pitch-edge-deg",
+                                            "--pitch-phase-deg",     "--pitch-phase-w-deg",   "--chordwise-over-chord",
+                                            "--chordwise-wavelength", "--chordwise-phase-deg", "--spanwise-over-chord",
+                                            "--spanwise-phase-deg",  "--strouhal",            "--excursion-over-chord"};
+    const std::vector<std::string> fsi_only{"--fsi", "--fsi-mesh", "--materials", "--root-drive"};
+    for (const auto& flag : from_fsi ? prescribed_only : fsi_only)
+      if (app.count(flag) > 0)
+        throw Error(flag + ": only with --motion-source " + (from_fsi ? "prescribed" : "fsi") +
+                    (from_fsi ? " (the FSI's root drive is --root-drive's)" : ""));
+    for (const auto& flag : fsi_only)
+      if (from_fsi && app.count(flag) == 0) throw Error(flag + ": required with --motion-source fsi");
+
+    // The root kinematics: the prescribed model's own, or the FSI's drive file on the same U/W
+    // profiles (the FSI truth's bending is the FSI's, not the model's).
+    const auto drive = from_fsi ? read_drive(drive_file, kin) : Drive{kin, 0, {}};
+    const vision::PrescribedKinematics model(drive.kin);
+    std::optional<vision::FsiMotion> fsi;
+    std::vector<int> ray_ids;
+    if (from_fsi) {
+      fsi.emplace(vision::read_fsi_motion(fsi_file, fsi_mesh, surface, max_fsi_distance));
+      const auto m = stage::read<stage::Mesh>(fsi_mesh);
+      const std::set<int> ids(m.beam_ray.data.begin(), m.beam_ray.data.end());
+      ray_ids.assign(ids.begin(), ids.end());
+      // The drive's frequency and the FSI's period must agree: the truth's T is the drive's.
+      const double f = drive.frequency_hz > 0 ? drive.frequency_hz : model.frequency();
+      if (std::abs(fsi->period() * f - 1) > 1e-6)
+        throw Error(fsi_file.string() + ": T = " + std::to_string(fsi->period()) + " s, but " + drive_file.string() +
+                    " drives at f = " + std::to_string(f) + " Hz (Re " + std::to_string(kin.reynolds) +
+                    ", chord " + std::to_string(fin.chord) + " m): not the FSI of this drive");
+      log::info("FSI motion: " + fsi->parameters().dump());
+    } else {
+      for (std::size_t r = 1; r <= fin.ray_count(); ++r) ray_ids.push_back(static_cast<int>(r));
+    }
+    const vision::MotionSource& source = from_fsi ? static_cast<const vision::MotionSource&>(*fsi) : model;
     const double T = source.period();
     const auto nf = static_cast<std::size_t>(std::llround(periods * T * fps));
     if (nf < 1) throw Error("--periods/--fps: fewer than one frame to record");
     log::info("fin: " + std::to_string(fin.ray_count()) + " rays, chord " + std::to_string(fin.chord) + " m, area " +
               std::to_string(fin.area()) + " m^2; truth surface " + std::to_string(surface.size()) + " vertices");
-    log::info("motion: U = " + std::to_string(model.speed()) + " m/s, f = " + std::to_string(model.frequency()) +
-              " Hz, T = " + std::to_string(T) + " s; " + std::to_string(nf) + " frames at " + std::to_string(fps) + " fps");
+    log::info("motion (" + source.name() + "): U = " + std::to_string(model.speed()) + " m/s, f = " +
+              std::to_string(1 / T) + " Hz, T = " + std::to_string(T) + " s; " + std::to_string(nf) + " frames at " +
+              std::to_string(fps) + " fps");
 
     const auto cameras = cameras_in.empty() ? vision::default_rig(views, fin.chord, width, height) : vision::read_cameras(cameras_in);
     fs::create_directories(out_dir);
@@ -100,8 +233,20 @@ int main(int argc, char** argv) {
     truth.points = NdArray<double>({nf, surface.size(), 3});
     // The prescribed motion has no materials: the lists are present and empty (np = 0).
     truth.material_values = NdArray<double>({0});
+    if (from_fsi) record_materials(materials_file, ray_ids, truth);
+    record_root(model, drive.kin.heave_over_chord * fin.chord, ray_ids, truth);
     truth.period = T;
-    truth.effects = source.effects().dump();
+    truth.motion_source = source.name();
+    if (from_fsi) truth.root_drive = drive.json.dump();
+    auto effects = source.effects();
+    if (from_fsi) {
+      // Effects beyond elastic rays and membrane that the materials file gives the FSI.
+      std::ifstream in(materials_file);
+      const auto j = nlohmann::json::parse(in);
+      for (const char* key : {"distal", "modulation", "rayleigh", "shell_region"})
+        if (j.contains(key)) effects[key] = j[key];
+    }
+    truth.effects = effects.dump();
 
     const vision::Renderer renderer(surface, ren);
     const double dt = 1.0 / fps;
@@ -149,6 +294,8 @@ int main(int argc, char** argv) {
     prov.config["motion_source"] = source.parameters();
     if (!tmpl.file.empty()) prov.inputs.push_back(tmpl.file);
     if (!cameras_in.empty()) prov.inputs.push_back(cameras_in);
+    for (const auto& p : {fsi_file, fsi_mesh, materials_file, drive_file})
+      if (!p.empty()) prov.inputs.push_back(p);
     if (vtk) {
       std::vector<vtkio::SurfaceFrame> frames(nf);
       std::vector<double> times(nf);

@@ -50,11 +50,21 @@ std::vector<FileSpec> build() {
                        {"template/triangles", i32, {"ntri", "3"}, "", "truth surface triangles (0-based)"},
                        {"time", f64, {"nf"}, "s", "frame times"},
                        {"points", f64, {"nf", "nv", "3"}, "m", "truth vertex positions per frame"},
-                       {"materials/names", str, {"np"}, "", "material parameter names, e.g. E_membrane, E_ray01, nu"},
+                       {"materials/names", str, {"np"}, "", "material parameter names, e.g. E_membrane, E_ray1, nu (fin-fit's names)"},
                        {"materials/units", str, {"np"}, "", "unit of each parameter"},
                        {"materials/values", f64, {"np"}, "", "truth values in the units of materials/units"},
+                       // Optional, added with the FSI truth (issue 33): the root drive per ray.
+                       opt({"root/ray_ids", i32, {"nr"}, "", "ray id of each row (1 = dorsal edge ray, mesh.h5 beams/ray)"}),
+                       opt({"root/eta", f64, {"nr"}, "1", "place across the fin: +1 dorsal edge ray .. -1 ventral, linear in the ray index"}),
+                       opt({"root/heave_amplitude", f64, {"nr"}, "m", "root heave half amplitude: y = a sin(2 pi t / T + phase)"}),
+                       opt({"root/heave_phase", f64, {"nr"}, "rad", "root heave phase"}),
+                       opt({"root/pitch_amplitude", f64, {"nr"}, "rad", "root pitch amplitude about the dorsal axis z"}),
+                       opt({"root/pitch_phase", f64, {"nr"}, "rad", "root pitch phase relative to the heave (< 0: lags)"}),
                    },
-                   {period_attr(), {"effects", "", "JSON object of the extra effects in the truth model", false, true}}});
+                   {period_attr(),
+                    {"effects", "", "JSON object of the extra effects in the truth model", false, true},
+                    {"motion_source", "", "what moved the truth: prescribed_kinematics or fsi", false, true},
+                    {"root_drive", "", "JSON object of the root drive parameters (drive.json of the FSI truth)", false, true}}});
 
   specs.push_back({"finverse/kinematics", 1, "kinematics.h5", "fin-track",
                    "Reconstructed fin motion: the template driven by the fitted skeleton, per frame, with the fit "

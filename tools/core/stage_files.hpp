@@ -33,8 +33,11 @@ struct Truth {
   NdArray<double> time, points;
   Strings material_names, material_units;
   NdArray<double> material_values;
+  // Root kinematics per ray (optional, empty = absent; files before issue 33 have none).
+  NdArray<std::int32_t> root_ray_ids;
+  NdArray<double> root_eta, root_heave_amplitude, root_heave_phase, root_pitch_amplitude, root_pitch_phase;
   std::optional<double> period;
-  std::optional<std::string> effects;
+  std::optional<std::string> effects, motion_source, root_drive;
 
   template <class V> void fields(V&& v) {
     v("template/points", template_points);
@@ -44,10 +47,18 @@ struct Truth {
     v("materials/names", material_names);
     v("materials/units", material_units);
     v("materials/values", material_values);
+    v("root/ray_ids", root_ray_ids);
+    v("root/eta", root_eta);
+    v("root/heave_amplitude", root_heave_amplitude);
+    v("root/heave_phase", root_heave_phase);
+    v("root/pitch_amplitude", root_pitch_amplitude);
+    v("root/pitch_phase", root_pitch_phase);
   }
   template <class A> void attributes(A&& a) {
     a("T", period);
     a("effects", effects);
+    a("motion_source", motion_source);
+    a("root_drive", root_drive);
   }
 };
 

@@ -1,10 +1,16 @@
 // The FSI motion source (issue 33, Deliver 1): the map from the mesh's nodes to the render surface
 // is exact for a rigid motion (affine coordinates, also just outside the outline) and second order
 // for a bending (flat facets on a curved surface); the time interpolation is periodic in T, C1,
-// uses only the last period, and mismatched fsi.h5 / mesh.h5 pairs are refused in one line.
+// uses only the last period, and mismatched fsi.h5 / mesh.h5 pairs are refused in one line;
+// fin-synth --motion-source fsi renders that motion and records materials and root drive.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
 #include <numbers>
 
 #include "../scratch_dir.hpp"
@@ -190,4 +196,70 @@ TEST(FsiMotion, FilesThatDoNotBelongTogetherAreRefusedInOneLine) {
       EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
     }
   }
+}
+
+// fin-synth --motion-source fsi: the frames follow fsi.h5, and truth.h5 records the materials and
+// the root drive; a drive whose frequency is not the FSI's is refused in one line (exit 2).
+TEST(FinSynth, FsiSourceRecordsMaterialsAndTheRootDrive) {
+  const Fixture f;
+  const test::ScratchDir dir;
+  const double T = 1 / 4.4, c = f.fin.chord;  // Re 1000, St 0.44 on A = 1.0 c: f = 4.4 Hz
+  auto m = f.m;
+  stage::write(dir / "mesh.h5", m, Provenance{"test", {}, {}});
+  const auto s = sample(f, T, 20, 1, [&](double x, double y, double z, double t) { return rigid(x, y, z, t, T, c); });
+  stage::Fsi r;
+  const std::size_t nt = s.time.size();
+  r.time = NdArray<double>({nt}, s.time);
+  r.points = s.points;
+  r.nodal_force = NdArray<double>({nt, f.nv(), 3}, 0.0);
+  r.force_total = NdArray<double>({nt, 3}, 0.0);
+  r.thrust = r.lateral = r.vertical = NdArray<double>({nt}, 0.0);
+  r.coupling_iterations = NdArray<std::int32_t>({nt}, 1);
+  r.coupling_residual = NdArray<double>({nt}, 0.0);
+  r.rho = 1000, r.U = 0.1, r.reference_area = 1e-4, r.period = T;
+  stage::write(dir / "fsi.h5", r, Provenance{"test", {}, {}});
+  std::ofstream(dir / "materials.json") << R"({"membrane": {"E": 1.2e7, "nu": 0.4, "density": 1050},
+      "rays": {"E": 3e8, "nu": 0.4, "density": 1100}, "ray": {"1": {"E": 1.3e9}, "20": {"E": 1.1e9}}})";
+  std::ofstream(dir / "drive.json") << R"({"heave_over_chord": 0.44, "pitch_center_deg": 12, "pitch_edge_deg": 22,
+      "pitch_phase_deg": -90, "pitch_phase_w_deg": -20, "strouhal": 0.44, "excursion_over_chord": 1.0})";
+  std::ofstream(dir / "drive5.json") << R"({"frequency_hz": 5})";
+  auto synth = [&](const std::string& drive, const std::string& extra = "") {
+    const std::string cmd = std::string(FIN_SYNTH_EXE) + " --out-dir " + (dir / "out").string() +
+                            " --motion-source fsi --fsi " + (dir / "fsi.h5").string() + " --fsi-mesh " +
+                            (dir / "mesh.h5").string() + " --materials " + (dir / "materials.json").string() +
+                            " --root-drive " + (dir / drive).string() + " --periods 0.05 --width 48 --height 48" +
+                            " --supersample 1 --vtk false --log-level error --threads 1 " + extra + " 2> " +
+                            (dir / "err.txt").string();
+    const int rc = std::system(cmd.c_str());
+    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  };
+  ASSERT_EQ(synth("drive.json"), 0);
+  const auto truth = stage::read<stage::Truth>(dir / "out" / "truth.h5");
+  EXPECT_EQ(truth.motion_source.value_or(""), "fsi");
+  ASSERT_TRUE(truth.period.has_value());
+  EXPECT_NEAR(*truth.period, T, 1e-12);
+  std::map<std::string, double> mat;
+  for (std::size_t i = 0; i < truth.material_names.size(); ++i) mat[truth.material_names[i]] = truth.material_values(i);
+  EXPECT_DOUBLE_EQ(mat["E_membrane"], 1.2e7);
+  EXPECT_DOUBLE_EQ(mat["E_ray1"], 1.3e9);
+  EXPECT_DOUBLE_EQ(mat["E_ray10"], 3e8);
+  EXPECT_DOUBLE_EQ(mat["E_ray20"], 1.1e9);
+  EXPECT_DOUBLE_EQ(mat["nu"], 0.4);
+  ASSERT_EQ(truth.root_pitch_amplitude.size(), 20u);
+  EXPECT_EQ(truth.root_ray_ids(0), 1);
+  EXPECT_NEAR(truth.root_pitch_amplitude(0), 22 * kPi / 180, 1e-12);  // U: the edge rays pitch most
+  EXPECT_LT(truth.root_pitch_amplitude(10), 13 * kPi / 180);
+  EXPECT_NEAR(truth.root_heave_amplitude(5), 0.44 * c, 1e-15);
+  // The frames are the FSI motion: frame 3's vertices are the rigid motion at t = 3 / 500 s.
+  const auto surface = make_fin_surface(f.fin, 4);
+  ASSERT_EQ(truth.points.dim(1), surface.size());
+  const double t3 = truth.time(3);
+  double worst = 0;
+  for (std::size_t v = 0; v < surface.size(); ++v) {
+    const auto e = rigid(surface.rest(v, 0), surface.rest(v, 1), surface.rest(v, 2), t3, T, c);
+    for (int d = 0; d < 3; ++d) worst = std::max(worst, std::abs(truth.points(3, v, d) - e[d]));
+  }
+  EXPECT_LT(worst, 2e-3 * c);  // the time interpolation between 20 samples per period
+  EXPECT_EQ(synth("drive5.json"), 2);
+  EXPECT_EQ(synth("drive.json", "--pitch-edge-deg 30"), 2);
 }
