@@ -5,7 +5,7 @@
 //
 //   fin-track --frames results/c/frames --cameras results/c/cameras.yml --out results/c/kinematics.h5
 //
-// Frames are <frames>/<view>/NNNNNN.png (tools/vision/frame_files.hpp). With --truth the
+// Frames are image folders or video files, one per view (tools/vision/frame_files.hpp). With --truth the
 // reconstruction is scored (--summary), with --bench timed (--bench-json).
 #include <algorithm>
 #include <filesystem>
@@ -25,6 +25,7 @@
 #include "vision/frame_files.hpp"
 #include "vision/tracker.hpp"
 #include "vision/tracking_summary.hpp"
+#include "vision/view_roles.hpp"
 
 namespace fs = std::filesystem;
 using namespace finverse;
@@ -36,15 +37,22 @@ int main(int argc, char** argv) {
   mesh::add_template_options(app, tmpl);
   vision::TrackerOptions to;
   auto& fo = to.fit;
-  fs::path frames_dir, cameras_file, out, truth_file, summary_out, bench_out, mesh_summary;
+  std::vector<std::string> frames_spec;
+  std::optional<double> fps;
+  fs::path cameras_file, out, truth_file, summary_out, bench_out, mesh_summary;
   double perturb_px = 0, viscosity = kWaterKinematicViscosity;
   std::optional<double> period, reynolds, strouhal, excursion_over_chord;
   std::uint64_t seed = 1;
   std::vector<std::string> ignore_views, also_score;
-  app.add_option("--frames", frames_dir, "frames directory: <view>/NNNNNN.png")->required()->check(CLI::ExistingDirectory);
+  app.add_option("--frames", frames_spec,
+                 "a folder of <view>/ image folders (numbered names: 000001.png, frame_0001.png) or <view>.avi|.mp4|.mov, "
+                 "or view=path items: side=clip_side.avi,back=frames/back")
+      ->required()
+      ->delimiter(',');
   app.add_option("--cameras", cameras_file, "cameras.yml (OpenCV FileStorage)")->required()->check(CLI::ExistingFile);
   app.add_option("--out", out, "output kinematics.h5")->required();
-  app.add_option("--fps", to.fps, "camera frame rate (1/s)")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--fps", fps, "camera frame rate (1/s); default: the videos' own, else " + std::to_string(int(to.fps)))
+      ->check(CLI::PositiveNumber);
   auto* period_opt =
       app.add_option("--period", period, "period of the motion (s), stored as the T attribute when the record is periodic");
   // Or the period from the flow scales, as fin-synth's motion has it (core/flow_scales.hpp).
@@ -74,11 +82,12 @@ int main(int argc, char** argv) {
                  "fraction of the last frame-to-frame change carried into the next frame's prediction (1: constant velocity)")
       ->capture_default_str();
   // Defaults of the ray and coverage terms: docs/studies/tracking_fit_defaults.md.
-  app.add_option("--ray-views", fo.ray_views, "views whose ray features are fitted ('all': every view)")
+  app.add_option("--ray-views", fo.ray_views, "views whose ray features are fitted ('auto': the face-on views; 'all': every view)")
       ->delimiter(',')
       ->capture_default_str();
   app.add_option("--ray-weight", fo.rays.weight, "weight of the ray-feature residuals (0: silhouettes only)")->capture_default_str();
-  app.add_option("--coverage-views", fo.coverage_views, "views fitted with the sub-pixel coverage term ('none': no view)")
+  app.add_option("--coverage-views", fo.coverage_views,
+                 "views fitted with the sub-pixel coverage term ('auto': the edge-on views; 'none': no view)")
       ->delimiter(',')
       ->capture_default_str();
   app.add_option("--coverage-weight", fo.coverage.weight, "weight of a pixel's coverage residual (0: off)")->capture_default_str();
@@ -112,25 +121,37 @@ int main(int argc, char** argv) {
     auto cameras = vision::read_cameras(cameras_file);
     const auto calibrated = cameras;  // scoring projects with the calibration as given, never perturbed
     if (perturb_px > 0) vision::perturb_principal_points(cameras, perturb_px, seed);
-    if (fo.ray_views.size() == 1 && fo.ray_views[0] == "all") fo.ray_views.clear();
-    if (fo.coverage_views.size() == 1 && fo.coverage_views[0] == "none") fo.coverage_views.clear();
-    const auto files = vision::list_frame_files(frames_dir, cameras, ignore_views, cameras_file.string());
+    const auto files = vision::list_frame_files(frames_spec, cameras, ignore_views, cameras_file.string());
+    if (fps) to.fps = *fps;
+    else if (files.container_fps) to.fps = *files.container_fps;
+    log::info("frame rate " + std::to_string(to.fps) + " fps (" + (fps ? "--fps" : files.container_fps ? "the videos'" : "default") + ")");
     for (const auto& [flag, names] : {std::pair{"--coverage-views", &fo.coverage_views}, std::pair{"--ray-views", &fo.ray_views}})
       for (const auto& name : *names)
-        if (std::none_of(cameras.begin(), cameras.end(), [&](const auto& c) { return c.name == name; }))
+        if (name != "auto" && name != "all" && name != "none" &&
+            std::none_of(cameras.begin(), cameras.end(), [&](const auto& c) { return c.name == name; }))
           log::warn(std::string(flag) + ": no view '" + name + "' in " + cameras_file.string() + "; not used");
+    // The terms each view carries, as run (stored with the configuration in kinematics.h5).
+    auto config = cli::effective_config(app);
+    config["fps"] = std::to_string(to.fps);
+    for (const auto& c : cameras) {
+      const bool rays = vision::fits_rays(fo.ray_views, c), coverage = vision::fits_coverage(fo.coverage_views, c);
+      config["view_terms"][c.name] = {{"role", vision::role_name(vision::view_role(c))}, {"rays", rays}, {"coverage", coverage}};
+      log::info("view '" + c.name + "' (" + vision::role_name(vision::view_role(c)) + "): silhouette" + (rays ? ", rays" : "") +
+                (coverage ? ", coverage" : ""));
+    }
 
     const vision::Tracker tracker(fin, to);
     std::optional<stage::Truth> truth;
     vision::TruthReference reference{nullptr, calibrated, truth_file.string()};
     if (!summary_out.empty()) truth = stage::read<stage::Truth>(truth_file), reference.points = &truth->points;
     const vision::FrameLoader load = [&](std::size_t v, long k) { return files.load(v, k); };
-    auto r = tracker.track({cameras, files.frames, load, frames_dir.string()}, truth ? &reference : nullptr);
+    auto r = tracker.track({cameras, files.frames, load, frames_spec.size() == 1 ? frames_spec[0] : "--frames"},
+                           truth ? &reference : nullptr);
     log::info("tracking: " + std::to_string(r.seconds_per_frame) + " s per frame set after the first (" + std::to_string(r.first_seconds) +
               " s, cold start); " + std::to_string(cameras.size()) + " views, " + std::to_string(cli::threads_in_use()) +
               " threads; worst silhouette IoU " + std::to_string(r.worst_iou));
 
-    Provenance prov{"fin-track", cli::effective_config(app), {cameras_file}};
+    Provenance prov{"fin-track", config, {cameras_file}};
     if (!tmpl.file.empty()) prov.inputs.push_back(tmpl.file);
     stage::write(out, r.kinematics, prov);
     log::info("wrote " + out.string());

@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "vision/view_roles.hpp"
 
 namespace finverse::vision {
 
@@ -40,14 +41,11 @@ SkeletonFitter::Linearisation SkeletonFitter::linearise(const std::vector<ViewDa
     // The coverage term only near the answer (with the rays): from far off its band sees no
     // model outline and the chamfer terms do the pulling. Where it is on, the chamfer (which
     // knows the outline only to the pixel) steps back to coverage_chamfer_weight.
-    const bool coverage_on = use_rays && o_.coverage.weight > 0 &&
-                             std::find(o_.coverage_views.begin(), o_.coverage_views.end(), views[v].camera.name) != o_.coverage_views.end();
+    const bool coverage_on = use_rays && o_.coverage.weight > 0 && fits_coverage(o_.coverage_views, views[v].camera);
     SilhouetteOptions so = o_.silhouette;
     if (coverage_on) so.weight *= o_.coverage_chamfer_weight;
     stats[v] = add_silhouette_residuals(views[v], m, tri_, &J, so, *per_view[v]);
-    const bool ray_view = o_.ray_views.empty() ||
-                          std::find(o_.ray_views.begin(), o_.ray_views.end(), views[v].camera.name) != o_.ray_views.end();
-    if (use_rays && ray_view && o_.rays.weight > 0) add_ray_residuals(views[v], m, ray_vertices_, &J, o_.rays, *per_view[v]);
+    if (use_rays && fits_rays(o_.ray_views, views[v].camera) && o_.rays.weight > 0) add_ray_residuals(views[v], m, ray_vertices_, &J, o_.rays, *per_view[v]);
     if (coverage_on) add_coverage_residuals(views[v], m, tri_, edges_, &J, o_.coverage, *per_view[v]);
   }
   Linearisation L{NormalEquations(P), std::move(stats)};

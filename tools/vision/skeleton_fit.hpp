@@ -33,10 +33,14 @@ namespace finverse::vision {
 struct FitOptions {
   SilhouetteOptions silhouette;
   RayFeatureOptions rays;
-  std::vector<std::string> ray_views;  // views whose ray features are used (empty: all)
-  CoverageOptions coverage;            // sub-pixel area term (coverage_residual.hpp) ...
-  std::vector<std::string> coverage_views;  // ... in these views (empty: none)
+  // Views by name, or by role (view_roles.hpp: {"auto"}): whose ray features are used (empty:
+  // all) and which carry the sub-pixel area term (coverage_residual.hpp; empty: none).
+  std::vector<std::string> ray_views;
+  CoverageOptions coverage;
+  std::vector<std::string> coverage_views;
   double coverage_chamfer_weight = 1.0;     // factor on the chamfer weight where the coverage term is on
+  // The fitter's neutral values; fin-track runs tracking_fit_options() (tracker.hpp), the one
+  // source of its defaults, which --help and kinematics.h5's configuration show.
   int iterations = 12;              // LM iterations per frame (warm started)
   int first_iterations = 60;        // ... for the first frame, from the rest pose
   double temporal_sigma = 0.05;     // rad (translation: chords) from the prediction

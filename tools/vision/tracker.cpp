@@ -12,14 +12,15 @@
 #include "vision/coverage_residual.hpp"
 #include "vision/silhouette_coverage.hpp"
 #include "vision/view_data.hpp"
+#include "vision/view_roles.hpp"
 
 namespace finverse::vision {
 
 FitOptions tracking_fit_options() {
   // Measured on the 100 validation frames: docs/studies/tracking_fit_defaults.md.
   FitOptions fo;
-  fo.ray_views = {"side"};
-  fo.coverage_views = {"back", "ventral"};
+  fo.ray_views = {"auto"};       // the face-on views (view_roles.hpp)
+  fo.coverage_views = {"auto"};  // the edge-on views
   fo.coverage.weight = 5;
   fo.coverage.band_px = 2;
   fo.coverage_chamfer_weight = 0.2;
@@ -69,10 +70,6 @@ Tracker::Tracker(const mesh::FinTemplate& fin, const TrackerOptions& options)
 Tracker::~Tracker() = default;
 
 namespace {
-
-bool named(const std::vector<std::string>& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
 
 // kinematics.h5 without the per-frame data: the template, its ray axes, the skeleton, the views.
 stage::Kinematics empty_record(const TrackingModel& m, const std::vector<Camera>& cameras, std::size_t nf,
@@ -145,7 +142,7 @@ class TruthScorer {
       // segmentation's IoU against the true coverage (is a shortfall the optimiser's or the data's).
       char line[320];
       double cost_fit = -1, cost_truth = -1, soft_iou = -1;
-      if (views[v].valid && named(fo_.coverage_views, cam.name)) {
+      if (views[v].valid && fits_coverage(fo_.coverage_views, cam)) {
         const auto P = true_points(k);
         NormalEquations ne_fit(0), ne_truth(0);
         add_coverage_residuals(views[v], project_model(cam, fit.points, tri), tri, edges_, nullptr, fo_.coverage,
@@ -249,7 +246,7 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
         const cv::Mat img = in.load(static_cast<std::size_t>(v), frames[i]);
         // Rays are detected only where they are fitted (FitOptions::ray_views).
         auto ro = fo.rays;
-        if (!fo.ray_views.empty() && !named(fo.ray_views, cameras[v].name)) ro.weight = 0;
+        if (!fits_rays(fo.ray_views, cameras[v])) ro.weight = 0;
         views[v] = prepare_view(cameras[v], img, options_.segmentation, ro);
       } catch (const std::exception& e) {
 #pragma omp critical

@@ -28,8 +28,9 @@
 namespace finverse::vision {
 
 // fin-track's fit: FitOptions with the values measured on the validation record
-// (docs/studies/tracking_fit_defaults.md): ray features in the side view only, the coverage term
-// in the edge-on views, 18 LM iterations per frame, stop after two rejected steps.
+// (docs/studies/tracking_fit_defaults.md): ray features in the face-on views only, the coverage
+// term in the edge-on views (roles from the cameras: view_roles.hpp), 18 LM iterations per
+// frame, stop after two rejected steps. The one source of fin-track's defaults.
 FitOptions tracking_fit_options();
 
 struct TrackerOptions {
