@@ -91,7 +91,7 @@ def register_bench(name, description):
 
 # The pipeline's stages in the order they run. Each stage rule has a Snakemake benchmark file
 # (wall s, max RSS, CPU s of the job), which rule bench_pipeline (rules/bench.smk) gathers.
-PIPELINE_STAGES = ("synth", "track", "mesh", "loads", "fit", "report")
+PIPELINE_STAGES = ("synth", "track", "mesh", "loads", "fit", "fsi", "report")
 
 
 def stage_benchmark(stage):

@@ -79,3 +79,38 @@ rule validation_fsi_pitching_plate:
     shell:
         "{input.exe} --threads {threads} pitching_plate {params.flags} --rigid"
         " --summary {output.summary} > {log} 2>&1 " + METRIC_MISSED_IS_A_RESULT
+
+
+# The pipeline's FSI stage (issue 33): the fin coupled with the FITTED materials (materials.h5 over
+# the base materials fin-fit started from), driven at the root by the RECONSTRUCTED motion
+# (motion.h5, each ray's root rotation fitted per ray), so fin-report grades FSI against the
+# reconstruction. Flags: config fsi.flags (grid, periods; docs/studies/fin_fsi.md sizes them).
+_FSI_STAGE = config["fsi"]
+_FSI_OUT = f"results/{config['case']}"
+
+
+rule fsi:
+    input:
+        exe=EXE("fin-fsi"),
+        mesh=f"{_FSI_OUT}/mesh.h5",
+        motion=f"{_FSI_OUT}/motion.h5",
+        materials=f"{_FSI_OUT}/materials.h5",
+        base=os.path.join(REPO, config["fit"]["materials"]),
+    output:
+        fsi=f"{_FSI_OUT}/fsi.h5",
+        summary=f"{_FSI_OUT}/fsi_summary.json",
+    log:
+        f"results/logs/{config['case']}/fsi.log",
+    benchmark:
+        stage_benchmark("fsi"),
+    threads: THREADS
+    resources:
+        mem_mb=2000,
+    params:
+        flags=_FSI_STAGE["flags"],
+    shell:
+        "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --motion {input.motion}"
+        " --materials {input.materials} --base-materials {input.base} --out {output.fsi}"
+        " --summary {output.summary} {params.flags} 2> {log}"
+
+register_stage_output(f"{_FSI_OUT}/fsi.h5")
