@@ -5,11 +5,18 @@
 #
 #   snakemake -c2 results/<case>/motion.h5
 #
+# The truth's motion (config truth.source, issue 33): fsi runs fin-fsi fin on its own truth mesh
+# (results/<case>/truth/mesh.h5, the case's template) with the known materials (truth.materials)
+# and the root drive truth.root_drive (St and A from fin:), and fin-synth renders that motion and
+# records the materials and drive in truth.h5; prescribed renders the prescribed kinematics.
+#
 # Default case: one flapping period. f = St U / A with U = Re nu / c = 0.1 m/s (water;
 # core/flow_scales.hpp) and A = 1.0 c, the trailing edge's peak-to-peak excursion
 # (fin.strouhal_excursion_over_chord; the root heaves 0.44 c half amplitude), gives f = 4.4 Hz, so
 # T = 0.2273 s = 113.6 frames at 500 fps (114 recorded), three 512 x 512 views.
 # fin.periods (if the schema has it) records more periods.
+
+import json
 
 _FIN = config["fin"]
 _CASE = config["case"]
@@ -22,9 +29,96 @@ _TEMPLATE_FLAGS = (
 )
 
 
+_TRUTH = config["truth"]
+_TRUTH_OUT = f"{_OUT}/truth"
+_TRUTH_FSI = _TRUTH["source"] == "fsi"
+
+
+rule truth_mesh:
+    input:
+        exe=EXE("fin-mesh"),
+    output:
+        mesh=f"{_TRUTH_OUT}/mesh.h5",
+        vtu=f"{_TRUTH_OUT}/mesh.vtu",
+    log:
+        f"results/logs/{_CASE}/truth_mesh.log",
+    threads: 1
+    resources:
+        mem_mb=500,
+    params:
+        flags=_TEMPLATE_FLAGS,
+    shell:
+        "{input.exe} {params.flags} --mesh {output.mesh} --vtu {output.vtu} --threads {threads} 2> {log}"
+
+
+def _truth_drive():
+    """drive.json of the truth FSI (fem/io/root_drive_file.hpp): truth.root_drive, St and A from fin."""
+    d = dict(_TRUTH["root_drive"])
+    d["strouhal"] = _FIN["strouhal"]
+    d["excursion_over_chord"] = _FIN["strouhal_excursion_over_chord"]
+    return d
+
+
+rule truth_drive:
+    output:
+        f"{_TRUTH_OUT}/drive.json",
+    params:
+        drive=_truth_drive(),
+    run:
+        with open(output[0] + ".tmp", "w") as f:
+            json.dump(params.drive, f, indent=2, sort_keys=True)
+            f.write("\n")
+        os.replace(output[0] + ".tmp", output[0])
+
+
+rule truth_fsi:
+    input:
+        exe=EXE("fin-fsi"),
+        mesh=f"{_TRUTH_OUT}/mesh.h5",
+        drive=f"{_TRUTH_OUT}/drive.json",
+        materials=os.path.join(REPO, _TRUTH["materials"]),
+    output:
+        fsi=f"{_TRUTH_OUT}/fsi.h5",
+        summary=f"{_TRUTH_OUT}/fsi_summary.json",
+    log:
+        f"results/logs/{_CASE}/truth_fsi.log",
+    benchmark:
+        f"{_OUT}/benchmarks/truth_fsi.tsv"
+    threads: THREADS
+    resources:
+        mem_mb=2000,
+    params:
+        flags=f"--reynolds {_FIN['reynolds']} {_TRUTH['flags']}",
+    shell:
+        "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --materials {input.materials}"
+        " --root-drive {input.drive} --out {output.fsi} --summary {output.summary} {params.flags} 2> {log}"
+
+
+def _synth_inputs(wildcards):
+    inputs = {"exe": EXE("fin-synth")}
+    if _TRUTH_FSI:
+        inputs.update(
+            fsi=f"{_TRUTH_OUT}/fsi.h5",
+            fsi_mesh=f"{_TRUTH_OUT}/mesh.h5",
+            drive=f"{_TRUTH_OUT}/drive.json",
+            materials=os.path.join(REPO, _TRUTH["materials"]),
+        )
+    return inputs
+
+
+# The motion's flags: the FSI truth's files, or the prescribed kinematics' own.
+_SYNTH_MOTION_FLAGS = (
+    "--motion-source fsi --fsi {input.fsi} --fsi-mesh {input.fsi_mesh} --materials {input.materials}"
+    " --root-drive {input.drive}"
+    if _TRUTH_FSI
+    else f"--motion-source prescribed --strouhal {_FIN['strouhal']} --heave-over-chord {_FIN['heave_amplitude_over_chord']}"
+    f" --excursion-over-chord {_FIN['strouhal_excursion_over_chord']}"
+)
+
+
 rule synth:
     input:
-        exe=EXE("fin-synth"),
+        unpack(_synth_inputs),
     output:
         truth=f"{_OUT}/truth.h5",
         cameras=f"{_OUT}/cameras.yml",
@@ -39,14 +133,12 @@ rule synth:
         mem_mb=1500,
     params:
         flags=(
-            f"{_TEMPLATE_FLAGS} --reynolds {_FIN['reynolds']} --strouhal {_FIN['strouhal']}"
-            f" --heave-over-chord {_FIN['heave_amplitude_over_chord']}"
-            f" --excursion-over-chord {_FIN['strouhal_excursion_over_chord']} --fps {_FIN['fps']}"
+            f"{_TEMPLATE_FLAGS} --reynolds {_FIN['reynolds']} --fps {_FIN['fps']}"
             f" --periods {_PERIODS} --views {','.join(_FIN['views'])} --seed {config['seed']}"
         ),
         out=_OUT,
     shell:
-        "{input.exe} --out-dir {params.out} {params.flags} --threads {threads} 2> {log}"
+        "{input.exe} --out-dir {params.out} {params.flags} " + _SYNTH_MOTION_FLAGS + " --threads {threads} 2> {log}"
 
 
 rule mesh:

@@ -22,7 +22,8 @@ rule report:
         unpack(_report_stage_inputs),
         exe=EXE("fin-report"),
         script=os.path.join(SCRIPTS, "report_figures.py"),
-        truth_materials=os.path.join(REPO, config["fit"]["materials"]),
+        # Used only when truth.h5 records no materials (a prescribed truth): the case's intended truth.
+        truth_materials=os.path.join(REPO, config["truth"]["materials"]),
     output:
         index=f"{_REPORT_OUT}/report/index.html",
         summary=f"{_REPORT_OUT}/report/summary.json",
