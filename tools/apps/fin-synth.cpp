@@ -29,7 +29,9 @@
 #include "core/log.hpp"
 #include "core/stage_files.hpp"
 #include "core/vtk_output.hpp"
+#include "core/flow_scales.hpp"
 #include "fem/io/material_spec.hpp"
+#include "fem/io/root_drive_file.hpp"
 #include "mesh/template_options.hpp"
 #include "vision/camera.hpp"
 #include "vision/fin_surface.hpp"
@@ -42,38 +44,24 @@ using namespace finverse;
 
 namespace {
 
-// The root drive file (fin-fsi fin --root-drive; keys of fem/io/root_drive_file.hpp) onto the
-// prescribed model's parameters: the same heave and U/W root pitch, and the frequency it implies.
+// The root drive file of the FSI (fem/io/root_drive_file.hpp, read as fin-fsi fin reads it) onto
+// the prescribed model's parameters: the same heave and U/W root pitch profiles.
 struct Drive {
   vision::KinematicParams kin;
-  double frequency_hz = 0;  // > 0 overrides St
+  double frequency_hz = 0;  // the drive's f, Hz (0: prescribed)
   nlohmann::json json;
 };
-Drive read_drive(const fs::path& path, vision::KinematicParams kin) {
-  std::ifstream in(path);
-  if (!in) throw Error(path.string() + ": cannot open the root drive file");
-  Drive d;
-  try {
-    d.json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path.string() + ": not JSON (" + std::string(e.what()) + ")");
-  }
-  if (!d.json.is_object()) throw Error(path.string() + ": expected a JSON object of root drive parameters");
-  auto number = [&](const char* key, double& value) {
-    if (!d.json.contains(key)) return;
-    if (!d.json[key].is_number()) throw Error(path.string() + ": " + key + ": expected a number");
-    value = d.json[key].get<double>();
-  };
-  number("heave_over_chord", kin.heave_over_chord);
-  number("pitch_center_deg", kin.pitch_center_deg);
-  number("pitch_edge_deg", kin.pitch_edge_deg);
-  number("pitch_phase_deg", kin.pitch_phase_deg);
-  number("pitch_phase_w_deg", kin.pitch_phase_w_deg);
-  number("strouhal", kin.strouhal);
-  number("excursion_over_chord", kin.excursion_over_chord);
-  number("frequency_hz", d.frequency_hz);
-  d.kin = kin;
-  return d;
+Drive read_drive(const fs::path& path, vision::KinematicParams kin, double chord) {
+  const auto spec = fem::io::read_root_drive(path);
+  kin.heave_over_chord = spec.heave_over_chord;
+  kin.pitch_center_deg = spec.pitch.center_deg;
+  kin.pitch_edge_deg = spec.pitch.edge_deg;
+  kin.pitch_phase_deg = spec.pitch.phase_deg;
+  kin.pitch_phase_w_deg = spec.pitch.phase_w_deg;
+  kin.strouhal = spec.strouhal;
+  kin.excursion_over_chord = spec.excursion_over_chord;
+  const double speed = free_stream_speed(kin.reynolds, chord, kin.kinematic_viscosity);
+  return {kin, spec.frequency(speed, chord), spec.to_json()};
 }
 
 // Every ray's E, the membrane's E and nu (the names fin-fit uses), the rays' nu and the densities.
@@ -193,7 +181,7 @@ int main(int argc, char** argv) {
 
     // The root kinematics: the prescribed model's own, or the FSI's drive file on the same U/W
     // profiles (the FSI truth's bending is the FSI's, not the model's).
-    const auto drive = from_fsi ? read_drive(drive_file, kin) : Drive{kin, 0, {}};
+    const auto drive = from_fsi ? read_drive(drive_file, kin, fin.chord) : Drive{kin, 0, {}};
     const vision::PrescribedKinematics model(drive.kin);
     std::optional<vision::FsiMotion> fsi;
     std::vector<int> ray_ids;
@@ -203,7 +191,7 @@ int main(int argc, char** argv) {
       const std::set<int> ids(m.beam_ray.data.begin(), m.beam_ray.data.end());
       ray_ids.assign(ids.begin(), ids.end());
       // The drive's frequency and the FSI's period must agree: the truth's T is the drive's.
-      const double f = drive.frequency_hz > 0 ? drive.frequency_hz : model.frequency();
+      const double f = drive.frequency_hz;
       if (std::abs(fsi->period() * f - 1) > 1e-6)
         throw Error(fsi_file.string() + ": T = " + std::to_string(fsi->period()) + " s, but " + drive_file.string() +
                     " drives at f = " + std::to_string(f) + " Hz (Re " + std::to_string(kin.reynolds) +
