@@ -202,6 +202,8 @@ struct FinCommand {
     fin->add_option("--thickness-cells", o.thickness_cells, "closed thin body thickness [cells]")->capture_default_str();
     fin->add_option("--ramp-periods", o.ramp_periods, "--motion: periods of the root's ramp from rest before its first frame")
         ->capture_default_str();
+    fin->add_option("--ramp-time", o.ramp_time, "--motion: the ramp in seconds instead (0: --ramp-periods)")
+        ->capture_default_str();
     fin->add_option("--acceleration", o.acceleration, "iqn-ils, aitken or constant")->capture_default_str();
     fin->add_option("--omega", o.omega, "omega0 (aitken, iqn-ils) or omega (constant)")->capture_default_str();
     fin->add_option("--tolerance", o.tolerance, "relative interface displacement residual")->capture_default_str();
@@ -212,6 +214,9 @@ struct FinCommand {
     fin->add_option("--spectral-radius", o.spectral_radius, "structure's generalized-alpha rho_inf")->capture_default_str();
     fin->add_option("--structure-tolerance", o.structure_tolerance, "structure Newton residual tolerance")
         ->capture_default_str();
+    fin->add_option("--structure-max-iterations", o.structure_max_iterations, "structure Newton iterations per sub-step")
+        ->capture_default_str();
+    fin->add_option("--substeps", o.substeps, "structure sub-steps per coupling step")->capture_default_str();
   }
 
   // The base materials JSON of a materials.h5: --base-materials, else the "materials" entry of

@@ -9,11 +9,12 @@
 // Flow as fin-cfd fin (cfd/io/fin_flow_case.hpp): Re, U, nu, grid flags; the uniform core around
 // the swept box of the drive (the rigid fin carried by the root drive, sampled over a period), or
 // of motion.h5's frames; inlet / convective outlet / slip sides; the stream impulsive at the start.
-// Time: the drive starts at t = 0 from rest with its own cosine ramp; a tracked motion (periodic,
-// attribute T, tiled over the run) starts one ramp (ramp_periods T) before its first frame, the
-// root ramping linearly from rest (load_history.hpp convention). The run is `periods` periods
-// long (the ramp included); the last `output_periods` are written at the output interval (the
-// motion's frame spacing shortened to divide T, or T / 100 for the drive unless given). The
+// Time: the drive starts at t = 0 from rest with its own cosine ramp; a tracked motion starts one
+// ramp (ramp_periods T, or ramp_time) before its first frame, the root's first-frame state times
+// the drive's cosine ramp from rest. A periodic motion (attribute T, whole periods; tiled over the run)
+// and the drive run `periods` periods (the ramp included) and write the last `output_periods` at
+// the output interval (the motion's frame spacing shortened to divide T, or T / 100 for the drive
+// unless given); a non-periodic motion runs to its last frame and writes its frames. The
 // fixed dt is a whole fraction of it with (U + 2 v_max) dt / h <= cfl, v_max the drive's fastest
 // node speed.
 // Failures (a coupling that diverges, the cap under strict, the flow's CFL guard, a structure that
@@ -39,6 +40,7 @@ struct FinFsiOptions {
   cfd::io::FinFlowOptions flow;   // cells_per_chord 0: c / 16; output_interval 0: see above
   double thickness_cells = 2;     // closed thin body thickness [h]
   double ramp_periods = 1;        // tracked motion only (the drive has its own)
+  double ramp_time = 0;           // [s]; > 0: the tracked motion's ramp instead of ramp_periods T
   std::string acceleration = "iqn-ils";
   double omega = 0.1;             // first iteration's relaxation
   double tolerance = 1e-3;        // relative interface displacement residual
@@ -47,6 +49,8 @@ struct FinFsiOptions {
   bool strict = false;            // the cap is an error (default: accept the best iterate, counted)
   double spectral_radius = 0.8;   // generalized-alpha rho_inf
   double structure_tolerance = 1e-7;
+  int structure_max_iterations = 40;  // Newton iterations per (sub-)step
+  int substeps = 1;                   // structure sub-steps per coupling step
   std::function<void(const std::string&)> progress;
 };
 
