@@ -8,6 +8,8 @@
 // Frames are image folders or video files, one per view (tools/vision/frame_files.hpp). With --truth the
 // reconstruction is scored (--summary), with --bench timed (--bench-json).
 #include <algorithm>
+#include <cstdio>
+#include <map>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -43,7 +45,8 @@ int main(int argc, char** argv) {
   double perturb_px = 0, viscosity = kWaterKinematicViscosity;
   std::optional<double> period, reynolds, strouhal, excursion_over_chord;
   std::uint64_t seed = 1;
-  std::vector<std::string> ignore_views, also_score;
+  std::vector<std::string> ignore_views, also_score, fin_regions;
+  std::string fin_cut = "none", background = "auto";
   app.add_option("--frames", frames_spec,
                  "a folder of <view>/ image folders (numbered names: 000001.png, frame_0001.png) or <view>.avi|.mp4|.mov, "
                  "or view=path items: side=clip_side.avi,back=frames/back")
@@ -99,6 +102,21 @@ int main(int argc, char** argv) {
   app.add_option("--ray-contrast", fo.rays.min_contrast, "ray detection: black-hat threshold (8-bit levels)")->capture_default_str();
   app.add_option("--min-contrast", to.segmentation.min_contrast, "segmentation: smallest darkening that counts as fin (8-bit levels)")
       ->capture_default_str();
+  app.add_option("--noise-floor", to.segmentation.noise_floor,
+                 "segmentation: the sensor noise is never taken below this (8-bit levels; compressed video reads 0)")
+      ->capture_default_str();
+  app.add_option("--background", background,
+                 "segmentation background: model (smooth fit per frame), median (the clip's temporal median) or auto (the model, "
+                 "and the median for static dark structure touching the border when a view has >= " +
+                     std::to_string(vision::kMedianMinFrames) + " frames)")
+      ->check(CLI::IsMember({"model", "median", "auto"}))
+      ->capture_default_str();
+  app.add_flag("!--keep-border-blobs", to.segmentation.reject_border,
+               "segmentation: do not prefer blobs clear of the image border (default: a blob touching it is the fish only when no other is)");
+  app.add_option("--fin-cut", fin_cut, "cut the caudal fin from the body: none, or peduncle (the narrowest point behind the body)")
+      ->check(CLI::IsMember({"none", "peduncle"}))
+      ->capture_default_str();
+  app.add_option("--fin-region", fin_regions, "view=x0,y0,x1,y1: the rectangle (px) of that view that holds the fin (repeatable)");
   app.add_option("--ignore-view", ignore_views, "leave these views out (validation: one view removed)")->delimiter(',');
   app.add_option("--perturb-calibration-px", perturb_px, "shift every principal point by this many px in a seeded direction (validation)")
       ->capture_default_str();
@@ -119,6 +137,22 @@ int main(int argc, char** argv) {
     if (period && !(*period > 0)) throw Error(reynolds ? "--reynolds ...: the period must be > 0" : "--period: expected > 0");
     to.period = period;
     auto cameras = vision::read_cameras(cameras_file);
+    to.segmentation.fin_cut = fin_cut == "peduncle";
+    to.segmentation.background = background == "model"    ? vision::BackgroundModel::model
+                                 : background == "median" ? vision::BackgroundModel::median
+                                                          : vision::BackgroundModel::automatic;
+    for (const auto& item : fin_regions) {
+      const auto eq = item.find('=');
+      int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+      char tail = 0;
+      if (eq == std::string::npos ||
+          std::sscanf(item.c_str() + eq + 1, "%d,%d,%d,%d%c", &x0, &y0, &x1, &y1, &tail) != 4 || x1 <= x0 || y1 <= y0)
+        throw Error("--fin-region: expected view=x0,y0,x1,y1 with x1 > x0 and y1 > y0 (px), got '" + item + "'");
+      const auto name = item.substr(0, eq);
+      if (std::none_of(cameras.begin(), cameras.end(), [&](const auto& c) { return c.name == name; }))
+        throw Error("--fin-region: no view '" + name + "' in " + cameras_file.string());
+      to.fin_regions[name] = cv::Rect(x0, y0, x1 - x0, y1 - y0);
+    }
     const auto calibrated = cameras;  // scoring projects with the calibration as given, never perturbed
     if (perturb_px > 0) vision::perturb_principal_points(cameras, perturb_px, seed);
     const auto files = vision::list_frame_files(frames_spec, cameras, ignore_views, cameras_file.string());

@@ -27,8 +27,10 @@ void basis(double x, double y, double* f) {
 
 }  // namespace
 
-Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
+Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o, const SegmentationContext& ctx) {
   if (frame.empty() || frame.type() != CV_8UC1) throw Error("segmentation: expected a non-empty 8-bit grey frame");
+  if (!ctx.median.empty() && (ctx.median.size() != frame.size() || ctx.median.type() != CV_32F))
+    throw Error("segmentation: the temporal median background differs from the frame in size or type");
   const int W = frame.cols, H = frame.rows;
   const double cx = 0.5 * (W - 1), cy = 0.5 * (H - 1), scale = 1.0 / std::hypot(cx, cy);
   cv::Mat smooth;
@@ -44,7 +46,9 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
     for (int x = 0; x + 1 < W; x += 2) diffs.push_back(static_cast<float>(std::abs(row[x + 1] - row[x])));
   }
   std::nth_element(diffs.begin(), diffs.begin() + diffs.size() / 2, diffs.end());
-  const double raw_sigma = 1.4826 * diffs[diffs.size() / 2] / std::sqrt(2.0);
+  // Compressed or saturated video has most neighbour differences 0: the floor keeps the
+  // threshold from falling to min_contrast on a frame whose noise is only hidden.
+  const double raw_sigma = std::max(o.noise_floor, 1.4826 * diffs[diffs.size() / 2] / std::sqrt(2.0));
   // A Gaussian blur of sigma s reduces white noise by about 1 / (2 sqrt(pi) s).
   const double blurred_sigma = o.blur_sigma_px > 0 ? raw_sigma / (2 * std::sqrt(std::numbers::pi) * o.blur_sigma_px) : raw_sigma;
 
@@ -106,6 +110,30 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
       bg[x] = static_cast<float>(b);
       m[x] = b - im[x] > s.threshold ? 255 : 0;
     }
+  }
+  if (!ctx.median.empty() && o.background != BackgroundModel::model) {
+    cv::Mat median = ctx.median.clone();
+    if (o.blur_sigma_px > 0) cv::GaussianBlur(median, median, cv::Size(0, 0), o.blur_sigma_px);
+    if (o.background == BackgroundModel::median) {
+      // The frame's spread about its median (compression, flicker) also sets the threshold.
+      cv::Mat r = cv::abs(smooth - median);
+      std::vector<float> rv(r.begin<float>(), r.end<float>());
+      std::nth_element(rv.begin(), rv.begin() + rv.size() / 2, rv.end());
+      s.threshold = std::max(s.threshold, o.noise_multiple * 1.4826 * rv[rv.size() / 2]);
+      s.background = median;
+    } else {
+      // Static dark structure reaching the border: the median there, the model elsewhere (a fish
+      // holding station stays out of the median's reach unless it touches the border).
+      const cv::Mat dark_static = (s.background - median) > s.threshold;
+      cv::Mat labels, stats, centroids;
+      const int n = cv::connectedComponentsWithStats(dark_static, labels, stats, centroids, 8, CV_32S);
+      for (int l = 1; l < n; ++l) {
+        const int x0 = stats.at<int>(l, cv::CC_STAT_LEFT), y0 = stats.at<int>(l, cv::CC_STAT_TOP);
+        const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
+        if (x0 == 0 || y0 == 0 || x0 + w == W || y0 + h == H) median.copyTo(s.background, labels == l);
+      }
+    }
+    s.mask = (s.background - smooth) > s.threshold;
   }
   // Rim pixels are part fin, part background (anti-aliasing, blur): a pixel is the fin's when the
   // fin covers at least half of it (the pixel-centre convention of project_model), i.e. when it
@@ -186,16 +214,46 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
       }
     }
   }
-  // One fin: keep the largest connected component (noise specks go), then fill its holes.
+  if (ctx.fin_region.area() > 0) s.mask = fin_region_mask(s.mask, ctx.fin_region);
+  // One fish: of the dark blobs, the one that overlaps the previous frame's fish (grown by the
+  // reach of a frame's motion) most; without a previous frame the largest that does not touch
+  // the image border (a vignette strip, a tank wall), and only when every blob touches it the
+  // largest of them. Then its holes are filled.
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(s.mask, labels, stats, centroids, 8, CV_32S);
-  int best = 0, best_area = 0;
-  for (int l = 1; l < n; ++l)
-    if (stats.at<int>(l, cv::CC_STAT_AREA) > best_area) best_area = stats.at<int>(l, cv::CC_STAT_AREA), best = l;
-  if (best == 0) {  // nothing darker than the background: an empty view
+  auto touches = [&](int l) {
+    const int x0 = stats.at<int>(l, cv::CC_STAT_LEFT), y0 = stats.at<int>(l, cv::CC_STAT_TOP);
+    return x0 == 0 || y0 == 0 || x0 + stats.at<int>(l, cv::CC_STAT_WIDTH) == W || y0 + stats.at<int>(l, cv::CC_STAT_HEIGHT) == H;
+  };
+  int best = 0;
+  if (!ctx.previous.empty() && cv::countNonZero(ctx.previous) > 0) {
+    const int reach = o.track_radius_px > 0 ? o.track_radius_px : std::max(8, static_cast<int>(0.05 * std::min(W, H)));
+    cv::Mat near_previous;
+    cv::dilate(ctx.previous, near_previous, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)));
+    std::vector<int> overlap(static_cast<std::size_t>(n), 0);
+    for (int y = 0; y < H; ++y) {
+      const auto* l = labels.ptr<int>(y);
+      const auto* p = near_previous.ptr<std::uint8_t>(y);
+      for (int x = 0; x < W; ++x)
+        if (l[x] > 0 && p[x]) ++overlap[static_cast<std::size_t>(l[x])];
+    }
+    for (int l = 1; l < n; ++l)
+      if (overlap[static_cast<std::size_t>(l)] > (best ? overlap[static_cast<std::size_t>(best)] : 0)) best = l;
+    s.lost = best == 0 && n > 1;
+  } else {
+    int area = 0;
+    for (int pass = 0; pass < 2 && best == 0; ++pass)  // pass 0: blobs clear of the border
+      for (int l = 1; l < n; ++l)
+        if ((pass == 1 || !o.reject_border || !touches(l)) && stats.at<int>(l, cv::CC_STAT_AREA) > area)
+          area = stats.at<int>(l, cv::CC_STAT_AREA), best = l;
+  }
+  s.rejected_blobs = std::max(0, n - 1 - (best > 0 ? 1 : 0));
+  if (best == 0) {  // nothing darker than the background, or nothing near the fish: an empty view
+    s.mask.setTo(0);
     s.coverage.setTo(0);
     return s;
   }
+  s.touches_border = touches(best);
   s.mask = labels == best;
   cv::Mat outside = s.mask == 0;
   const int nb = cv::connectedComponentsWithStats(outside, labels, stats, centroids, 4, CV_32S);
@@ -204,6 +262,11 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o) {
     const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
     const bool touches_border = x0 == 0 || y0 == 0 || x0 + w == W || y0 + h == H;
     if (!touches_border) s.mask.setTo(255, labels == l);
+  }
+  if (o.fin_cut) {
+    auto cut = separate_caudal_fin(s.mask, o.cut);
+    s.fin_cut = cut.cut;
+    s.mask = cut.fin;
   }
   // The soft segmentation keeps the fin's rim: nothing beyond two pixels of the cleaned mask.
   cv::Mat near;
@@ -250,6 +313,27 @@ double mask_iou(const cv::Mat& a, const cv::Mat& b) {
   const double inter = cv::countNonZero((a != 0) & (b != 0));
   const double uni = cv::countNonZero((a != 0) | (b != 0));
   return uni > 0 ? inter / uni : 1.0;
+}
+
+cv::Mat temporal_median(const std::vector<cv::Mat>& frames) {
+  if (frames.empty()) throw Error("temporal median: no frames");
+  const cv::Size size = frames[0].size();
+  for (const auto& f : frames)
+    if (f.size() != size || f.type() != CV_8UC1) throw Error("temporal median: frames differ in size or are not 8-bit grey");
+  cv::Mat out(size, CV_32F);
+  std::vector<std::uint8_t> v(frames.size());
+  const std::size_t mid = frames.size() / 2;
+  for (int y = 0; y < size.height; ++y) {
+    auto* o = out.ptr<float>(y);
+    for (int x = 0; x < size.width; ++x) {
+      for (std::size_t k = 0; k < frames.size(); ++k) v[k] = frames[k].ptr<std::uint8_t>(y)[x];
+      std::nth_element(v.begin(), v.begin() + mid, v.end());
+      float m = v[mid];
+      if (frames.size() % 2 == 0) m = 0.5f * (m + *std::max_element(v.begin(), v.begin() + mid));
+      o[x] = m;
+    }
+  }
+  return out;
 }
 
 }  // namespace finverse::vision

@@ -8,11 +8,28 @@
 // nearest fully covered pixel (so the boundary sits where the coverage is one half, as for the
 // pixel-centre silhouettes of the model). The mask is cleaned (one connected fin, holes filled)
 // and turned into a signed distance field, which is what the silhouette residuals sample.
+// Real footage (issue 35, item 3): the noise estimate has a floor (compressed or saturated video
+// reads 0); static dark structure touching the image border (vignette strips, tank walls, dark
+// bands) is taken into the background from the clip's temporal median (temporal_median); of the
+// dark blobs the fish is the one connected to the previous frame's, else the largest not touching
+// the border; the caudal fin is cut from the body (fin_separation.hpp) on request.
 #pragma once
+
+#include <vector>
 
 #include <opencv2/core.hpp>
 
+#include "vision/fin_separation.hpp"
+
 namespace finverse::vision {
+
+// The background a frame's darkening is measured against: the smooth radial model fitted to the
+// frame; the clip's temporal median everywhere; or (automatic) the model, but the median where
+// the median is darker than the model by more than the threshold in a region touching the border.
+enum class BackgroundModel { model, median, automatic };
+// automatic uses the median only when the view has at least this many frames (fewer: a fish that
+// moves little is part of its median).
+inline constexpr int kMedianMinFrames = 20;
 
 struct SegmentationOptions {
   double blur_sigma_px = 0.7;      // pre-smoothing of the frame
@@ -22,6 +39,19 @@ struct SegmentationOptions {
   double noise_multiple = 4.0;     // ... and at least this many (blurred) noise sigmas
   int background_iterations = 4;   // robust refits of the background surface
   double coverage = 0.5;           // rim pixel: fin when it darkens by this fraction of the full contrast
+  double noise_floor = 1.0;        // raw noise sigma (levels) never taken below this
+  BackgroundModel background = BackgroundModel::automatic;
+  bool reject_border = true;       // a blob touching the border is the fish only when no other is
+  int track_radius_px = 0;         // a blob must reach this near the previous fish (0: 5 % of the image, >= 8)
+  bool fin_cut = false;            // cut the caudal fin from the body at the peduncle
+  FinCutOptions cut;
+};
+
+// What the segmentation of one frame may know beyond the frame.
+struct SegmentationContext {
+  cv::Mat median;    // CV_32F temporal median of the view's clip (empty: none)
+  cv::Mat previous;  // CV_8U the fish's mask in the previous frame (empty: none)
+  cv::Rect fin_region;  // the user's rectangle that holds the fin (empty: none)
 };
 
 struct Segmentation {
@@ -33,12 +63,21 @@ struct Segmentation {
   // Clipped to [-0.5, 1] (core: 1.5) only, so the sensor noise stays unbiased. Sub-pixel
   // evidence for the coverage residuals (coverage_residual.hpp).
   cv::Mat coverage;
-  double noise_sigma = 0;    // estimated sensor noise (8-bit levels) of the raw frame
+  double noise_sigma = 0;    // estimated sensor noise (8-bit levels) of the raw frame, floor applied
   double threshold = 0;      // darkening (levels) that counts as fin
+  bool touches_border = false;  // the chosen blob touches the image border (no other candidate)
+  bool lost = false;            // no blob near the previous frame's fish: the mask is empty
+  int rejected_blobs = 0;       // dark blobs left out (border, unconnected, specks)
+  bool fin_cut = false;         // the body was cut off at the peduncle
 };
 
-// `frame`: 8-bit grey (CV_8U). Throws finverse::Error if the frame is empty or not grey.
-Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& options = {});
+// `frame`: 8-bit grey (CV_8U). Throws finverse::Error if the frame is empty or not grey, or the
+// context's median is not of the frame's size.
+Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& options = {},
+                         const SegmentationContext& context = {});
+
+// Per-pixel median (CV_32F) of 8-bit grey frames of one size.
+cv::Mat temporal_median(const std::vector<cv::Mat>& frames);
 
 // Signed distance (pixels, CV_32F) to the mask's boundary: positive outside, negative inside,
 // zero half-way between an inside and an outside pixel centre.

@@ -230,6 +230,38 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
     scorer.emplace(*truth, model_, fo);
   }
 
+  // Static background per view (segmentation.hpp): the temporal median of up to 31 frames
+  // spread evenly over the record, when the record is long enough for the fish to move on.
+  const auto& so = options_.segmentation;
+  std::vector<cv::Mat> medians(nview);
+  const bool use_median = (so.background == BackgroundModel::median && nf >= 3) ||
+                          (so.background == BackgroundModel::automatic && nf >= static_cast<std::size_t>(kMedianMinFrames));
+  if (so.background == BackgroundModel::median && !use_median)
+    log::warn(in.source + ": a median background needs at least 3 frames; the background model is used");
+  if (use_median) {
+    const std::size_t k = std::min<std::size_t>(nf, 31);
+    std::string failure;
+#pragma omp parallel for schedule(dynamic)
+    for (std::ptrdiff_t v = 0; v < static_cast<std::ptrdiff_t>(nview); ++v) {
+      try {
+        std::vector<cv::Mat> sample;
+        for (std::size_t j = 0; j < k; ++j) {
+          cv::Mat img = in.load(static_cast<std::size_t>(v), frames[k > 1 ? j * (nf - 1) / (k - 1) : 0]);
+          if (!img.empty()) sample.push_back(img);
+        }
+        if (sample.size() >= 3) medians[v] = temporal_median(sample);
+      } catch (const std::exception& e) {
+#pragma omp critical
+        if (failure.empty()) failure = e.what();
+      }
+    }
+    if (!failure.empty()) throw Error(failure);
+    log::info("background: temporal median of " + std::to_string(k) + " frames per view" +
+              (so.background == BackgroundModel::automatic ? " (static dark structure touching the border)" : ""));
+  }
+  std::vector<cv::Mat> last_mask(nview);  // the fish's mask in each view's last frame that showed it
+  std::vector<int> lost(nview, 0), at_border(nview, 0);
+
   TrackResult r;
   r.frames = frames;
   r.kinematics = empty_record(model_, cameras, nf, options_);
@@ -247,7 +279,11 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
         // Rays are detected only where they are fitted (FitOptions::ray_views).
         auto ro = fo.rays;
         if (!fits_rays(fo.ray_views, cameras[v])) ro.weight = 0;
-        views[v] = prepare_view(cameras[v], img, options_.segmentation, ro);
+        SegmentationContext ctx{medians[v], last_mask[v], {}};
+        if (const auto it = options_.fin_regions.find(cameras[v].name); it != options_.fin_regions.end()) ctx.fin_region = it->second;
+        views[v] = prepare_view(cameras[v], img, so, ro, ctx);
+        if (views[v].valid) last_mask[v] = views[v].mask;
+        lost[v] += views[v].lost, at_border[v] += views[v].valid && views[v].touches_border;
       } catch (const std::exception& e) {
 #pragma omp critical
         if (failure.empty()) failure = e.what();
@@ -296,6 +332,14 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
     progress.update(i + 1, status);
   }
   progress.finish();
+  for (std::size_t v = 0; v < nview; ++v) {
+    if (lost[v] > 0)
+      log::warn("view '" + cameras[v].name + "': in " + std::to_string(lost[v]) +
+                " frame(s) no dark blob was near the previous frame's fish; those frames are fitted without this view");
+    if (at_border[v] > 0)
+      log::warn("view '" + cameras[v].name + "': in " + std::to_string(at_border[v]) +
+                " frame(s) the fish's blob touches the image border (no other candidate); check the framing or --fin-region");
+  }
   // Steady state: the first frame starts cold from the rest pose and takes many more steps.
   r.seconds_per_frame = nf > 1 ? (r.seconds - r.first_seconds) / (nf - 1) : r.seconds;
   if (scorer) {

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -41,6 +42,7 @@ struct TrackerOptions {
   double prediction_velocity = 0.5;  // fraction of the last frame-to-frame change in the prediction
   double fps = 500;                  // time of frame k: k / fps
   std::optional<double> period;      // the motion's period (kinematics.h5 T) when the record is periodic
+  std::map<std::string, cv::Rect> fin_regions;  // per view name: the rectangle that holds the fin
 };
 
 // The model that is fitted: the template surface, its skeleton and skin, and the ray axes (the

@@ -8,14 +8,16 @@
 
 namespace finverse::vision {
 
-ViewData prepare_view(const Camera& camera, const cv::Mat& frame, const SegmentationOptions& so, const RayFeatureOptions& ro) {
+ViewData prepare_view(const Camera& camera, const cv::Mat& frame, const SegmentationOptions& so, const RayFeatureOptions& ro,
+                      const SegmentationContext& context) {
   ViewData v;
   v.camera = camera;
   if (frame.empty()) return v;
   if (frame.cols != camera.width || frame.rows != camera.height)
     throw Error("view '" + camera.name + "': frame is " + std::to_string(frame.cols) + "x" + std::to_string(frame.rows) +
                 " px but the calibration says " + std::to_string(camera.width) + "x" + std::to_string(camera.height));
-  const auto seg = segment_fin(frame, so);
+  const auto seg = segment_fin(frame, so, context);
+  v.touches_border = seg.touches_border, v.lost = seg.lost, v.fin_cut = seg.fin_cut;
   v.mask = seg.mask;
   v.coverage = seg.coverage;
   v.valid = cv::countNonZero(v.mask) > 0;

@@ -23,11 +23,14 @@ struct ViewData {
   cv::Mat coverage;                 // CV_32F soft segmentation (Segmentation::coverage)
   std::vector<cv::Point> contour;   // inner contour pixels of the data silhouette
   cv::Mat ray_distance;             // CV_32F distance (px) to the nearest detected ray pixel
+  // The segmentation's doubts (segmentation.hpp): the blob touches the border; no blob near the
+  // previous frame's fish (then not valid); the body was cut off at the peduncle.
+  bool touches_border = false, lost = false, fin_cut = false;
 };
 
 // An empty `frame` gives an invalid (missing) view. Throws finverse::Error naming the view when
 // the frame's size differs from the calibration's.
 ViewData prepare_view(const Camera& camera, const cv::Mat& frame, const SegmentationOptions& segmentation,
-                      const RayFeatureOptions& rays);
+                      const RayFeatureOptions& rays, const SegmentationContext& context = {});
 
 }  // namespace finverse::vision
