@@ -117,6 +117,16 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"none", "peduncle"}))
       ->capture_default_str();
   app.add_option("--fin-region", fin_regions, "view=x0,y0,x1,y1: the rectangle (px) of that view that holds the fin (repeatable)");
+  // When the fit cannot be trusted (tools/vision/fit_quality.hpp): exit 1, the record flagged.
+  app.add_option("--min-views", to.quality.min_views, "fit check: views per frame that fix the fin in depth")->capture_default_str();
+  app.add_option("--min-iou", to.quality.min_iou, "fit check: the worst view's silhouette IoU, median over frames, at least")
+      ->capture_default_str();
+  app.add_option("--max-root-drift", to.quality.max_root_drift,
+                 "fit check: the root's largest distance from its first position (chords; 0: not checked)")
+      ->capture_default_str();
+  app.add_option("--max-area-ratio", to.quality.max_area_ratio,
+                 "fit check: the fitted over segmented silhouette area in a view (median over frames) within this factor")
+      ->capture_default_str();
   app.add_option("--ignore-view", ignore_views, "leave these views out (validation: one view removed)")->delimiter(',');
   app.add_option("--perturb-calibration-px", perturb_px, "shift every principal point by this many px in a seeded direction (validation)")
       ->capture_default_str();
@@ -191,6 +201,11 @@ int main(int argc, char** argv) {
     log::info("wrote " + out.string());
 
     int status = kExitOk;
+    if (!r.verdict.failure.empty()) {
+      // The record is written (flagged: quality/flags, fit_status) so the user can look at it.
+      log::error("fit failed: " + r.verdict.failure + " (written, flagged: " + out.string() + ")");
+      status = kExitDifferent;
+    }
     auto finish = [&](Summary& s, const fs::path& path) {
       s.parameters() = cli::effective_config(app);
       s.set_timing(r.seconds, cli::threads_in_use());

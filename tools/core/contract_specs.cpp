@@ -85,8 +85,15 @@ std::vector<FileSpec> build() {
                        may_be_nan({"quality/reprojection_rms", f64, {"nf", "nviews"}, "px",
                                    "RMS feature reprojection error; NaN where the view is missing"}),
                        {"quality/valid", u8, {"nf", "nviews"}, "", "1 where the view's frame was present and used"},
+                       {"quality/flags", u8, {"nf"}, "",
+                        "per-frame doubts (bits): 1 fewer than two views, 2 a view's IoU low, 4 root drifted, 8 silhouette "
+                        "area off the template's scale, 16 segmentation unsure; absent when no frame is flagged",
+                        false},
                    },
-                   {period_attr(), {"fps", "s-1", "camera frame rate"}}});
+                   {period_attr(),
+                    {"fps", "s-1", "camera frame rate"},
+                    {"fit_status", "", "why the views cannot constrain the fit (fin-track exits 1); absent when it can be trusted",
+                     false, true}}});
 
   specs.push_back({"finverse/mesh", 1, "mesh.h5", "fin-mesh",
                    "Structural mesh of the fin (membrane shells, ray beams on mesh edges, root node set) and the "

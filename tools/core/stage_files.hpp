@@ -72,7 +72,9 @@ struct Kinematics {
   Strings views;
   NdArray<double> silhouette_iou, reprojection_rms;
   NdArray<std::uint8_t> view_valid;
+  NdArray<std::uint8_t> frame_flags;  // optional: absent when no frame is flagged
   std::optional<double> period, fps;
+  std::optional<std::string> fit_status;  // absent when the fit can be trusted
 
   template <class V> void fields(V&& v) {
     v("template/points", template_points);
@@ -88,10 +90,12 @@ struct Kinematics {
     v("quality/silhouette_iou", silhouette_iou);
     v("quality/reprojection_rms", reprojection_rms);
     v("quality/valid", view_valid);
+    v("quality/flags", frame_flags);
   }
   template <class A> void attributes(A&& a) {
     a("T", period);
     a("fps", fps);
+    a("fit_status", fit_status);
   }
 };
 

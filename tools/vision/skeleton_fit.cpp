@@ -146,6 +146,7 @@ FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& sta
   const auto nvw = views.size();
   out.iou.assign(nvw, std::numeric_limits<double>::quiet_NaN());
   out.rms_px.assign(nvw, std::numeric_limits<double>::quiet_NaN());
+  out.area_ratio.assign(nvw, std::numeric_limits<double>::quiet_NaN());
   out.valid.assign(nvw, 0);
 #pragma omp parallel for schedule(dynamic)
   for (std::ptrdiff_t v = 0; v < static_cast<std::ptrdiff_t>(nvw); ++v) {
@@ -153,6 +154,7 @@ FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& sta
     const auto m = project_model(views[v].camera, out.points, tri_);
     NormalEquations scratch(0);
     out.iou[v] = mask_iou(m.mask, views[v].mask);
+    out.area_ratio[v] = static_cast<double>(cv::countNonZero(m.mask)) / std::max(1, cv::countNonZero(views[v].mask));
     out.rms_px[v] = add_silhouette_residuals(views[v], m, tri_, nullptr, o_.silhouette, scratch).rms_px;
     out.valid[v] = 1;
   }

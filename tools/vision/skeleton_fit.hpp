@@ -58,6 +58,7 @@ struct FrameFit {
   Pose pose;
   NdArray<double> points;            // [nv,3] skinned template
   std::vector<double> iou, rms_px;   // per view; NaN where the view is missing
+  std::vector<double> area_ratio;    // per view: fitted over segmented silhouette area; NaN where missing
   std::vector<char> valid;
   int iterations = 0;
   double cost = 0;

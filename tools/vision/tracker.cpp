@@ -268,6 +268,7 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
   auto& kin = r.kinematics;
   log::Progress progress("track", nf);
   std::vector<Pose> poses;
+  std::vector<FrameQuality> quality(nf);
   for (std::size_t i = 0; i < nf; ++i) {
     const double t0 = log::elapsed_seconds();
     std::vector<ViewData> views(nview);
@@ -320,6 +321,13 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
     std::copy(fit.points.data.begin(), fit.points.data.end(), kin.points.data.begin() + i * nv * 3);
     for (std::size_t j = 0; j < nj; ++j)
       for (int d = 0; d < 3; ++d) kin.joint_angles(i, j, d) = fit.pose.p[3 + 3 * j + d];
+    auto& q = quality[i];
+    q.frame = frames[i];
+    q.iou = fit.iou, q.area_ratio = fit.area_ratio, q.valid = fit.valid;
+    q.doubt.assign(nview, 0);
+    for (std::size_t v = 0; v < nview; ++v) q.doubt[v] = views[v].touches_border || views[v].lost;
+    // The root translation is in chords (skeleton.hpp).
+    q.root_drift = std::hypot(fit.pose.p[0] - poses[0].p[0], fit.pose.p[1] - poses[0].p[1], fit.pose.p[2] - poses[0].p[2]);
     for (std::size_t v = 0; v < nview; ++v) {
       kin.silhouette_iou(i, v) = fit.iou[v];
       kin.reprojection_rms(i, v) = fit.rms_px[v];
@@ -340,6 +348,16 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
       log::warn("view '" + cameras[v].name + "': in " + std::to_string(at_border[v]) +
                 " frame(s) the fish's blob touches the image border (no other candidate); check the framing or --fin-region");
   }
+  std::vector<std::string> names;
+  for (const auto& c : cameras) names.push_back(c.name);
+  r.verdict = judge_fit(quality, names, options_.quality);
+  if (r.verdict.flagged()) {
+    kin.frame_flags = NdArray<std::uint8_t>({nf}, r.verdict.flags);
+    const auto n = std::count_if(r.verdict.flags.begin(), r.verdict.flags.end(), [](std::uint8_t f) { return f != 0; });
+    log::warn(in.source + ": " + std::to_string(n) + " of " + std::to_string(nf) +
+              " frames flagged in kinematics.h5 quality/flags (1 few views, 2 low IoU, 4 root drift, 8 scale, 16 segmentation)");
+  }
+  if (!r.verdict.failure.empty()) kin.fit_status = r.verdict.failure;
   // Steady state: the first frame starts cold from the rest pose and takes many more steps.
   r.seconds_per_frame = nf > 1 ? (r.seconds - r.first_seconds) / (nf - 1) : r.seconds;
   if (scorer) {

@@ -21,6 +21,7 @@
 #include "mesh/fin_template.hpp"
 #include "vision/camera.hpp"
 #include "vision/fin_surface.hpp"
+#include "vision/fit_quality.hpp"
 #include "vision/segmentation.hpp"
 #include "vision/skeleton.hpp"
 #include "vision/skeleton_fit.hpp"
@@ -43,6 +44,7 @@ struct TrackerOptions {
   double fps = 500;                  // time of frame k: k / fps
   std::optional<double> period;      // the motion's period (kinematics.h5 T) when the record is periodic
   std::map<std::string, cv::Rect> fin_regions;  // per view name: the rectangle that holds the fin
+  FitQualityOptions quality;                    // when the fit cannot be trusted (fit_quality.hpp)
 };
 
 // The model that is fitted: the template surface, its skeleton and skin, and the ray axes (the
@@ -82,6 +84,7 @@ struct TrackResult {
   double first_seconds = 0;      // ... the first frame's (cold start)
   double seconds_per_frame = 0;  // steady state: the mean after the first frame
   double worst_iou = 1;          // fit against the segmentation, every valid view and frame
+  FitVerdict verdict;            // per-frame flags (also in kinematics) and the run's failure, if any
   // With a truth, per view the worst over the frames of
   std::vector<double> fit_truth_iou;        // the fitted against the true surface, area-coverage
                                             // silhouettes (silhouette_coverage.hpp; graded)
