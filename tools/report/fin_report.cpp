@@ -2,6 +2,7 @@
 #include "report/fin_report.hpp"
 
 #include <cmath>
+#include <numbers>
 
 #include "core/error.hpp"
 #include "report/fin_profiles.hpp"
@@ -134,6 +135,15 @@ Report build_report(const ReportInputs& in) {
     json rp{{"time", vec(k.time)}, {"reconstruction", root_pitch_deg(k.points, k.ray_offsets, k.ray_vertices)}};
     if (in.truth && in.truth->points.rank() == 3 && in.truth->points.dim(1) == k.points.dim(1))
       rp["truth"] = root_pitch_deg(in.truth->points, k.ray_offsets, k.ray_vertices), rp["truth_time"] = vec(in.truth->time);
+    // The truth's root drive per ray (truth.h5 root/*, issue 33): amplitude (U) and phase (W), deg.
+    if (in.truth && !in.truth->root_pitch_amplitude.data.empty()) {
+      const auto& t = *in.truth;
+      std::vector<double> amp, phase;
+      for (double a : t.root_pitch_amplitude.data) amp.push_back(a * 180 / std::numbers::pi);
+      for (double a : t.root_pitch_phase.data) phase.push_back(a * 180 / std::numbers::pi);
+      rp["truth_drive"] = {{"ray_ids", t.root_ray_ids.data}, {"eta", t.root_eta.data},
+                           {"pitch_amplitude_deg", amp}, {"pitch_phase_deg", phase}};
+    }
     fig["root_pitch"] = rp;
   }
 

@@ -94,3 +94,51 @@ TEST(FinReport, AnFsiAtNinetyPercentAmplitudeMissesTheTrailingEdgeGoal) {
 
 }  // namespace
 }  // namespace finverse::report
+
+// Fig. 12's data carries the truth's root drive when truth.h5 records it (issue 33), in degrees.
+namespace finverse::report {
+namespace {
+TEST(FinReport, RootPitchFigureCarriesTheTruthsRootDrive) {
+  // flapping_fin's 9 x 13 grid as a tracked template: 13 rays along x.
+  const auto fin = flapping_fin(1.0);
+  const std::size_t nx = 9, nz = 13;
+  stage::Kinematics k;
+  k.time = fin.motion.time;
+  k.points = fin.motion.points;
+  k.template_points = fin.mesh.points;
+  std::vector<std::int32_t> tri, offsets{0}, vertices;
+  for (std::size_t i = 0; i + 1 < nx; ++i)
+    for (std::size_t j = 0; j + 1 < nz; ++j) {
+      const auto a = std::int32_t(i * nz + j), b = std::int32_t((i + 1) * nz + j);
+      for (std::int32_t v : {a, b, b + 1, a, b + 1, a + 1}) tri.push_back(v);
+    }
+  for (std::size_t j = 0; j < nz; ++j) {
+    for (std::size_t i = 0; i < nx; ++i) vertices.push_back(std::int32_t(i * nz + j));
+    offsets.push_back(std::int32_t(vertices.size()));
+  }
+  k.template_triangles = NdArray<std::int32_t>({tri.size() / 3, 3}, tri);
+  k.ray_offsets = NdArray<std::int32_t>({offsets.size()}, offsets);
+  k.ray_vertices = NdArray<std::int32_t>({vertices.size()}, vertices);
+  stage::Truth t;
+  t.time = k.time;
+  t.points = k.points;
+  t.template_points = k.template_points;
+  t.template_triangles = k.template_triangles;
+  t.root_ray_ids = NdArray<std::int32_t>({2}, {1, 2});
+  t.root_eta = NdArray<double>({2}, {1.0, -1.0});
+  t.root_pitch_amplitude = NdArray<double>({2}, {std::numbers::pi / 180 * 22, std::numbers::pi / 180 * 12});
+  t.root_pitch_phase = NdArray<double>({2}, {-std::numbers::pi / 2, -std::numbers::pi / 3});
+  ReportInputs in;
+  in.case_name = "synthetic";
+  in.mesh = fin.mesh;
+  in.kinematics = k;
+  in.truth = t;
+  const auto r = build_report(in);
+  ASSERT_TRUE(r.figures.contains("root_pitch"));
+  const auto& d = r.figures["root_pitch"]["truth_drive"];
+  EXPECT_NEAR(d["pitch_amplitude_deg"][0].get<double>(), 22, 1e-12);
+  EXPECT_NEAR(d["pitch_phase_deg"][1].get<double>(), -60, 1e-12);
+  EXPECT_EQ(d["ray_ids"][1].get<int>(), 2);
+}
+}  // namespace
+}  // namespace finverse::report
