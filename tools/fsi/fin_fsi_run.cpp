@@ -189,7 +189,7 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
     T = m.period.value_or(m.time.data.back() - m.time(0));
     double spacing = std::numeric_limits<double>::infinity();
     for (std::size_t k = 1; k < m.time.size(); ++k) spacing = std::min(spacing, m.time(k) - m.time(k - 1));
-    const cfd::PeriodicLayout layout = cfd::periodic_layout(m.time.data, T);
+    const cfd::PeriodicLayout layout = cfd::periodic_layout(m.time.data, m.period);
     periodic = layout.wrap.has_value();
     // A periodic motion: outputs at the frame spacing shortened to divide T; otherwise at the frames.
     if (!(interval > 0)) interval = periodic ? T / std::ceil(T / spacing - 1e-9) : spacing;
@@ -400,10 +400,13 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
     if (o.progress && (n % every == 0 || n == steps)) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
       const double q = 0.5 * fo.rho * U * U * area;
+      double ymax = 0;  // the fin's largest lateral excursion, to see a blow-up coming
+      for (Eigen::Index i = 0; i < nv; ++i)
+        ymax = std::max(ymax, std::abs(s.configuration.position[static_cast<std::size_t>(i)].y()));
       o.progress("fin-fsi fin: step " + std::to_string(n) + "/" + std::to_string(steps) + " t " +
                  num(s.time, "%.5f") + " s: " + std::to_string(st.iterations) + " it, residual " +
                  num(st.residual, "%.2e") + (st.converged ? "" : " (cap)") + ", C_T " + num(-rec.force.x() / q, "%.4f") +
-                 ", wall " + num(wall, "%.0f") + " s, ETA " +
+                 ", max |y| " + num(ymax / c, "%.3f") + " c, wall " + num(wall, "%.0f") + " s, ETA " +
                  num(wall / static_cast<double>(n) * static_cast<double>(steps - n), "%.0f") + " s");
     }
   }
