@@ -4,6 +4,7 @@
 // the silhouettes, warm-started from and regularised towards the previous frames' motion).
 //
 //   fin-track --frames results/c/frames --cameras results/c/cameras.yml --out results/c/kinematics.h5
+//   fin-track midline --frames clip.avi --out midline.h5 --csv tip.csv --overlay check.avi --mm-per-px 0.1
 //
 // Frames are image folders or video files, one per view (tools/vision/frame_files.hpp). With --truth the
 // reconstruction is scored (--summary), with --bench timed (--bench-json).
@@ -25,6 +26,7 @@
 #include "mesh/template_options.hpp"
 #include "vision/camera.hpp"
 #include "vision/frame_files.hpp"
+#include "vision/single_view.hpp"
 #include "vision/tracker.hpp"
 #include "vision/tracking_summary.hpp"
 #include "vision/view_roles.hpp"
@@ -49,11 +51,10 @@ int main(int argc, char** argv) {
   std::string fin_cut = "none", background = "auto";
   app.add_option("--frames", frames_spec,
                  "a folder of <view>/ image folders (numbered names: 000001.png, frame_0001.png) or <view>.avi|.mp4|.mov, "
-                 "or view=path items: side=clip_side.avi,back=frames/back")
-      ->required()
+                 "or view=path items: side=clip_side.avi,back=frames/back (required)")
       ->delimiter(',');
-  app.add_option("--cameras", cameras_file, "cameras.yml (OpenCV FileStorage)")->required()->check(CLI::ExistingFile);
-  app.add_option("--out", out, "output kinematics.h5")->required();
+  app.add_option("--cameras", cameras_file, "cameras.yml (OpenCV FileStorage) (required)")->check(CLI::ExistingFile);
+  app.add_option("--out", out, "output kinematics.h5 (required)");
   app.add_option("--fps", fps, "camera frame rate (1/s); default: the videos' own, else " + std::to_string(int(to.fps)))
       ->check(CLI::PositiveNumber);
   auto* period_opt =
@@ -138,7 +139,75 @@ int main(int argc, char** argv) {
   app.add_option("--bench-mesh-summary", mesh_summary, "fin-mesh --summary file whose mesh_wall_time joins the benchmark")
       ->check(CLI::ExistingFile);
 
+  // The 2-D single-view mode (tools/vision/single_view.hpp): one camera, no calibration.
+  auto* mid = app.add_subcommand("midline", "2-D single-view mode: midline, tail tip and tail-beat frequency, amplitude and "
+                                            "body wavelength of the fish seen by one camera (no calibration)");
+  vision::SingleViewOptions so;
+  std::string mid_frames, mid_region, mid_background = "auto";
+  fs::path mid_out, mid_csv, mid_overlay;
+  std::optional<double> mid_fps, mm_per_px;
+  mid->add_option("--frames", mid_frames, "the camera's video file (AVI, MP4, MOV) or folder of numbered images")->required();
+  mid->add_option("--out", mid_out, "midline.h5: midlines, tips, tail beat (px and mm)")->required();
+  mid->add_option("--csv", mid_csv, "per-frame tail tip and its lateral excursion as CSV");
+  mid->add_option("--overlay", mid_overlay, "MJPG AVI of the frames with the midline and the tip's track drawn over them");
+  mid->add_option("--fps", mid_fps, "frame rate (1/s); default: the video's own, else " + std::to_string(int(so.fps)))
+      ->check(CLI::PositiveNumber);
+  mid->add_option("--mm-per-px", mm_per_px, "image scale (mm per px): results also in mm")->check(CLI::PositiveNumber);
+  mid->add_option("--stations", so.stations, "midline points, head to tail")->capture_default_str()->check(CLI::Range(3, 1000));
+  mid->add_option("--region", mid_region, "x0,y0,x1,y1: the rectangle (px) that holds the fish");
+  mid->add_option("--min-contrast", so.segmentation.min_contrast, "segmentation: smallest darkening that counts as fish (levels)")
+      ->capture_default_str();
+  mid->add_option("--noise-floor", so.segmentation.noise_floor, "segmentation: the sensor noise is never taken below this (levels)")
+      ->capture_default_str();
+  mid->add_option("--background", mid_background, "segmentation background: model, median or auto (as fin-track's)")
+      ->check(CLI::IsMember({"model", "median", "auto"}))
+      ->capture_default_str();
+
   return cli::run(app, standard, argc, argv, [&] {
+    if (*mid) {
+      so.segmentation.background = mid_background == "model"    ? vision::BackgroundModel::model
+                                   : mid_background == "median" ? vision::BackgroundModel::median
+                                                                : vision::BackgroundModel::automatic;
+      so.mm_per_px = mm_per_px;
+      if (!mid_region.empty()) {
+        int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+        char tail = 0;
+        if (std::sscanf(mid_region.c_str(), "%d,%d,%d,%d%c", &x0, &y0, &x1, &y1, &tail) != 4 || x1 <= x0 || y1 <= y0)
+          throw Error("--region: expected x0,y0,x1,y1 with x1 > x0 and y1 > y0 (px), got '" + mid_region + "'");
+        so.region = cv::Rect(x0, y0, x1 - x0, y1 - y0);
+      }
+      vision::Camera one;
+      one.name = "view";
+      const auto files = vision::list_frame_files(std::vector<std::string>{"view=" + mid_frames}, {one}, {}, "--frames");
+      if (mid_fps) so.fps = *mid_fps;
+      else if (files.container_fps) so.fps = *files.container_fps;
+      const auto load = [&](long k) {
+        cv::Mat img = files.load(0, k);
+        if (img.empty()) throw Error(mid_frames + ": no frame " + std::to_string(k));
+        return img;
+      };
+      const auto r = vision::track_single_view(files.frames, load, so, mid_frames);
+      auto config = cli::effective_config(app);
+      config["midline"]["fps"] = std::to_string(so.fps);
+      std::vector<fs::path> inputs;
+      if (fs::is_regular_file(mid_frames)) inputs.push_back(mid_frames);
+      vision::write_single_view_h5(mid_out, r, so, config, inputs);
+      if (!mid_csv.empty()) vision::write_single_view_csv(mid_csv, r, so);
+      if (!mid_overlay.empty()) vision::write_overlay_video(mid_overlay, files.frames, load, r, so.fps);
+      char line[256];
+      std::snprintf(line, sizeof line, "tail beat %.4g Hz, amplitude %.4g px, body wavelength %.4g px over %d beats",
+                    r.beat.frequency_hz, r.beat.amplitude_px, r.beat.wavelength_px, r.beat.beats);
+      log::info(line);
+      if (mm_per_px) {
+        std::snprintf(line, sizeof line, "amplitude %.4g mm, body wavelength %.4g mm", r.beat.amplitude_px * *mm_per_px,
+                      r.beat.wavelength_px * *mm_per_px);
+        log::info(line);
+      }
+      log::info("wrote " + mid_out.string());
+      return static_cast<int>(kExitOk);
+    }
+    if (frames_spec.empty() || cameras_file.empty() || out.empty())
+      throw Error("--frames, --cameras and --out are required (or the subcommand midline: fin-track midline --help)");
     if (!summary_out.empty() && truth_file.empty()) throw Error("--summary: needs --truth");
     if (reynolds && !(strouhal && excursion_over_chord)) throw Error("--reynolds: needs --strouhal and --excursion-over-chord");
     const auto fin = mesh::make_template(tmpl);

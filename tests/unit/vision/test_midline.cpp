@@ -1,0 +1,111 @@
+// The 2-D single-view mode (issue 35, item 4) on a synthetic swimming fish drawn here: a body
+// wave y = A(xi) sin(2 pi (xi L / lambda - f t)) along a tapering body, seen from above; the tail
+// tip, the tail-beat frequency, amplitude and body wavelength against the drawn ones; and
+// `fin-track midline` on the swimmer as an MJPG AVI: its HDF5, CSV and overlay video.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <numbers>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "core/hdf5_file.hpp"
+
+#include "vision/midline.hpp"
+
+using namespace finverse::vision;
+
+namespace {
+
+struct Swimmer {
+  double L = 140, x0 = 40, yc = 80, lambda = 150, f = 5, fps = 100, a_tail = 14;
+  double amplitude(double xi) const { return a_tail * (0.15 + 0.85 * xi * xi); }
+  double y(double xi, double t) const {
+    return yc + amplitude(xi) * std::sin(2 * std::numbers::pi * (xi * L / lambda - f * t));
+  }
+  // The fish at time t: overlapping discs along the midline, 10 px half-width tapering to 1.
+  cv::Mat mask(double t, int scale = 4) const {
+    cv::Mat big = cv::Mat::zeros(160 * scale, 240 * scale, CV_8U);
+    for (double xi = 0; xi <= 1.0; xi += 0.002) {
+      const double r = 1 + 9 * std::sin(std::numbers::pi * std::pow(std::min(xi / 0.95, 1.0), 0.5) * 0.999 + 1e-3) * (1 - 0.9 * xi);
+      cv::circle(big, cv::Point(static_cast<int>((x0 + xi * L) * scale), static_cast<int>(y(xi, t) * scale)),
+                 static_cast<int>(r * scale), cv::Scalar(255), cv::FILLED);
+    }
+    cv::Mat m;
+    cv::resize(big, m, cv::Size(240, 160), 0, 0, cv::INTER_AREA);  // area coverage, then half-cover threshold
+    return m > 127;
+  }
+};
+
+}  // namespace
+
+TEST(Midline, TailTipFrequencyAmplitudeAndWavelengthOfASwimmer) {
+  const Swimmer s;
+  std::vector<cv::Mat> masks;
+  const int nf = 64;  // 3.2 beats
+  for (int k = 0; k < nf; ++k) masks.push_back(s.mask(k / s.fps));
+  cv::Point2d axis;
+  const auto m = extract_midlines(masks, 25, &axis);
+  EXPECT_GT(axis.x, 0.99);  // head (left, the wider end) to tail
+  // Tail tip: on the drawn tip (its 1 px disc's far end) to within a pixel across.
+  double worst = 0;
+  for (int k = 0; k < nf; ++k) {
+    ASSERT_TRUE(m[k].valid);
+    worst = std::max(worst, std::abs(m[k].tip.y - s.y(1.0, k / s.fps)));
+  }
+  EXPECT_LT(worst, 1.0);
+  const auto beat = tail_beat(m, axis, s.fps);
+  EXPECT_NEAR(beat.frequency_hz, s.f, 0.01 * s.f);
+  EXPECT_NEAR(beat.amplitude_px, s.a_tail, 0.05 * s.a_tail);
+  EXPECT_NEAR(beat.wavelength_px, s.lambda, 0.1 * s.lambda);
+  EXPECT_EQ(beat.beats, 3);
+}
+
+#ifdef FIN_TRACK_EXE
+TEST(FinTrackMidline, AnAviClipGivesTheTailBeatInPxAndMm) {
+  const Swimmer s;
+  const auto dir = std::filesystem::temp_directory_path() / ("fin_track_midline_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  {
+    cv::VideoWriter w((dir / "swim.avi").string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), s.fps, cv::Size(240, 160), false);
+    ASSERT_TRUE(w.isOpened());
+    for (int k = 0; k < 64; ++k) {
+      cv::Mat img(160, 240, CV_8U, cv::Scalar(215));
+      img.setTo(90, s.mask(k / s.fps));
+      w.write(img);
+    }
+  }
+  const std::string cmd = std::string(FIN_TRACK_EXE) + " --log-level warn midline --frames " + (dir / "swim.avi").string() +
+                          " --out " + (dir / "m.h5").string() + " --csv " + (dir / "m.csv").string() + " --overlay " +
+                          (dir / "o.avi").string() + " --mm-per-px 0.1 2> " + (dir / "err").string();
+  const int rc = std::system(cmd.c_str());
+  std::ifstream err_in(dir / "err");
+  const std::string err{std::istreambuf_iterator<char>(err_in), {}};
+  ASSERT_EQ(WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, 0) << err;
+  const auto f = finverse::h5::File::open_read(dir / "m.h5");
+  EXPECT_NEAR(*f.attr_double(".", "fps"), s.fps, 1e-9);  // from the container
+  EXPECT_NEAR(*f.attr_double(".", "tail_beat_frequency_hz"), s.f, 0.01 * s.f);
+  const double a_px = *f.attr_double(".", "tail_beat_amplitude_px");
+  EXPECT_NEAR(a_px, s.a_tail, 0.05 * s.a_tail);
+  EXPECT_NEAR(*f.attr_double(".", "tail_beat_amplitude_mm"), 0.1 * a_px, 1e-12);
+  EXPECT_EQ(f.read_f64("mm/tip").shape, (std::vector<std::size_t>{64, 2}));
+  std::ifstream csv(dir / "m.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "frame,time_s,valid,tip_x_px,tip_y_px,tip_lateral_px,tip_x_mm,tip_y_mm,tip_lateral_mm,segmentation_doubt");
+  cv::VideoCapture overlay((dir / "o.avi").string());
+  ASSERT_TRUE(overlay.isOpened());
+  EXPECT_EQ(static_cast<int>(overlay.get(cv::CAP_PROP_FRAME_COUNT)), 64);
+  std::filesystem::remove_all(dir);
+}
+#endif

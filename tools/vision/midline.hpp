@@ -1,0 +1,43 @@
+// The 2-D single-view mode (issue 35, item 4; the common case: one camera looking down on the
+// fish): per frame the fish's midline, its tail tip and the tip's lateral excursion; over the
+// record the tail-beat frequency, amplitude and body wavelength (the quantities trackter and
+// similar tools report). The midline is sampled along the fish's mean axis over the record (a
+// swimming fish's heading changes slowly against its undulation): at each of `stations` equal
+// steps from head to tail, the centre of the silhouette's pixels across the axis. The tail tip is
+// the silhouette's end on the axis. Lateral: across the mean axis, from the centroid averaged over
+// one beat (frequency found on the tip's excursion from the frame's own centroid).
+//   frequency: the spectral peak of the tip's lateral excursion (parabolic refinement of the
+//     DFT magnitude, mean removed, Hann window);
+//   amplitude: half the mean peak-to-peak excursion per beat;
+//   wavelength: 2 pi over the slope of the excursion's phase (at the tail-beat frequency) along
+//     the posterior half of the midline.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace finverse::vision {
+
+struct MidlineFrame {
+  bool valid = false;
+  std::vector<cv::Point2d> points;  // head to tail (px); NaN where a station has no pixel
+  cv::Point2d tip;                  // tail tip (px)
+  cv::Point2d centroid;             // of the silhouette (px): the lateral excursions' reference
+};
+
+struct TailBeat {
+  double frequency_hz = 0, amplitude_px = 0, wavelength_px = 0;
+  std::vector<double> tip_lateral_px;  // per frame, across the mean axis; NaN: no fish
+  cv::Point2d axis{1, 0};              // the mean axis, head to tail (unit)
+  int beats = 0;                       // whole beats the amplitude averages over
+};
+
+// The midline of each mask, all on the record's mean axis, oriented so that the head is the end
+// with more area (the body; the caudal fin is thinner seen from above) in the record's sum.
+std::vector<MidlineFrame> extract_midlines(const std::vector<cv::Mat>& masks, int stations, cv::Point2d* axis_out = nullptr);
+
+// Tail-beat frequency, amplitude and body wavelength of the record (frames at `fps`).
+TailBeat tail_beat(const std::vector<MidlineFrame>& midlines, const cv::Point2d& axis, double fps);
+
+}  // namespace finverse::vision
