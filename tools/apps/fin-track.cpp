@@ -114,8 +114,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("!--keep-border-blobs", to.segmentation.reject_border,
                "segmentation: do not prefer blobs clear of the image border (default: a blob touching it is the fish only when no other is)");
-  app.add_option("--fin-cut", fin_cut, "cut the caudal fin from the body: none, or peduncle (the narrowest point behind the body)")
-      ->check(CLI::IsMember({"none", "peduncle"}))
+  app.add_option("--fin-cut", fin_cut,
+                 "cut the caudal fin from the body: none; peduncle (the narrowest point behind the body); root-plane (at the "
+                 "projected plane x = 0 of the template's root, in the views that see it as a line)")
+      ->check(CLI::IsMember({"none", "peduncle", "root-plane"}))
       ->capture_default_str();
   app.add_option("--fin-region", fin_regions, "view=x0,y0,x1,y1: the rectangle (px) of that view that holds the fin (repeatable)");
   // When the fit cannot be trusted (tools/vision/fit_quality.hpp): exit 1, the record flagged.
@@ -217,6 +219,7 @@ int main(int argc, char** argv) {
     to.period = period;
     auto cameras = vision::read_cameras(cameras_file);
     to.segmentation.fin_cut = fin_cut == "peduncle";
+    to.cut_at_root_plane = fin_cut == "root-plane";
     to.segmentation.background = background == "model"    ? vision::BackgroundModel::model
                                  : background == "median" ? vision::BackgroundModel::median
                                                           : vision::BackgroundModel::automatic;

@@ -7,6 +7,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "vision/camera.hpp"
+
 namespace finverse::vision {
 namespace {
 
@@ -96,6 +98,35 @@ cv::Mat fin_region_mask(const cv::Mat& mask, const cv::Rect& region) {
   cv::Mat out = cv::Mat::zeros(mask.size(), CV_8U);
   const cv::Rect r = region & cv::Rect(0, 0, mask.cols, mask.rows);
   if (r.area() > 0) mask(r).copyTo(out(r));
+  return out;
+}
+
+bool root_plane_line(const Camera& camera, double chord, cv::Vec3d& line) {
+  const auto R = camera.rotation();
+  const cv::Vec3d axis(R(2, 0), R(2, 1), R(2, 2));
+  if (std::abs(axis[0]) > 0.5) return false;  // within 60 degrees of x: the plane is seen face-on
+  // Two points of the plane across the view (x cross axis lies in it) and one upstream.
+  const cv::Vec3d w = cv::normalize(cv::Vec3d(1, 0, 0).cross(axis));
+  // A fiftieth of a chord upstream of the root: blur and the rays' thickness spread the fin's
+  // own root a little past x = 0 (measured: docs/studies/footage_inputs.md).
+  const cv::Vec3d o(-0.02 * chord, 0, 0);
+  const cv::Point2d p = camera.project(o), q = camera.project(o + chord * w), body = camera.project({-chord, 0, 0});
+  cv::Point2d n(-(q - p).y, (q - p).x);
+  const double len = std::hypot(n.x, n.y);
+  if (!(len > 1e-9)) return false;
+  n *= 1 / len;
+  line = {n.x, n.y, -n.dot(p)};
+  if (n.dot(body) + line[2] > 0) line = -line;  // positive on the fin's side
+  return true;
+}
+
+cv::Mat fin_side_mask(const cv::Mat& mask, const cv::Vec3d& line) {
+  cv::Mat out = mask.clone();
+  for (int y = 0; y < out.rows; ++y) {
+    auto* m = out.ptr<std::uint8_t>(y);
+    for (int x = 0; x < out.cols; ++x)
+      if (m[x] && line[0] * x + line[1] * y + line[2] <= 0) m[x] = 0;
+  }
   return out;
 }
 

@@ -5,7 +5,8 @@
 // narrowest point between the body and the tail end, and the caudal fin spreads again behind it.
 // The cut is made only where that shape is clear (body >= body_ratio and fin >= fin_ratio times
 // the peduncle width); otherwise the blob is kept whole and the result says so. A user who knows
-// better gives a rectangle per view that holds the fin (fin_region_mask).
+// better gives a rectangle per view that holds the fin (fin_region_mask). With a calibration, the
+// body is cut off at the projected root plane instead (root_plane_line).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -32,5 +33,16 @@ FinCut separate_caudal_fin(const cv::Mat& mask, const FinCutOptions& options = {
 
 // The blob inside `region` (x0, y0, x1, y1 in px, inclusive-exclusive).
 cv::Mat fin_region_mask(const cv::Mat& mask, const cv::Rect& region);
+
+// The image line of the fin's root plane (world x = -0.02 c, just upstream of the template's root
+// at x = 0, the body upstream at x < 0; DESIGN.md 5.5) in a view that sees that plane edge-on enough to draw it as a line (its
+// optical axis at least 60 degrees from x): (a, b, c) with a u + b v + c > 0 on the fin's side,
+// a^2 + b^2 = 1. None in a view looking along the body (from behind: the body hides behind the
+// fin there and cannot be cut off). `camera` is passed as its projection of world points.
+struct Camera;
+bool root_plane_line(const Camera& camera, double chord, cv::Vec3d& line);
+
+// The mask's pixels whose centres lie on the fin's side of `line`.
+cv::Mat fin_side_mask(const cv::Mat& mask, const cv::Vec3d& line);
 
 }  // namespace finverse::vision

@@ -215,6 +215,10 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o, con
     }
   }
   if (ctx.fin_region.area() > 0) s.mask = fin_region_mask(s.mask, ctx.fin_region);
+  if (ctx.cut_at_line) {
+    s.mask = fin_side_mask(s.mask, ctx.root_line);
+    s.fin_cut = true;
+  }
   // One fish: of the dark blobs, the one that overlaps the previous frame's fish (grown by the
   // reach of a frame's motion) most; without a previous frame the largest that does not touch
   // the image border (a vignette strip, a tank wall), and only when every blob touches it the
@@ -265,7 +269,7 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o, con
   }
   if (o.fin_cut) {
     auto cut = separate_caudal_fin(s.mask, o.cut);
-    s.fin_cut = cut.cut;
+    s.fin_cut = s.fin_cut || cut.cut;
     s.mask = cut.fin;
   }
   // The soft segmentation keeps the fin's rim: nothing beyond two pixels of the cleaned mask.

@@ -52,6 +52,8 @@ struct SegmentationContext {
   cv::Mat median;    // CV_32F temporal median of the view's clip (empty: none)
   cv::Mat previous;  // CV_8U the fish's mask in the previous frame (empty: none)
   cv::Rect fin_region;  // the user's rectangle that holds the fin (empty: none)
+  bool cut_at_line = false;  // keep only the fin's side of root_line (fin_separation.hpp)
+  cv::Vec3d root_line{0, 0, 0};
 };
 
 struct Segmentation {

@@ -280,8 +280,10 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
         // Rays are detected only where they are fitted (FitOptions::ray_views).
         auto ro = fo.rays;
         if (!fits_rays(fo.ray_views, cameras[v])) ro.weight = 0;
-        SegmentationContext ctx{medians[v], last_mask[v], {}};
+        SegmentationContext ctx;
+        ctx.median = medians[v], ctx.previous = last_mask[v];
         if (const auto it = options_.fin_regions.find(cameras[v].name); it != options_.fin_regions.end()) ctx.fin_region = it->second;
+        if (options_.cut_at_root_plane) ctx.cut_at_line = root_plane_line(cameras[v], model_.chord, ctx.root_line);
         views[v] = prepare_view(cameras[v], img, so, ro, ctx);
         if (views[v].valid) last_mask[v] = views[v].mask;
         lost[v] += views[v].lost, at_border[v] += views[v].valid && views[v].touches_border;

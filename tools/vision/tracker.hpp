@@ -44,6 +44,7 @@ struct TrackerOptions {
   double fps = 500;                  // time of frame k: k / fps
   std::optional<double> period;      // the motion's period (kinematics.h5 T) when the record is periodic
   std::map<std::string, cv::Rect> fin_regions;  // per view name: the rectangle that holds the fin
+  bool cut_at_root_plane = false;               // body cut off at the projected root plane x = 0
   FitQualityOptions quality;                    // when the fit cannot be trusted (fit_quality.hpp)
 };
 

@@ -11,6 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "vision/camera.hpp"
 #include "vision/fin_separation.hpp"
 #include "vision/segmentation.hpp"
 
@@ -61,6 +62,12 @@ cv::Mat render(const std::vector<std::pair<cv::Mat, double>>& dark, unsigned see
 
 double iou(const cv::Mat& a, const cv::Mat& b) { return mask_iou(a, b); }
 
+SegmentationContext context(const cv::Mat& median, const cv::Mat& previous) {
+  SegmentationContext c;
+  c.median = median, c.previous = previous;
+  return c;
+}
+
 }  // namespace
 
 TEST(FootageSegmentation, NoiseEstimateHasAFloor) {
@@ -104,7 +111,7 @@ TEST(FootageSegmentation, ADarkBandMergedWithTheFishGoesWithTheTemporalMedian) {
   double worst_with = 1, best_without = 0;
   cv::Mat previous;
   for (std::size_t k = 0; k < frames.size(); k += 5) {
-    const auto with = segment_fin(frames[k], {}, {median, previous, {}});
+    const auto with = segment_fin(frames[k], {}, context(median, previous));
     worst_with = std::min(worst_with, iou(with.mask, fish[k].all));
     best_without = std::max(best_without, iou(segment_fin(frames[k]).mask, fish[k].all));
   }
@@ -113,7 +120,7 @@ TEST(FootageSegmentation, ADarkBandMergedWithTheFishGoesWithTheTemporalMedian) {
   // The median everywhere works too.
   SegmentationOptions med;
   med.background = BackgroundModel::median;
-  EXPECT_GT(iou(segment_fin(frames[7], med, {median, {}, {}}).mask, fish[7].all), 0.85);
+  EXPECT_GT(iou(segment_fin(frames[7], med, context(median, {})).mask, fish[7].all), 0.85);
 }
 
 TEST(FootageSegmentation, TheFishIsTheBlobConnectedToThePreviousFrames) {
@@ -124,13 +131,13 @@ TEST(FootageSegmentation, TheFishIsTheBlobConnectedToThePreviousFrames) {
   const cv::Mat frame = render({{fish.all, 0.55}, {debris, 0.5}}, 3);
   EXPECT_LT(iou(segment_fin(frame).mask, fish.all), 0.1);  // alone, the larger blob wins
   const auto prev = draw_fish({57, 61}).all;
-  const auto seg = segment_fin(frame, {}, {{}, prev, {}});
+  const auto seg = segment_fin(frame, {}, context({}, prev));
   EXPECT_GT(iou(seg.mask, fish.all), 0.9);
   EXPECT_FALSE(seg.lost);
   // A previous fish far from every blob: lost, nothing segmented.
   cv::Mat far = cv::Mat::zeros(H, W, CV_8U);
   cv::circle(far, {110, 10}, 4, cv::Scalar(255), cv::FILLED);
-  const auto gone = segment_fin(frame, {}, {{}, far, {}});
+  const auto gone = segment_fin(frame, {}, context({}, far));
   EXPECT_TRUE(gone.lost);
   EXPECT_EQ(cv::countNonZero(gone.mask), 0);
 }
@@ -157,6 +164,24 @@ TEST(FootageSegmentation, TheCaudalFinIsCutAtThePeduncle) {
   cv::Mat spindle = cv::Mat::zeros(H, W, CV_8U);
   cv::ellipse(spindle, {100, 60}, {50, 12}, 0, 0, 360, cv::Scalar(255), cv::FILLED);
   EXPECT_FALSE(separate_caudal_fin(spindle).cut);
+  // With a calibration: the body cut at the projected root plane x = 0 (fin upstream end at x = 0,
+  // the body at x < 0). The side view sees the plane as a line; a view from behind cannot.
+  {
+    const auto side = look_at("side", W, H, 400, {0.005, -0.1, 0}, {0.005, 0, 0}, {0, 0, 1});
+    const auto back = look_at("back", W, H, 400, {0.1, 0, 0}, {0, 0, 0}, {0, 0, 1});
+    cv::Vec3d line;
+    EXPECT_FALSE(root_plane_line(back, 0.01, line));
+    ASSERT_TRUE(root_plane_line(side, 0.01, line));
+    const auto root = side.project({-0.0002, 0, 0});  // a fiftieth of the chord upstream
+    EXPECT_NEAR(line[0] * root.x + line[1] * root.y + line[2], 0, 1e-9);
+    const auto fin_point = side.project({0.005, 0, 0.002}), body_point = side.project({-0.005, 0, 0});
+    EXPECT_GT(line[0] * fin_point.x + line[1] * fin_point.y + line[2], 0);
+    EXPECT_LT(line[0] * body_point.x + line[1] * body_point.y + line[2], 0);
+    cv::Mat all = cv::Mat::zeros(H, W, CV_8U);
+    all.setTo(255);
+    const int kept = cv::countNonZero(fin_side_mask(all, line));
+    EXPECT_NEAR(kept, (W - root.x) * H, 2 * H);  // the columns right of the root
+  }
   // The user's rectangle.
   const auto fish = draw_fish({100, 60});
   const auto region = fin_region_mask(fish.all, cv::Rect(145, 0, 55, H));
