@@ -248,6 +248,13 @@ TEST(FinTrackInput, RenamedViewsAndAviClipsGiveTheSameFit) {
   EXPECT_EQ(track((t.dir / "clips" / "side.avi").string(), t.dir / "cameras.yml", t.dir / "x.h5", "", &err), 2);
   EXPECT_NE(err.find("name its view: --frames side="), std::string::npos) << err;
 
+  // Bad --fin-region: one line naming the flag, exit 2.
+  EXPECT_EQ(track((t.dir / "frames").string(), t.dir / "cameras.yml", t.dir / "x.h5", " --fin-region side=1,2,3", &err), 2);
+  EXPECT_NE(err.find("--fin-region: expected view=x0,y0,x1,y1"), std::string::npos) << err;
+  EXPECT_EQ(track((t.dir / "frames").string(), t.dir / "cameras.yml", t.dir / "x.h5", " --fin-region top=0,0,9,9", &err), 2);
+  EXPECT_NE(err.find("--fin-region: no view 'top'"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(t.dir / "x.h5"));
+
   // The defaults --help shows and kinematics.h5 stores are the ones the tracker runs.
   const auto fo = tracking_fit_options();
   const auto config = stored_config(t.dir / "ref.h5");
