@@ -206,18 +206,24 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
     } catch (const std::exception& e) {
       throw Error(std::string("fin fsi: root motion: ") + e.what());
     }
-    // The smooth start: the first frame's root state (held before it) times the cosine ramp
-    // (fem/root_drive.hpp's) from t_start; a linear ramp's velocity jump at t_start left the
-    // structure's first Newton solve stalled (measured on the tiny case: relative residual 1e-2).
+    // The smooth start: from rest at t_start to the root's first-frame state f0 and velocity v0
+    // (its first interval's slope) at t0, by the quintic Hermite blend
+    //   g = f0 h(s) + v0 L k(s), s = (t - t_start) / L, h = 10s^3 - 15s^4 + 6s^5, k = -4s^3 + 7s^4 - 3s^5
+    // (h, k and their first two derivatives vanish at s = 0; at s = 1, h = 1, k = 0, h' = 0, k' = 1,
+    // h'' = k'' = 0), so position and velocity are continuous at both ends. A linear ramp's
+    // velocity jump at t_start, or a ramp arriving at rest while the tracked root moves, stalled the
+    // structure's Newton solve (tiny case: relative residual 1e-2 at the first step, 8e-2 at t0).
     const std::vector<fem::PrescribedDof> held = model.prescribed();
-    const double t0 = m.time(0);
+    const double t0 = m.time(0), d = 0.5 * (m.time(1) - m.time(0));
     for (const fem::PrescribedDof& p : held) {
       const fem::TimeFunction f = p.value;
       if (!f) continue;
-      model.prescribe(p.node, p.dof, [f, t0, ramp](double t) {
+      const double f0 = f(t0), v0 = (f(t0 + d) - f0) / d;
+      model.prescribe(p.node, p.dof, [f, t0, ramp, f0, v0](double t) {
         if (t >= t0 || ramp <= 0) return f(t);
-        const double r = t <= t0 - ramp ? 0.0 : 0.5 * (1 - std::cos(std::numbers::pi * (t - (t0 - ramp)) / ramp));
-        return r * f(t0);
+        if (t <= t0 - ramp) return 0.0;
+        const double x = (t - (t0 - ramp)) / ramp, x3 = x * x * x;
+        return f0 * x3 * (10 - 15 * x + 6 * x * x) + v0 * ramp * x3 * (-4 + 7 * x - 3 * x * x);
       });
     }
     const std::size_t nf = m.time.size();

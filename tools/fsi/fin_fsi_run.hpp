@@ -10,8 +10,8 @@
 // the swept box of the drive (the rigid fin carried by the root drive, sampled over a period), or
 // of motion.h5's frames; inlet / convective outlet / slip sides; the stream impulsive at the start.
 // Time: the drive starts at t = 0 from rest with its own cosine ramp; a tracked motion starts one
-// ramp (ramp_periods T, or ramp_time) before its first frame, the root's first-frame state times
-// the drive's cosine ramp from rest. A periodic motion (attribute T, whole periods; tiled over the run)
+// ramp (ramp_periods T, or ramp_time) before its first frame, blended from rest to the root's
+// first-frame position and velocity (quintic Hermite). A periodic motion (attribute T, whole periods; tiled over the run)
 // and the drive run `periods` periods (the ramp included) and write the last `output_periods` at
 // the output interval (the motion's frame spacing shortened to divide T, or T / 100 for the drive
 // unless given); a non-periodic motion runs to its last frame and writes its frames. The
