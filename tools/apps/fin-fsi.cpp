@@ -217,6 +217,11 @@ struct FinCommand {
     fin->add_option("--structure-max-iterations", o.structure_max_iterations, "structure Newton iterations per sub-step")
         ->capture_default_str();
     fin->add_option("--substeps", o.substeps, "structure sub-steps per coupling step")->capture_default_str();
+    fin->add_option("--rayleigh-mass", o.rayleigh_mass, "structure damping a_M [1/s]; < 0: the materials file's")
+        ->capture_default_str();
+    fin->add_option("--rayleigh-stiffness", o.rayleigh_stiffness,
+                    "structure damping a_K [s] (damps the membrane's fast modes); < 0: the materials file's")
+        ->capture_default_str();
   }
 
   // The base materials JSON of a materials.h5: --base-materials, else the "materials" entry of

@@ -261,6 +261,8 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
                                   : std::lround((t_first_output - t_start) / dt) - 1;
   const long period_steps = std::min(steps, std::lround(T / dt));
 
+  const double so_rayleigh_mass = o.rayleigh_mass >= 0 ? o.rayleigh_mass : in.materials.rayleigh_mass;
+  const double so_rayleigh_stiffness = o.rayleigh_stiffness >= 0 ? o.rayleigh_stiffness : in.materials.rayleigh_stiffness;
   FinFsiResult res;
   res.h = h;
   res.dt = dt;
@@ -298,6 +300,8 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
                 {"structure_tolerance", o.structure_tolerance},
                 {"structure_max_iterations", o.structure_max_iterations},
                 {"substeps", o.substeps},
+                {"rayleigh_mass", so_rayleigh_mass},
+                {"rayleigh_stiffness", so_rayleigh_stiffness},
                 {"drive", drive_config}};
 
   const cfd::ThinBody body = cfd::build_thin_body(mid, static_cast<int>(nv), o.thickness_cells * h, mn + " (fsi thin body)");
@@ -323,8 +327,8 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
   so.dynamics.max_iterations = o.structure_max_iterations;
   so.substeps = o.substeps;
   so.dynamics.increment_tolerance = 1e-3;  // the residual decides, as the pitching plate (driven root)
-  so.dynamics.rayleigh_mass = in.materials.rayleigh_mass;
-  so.dynamics.rayleigh_stiffness = in.materials.rayleigh_stiffness;
+  so.dynamics.rayleigh_mass = o.rayleigh_mass >= 0 ? o.rayleigh_mass : in.materials.rayleigh_mass;
+  so.dynamics.rayleigh_stiffness = o.rayleigh_stiffness >= 0 ? o.rayleigh_stiffness : in.materials.rayleigh_stiffness;
   so.dim = 3;
   so.start_time = t_start;
   std::vector<int> wet(static_cast<std::size_t>(nv));

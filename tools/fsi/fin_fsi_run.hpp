@@ -53,6 +53,8 @@ struct FinFsiOptions {
   double structure_tolerance = 1e-7;
   int structure_max_iterations = 40;  // Newton iterations per (sub-)step
   int substeps = 1;                   // structure sub-steps per coupling step
+  // Rayleigh damping C = a_M M + a_K K of the structure; < 0: the materials file's.
+  double rayleigh_mass = -1, rayleigh_stiffness = -1;
   std::function<void(const std::string&)> progress;
 };
 
