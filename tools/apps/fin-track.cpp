@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--background", background,
                  "segmentation background: model (smooth fit per frame), median (the clip's temporal median) or auto (the model, "
-                 "and the median for static dark structure touching the border when a view has >= " +
+                 "and the temporal 90th percentile for static dark structure touching the border when a view has >= " +
                      std::to_string(vision::kMedianMinFrames) + " frames)")
       ->check(CLI::IsMember({"model", "median", "auto"}))
       ->capture_default_str();

@@ -319,21 +319,23 @@ double mask_iou(const cv::Mat& a, const cv::Mat& b) {
   return uni > 0 ? inter / uni : 1.0;
 }
 
-cv::Mat temporal_median(const std::vector<cv::Mat>& frames) {
+cv::Mat temporal_median(const std::vector<cv::Mat>& frames, double quantile) {
   if (frames.empty()) throw Error("temporal median: no frames");
   const cv::Size size = frames[0].size();
   for (const auto& f : frames)
     if (f.size() != size || f.type() != CV_8UC1) throw Error("temporal median: frames differ in size or are not 8-bit grey");
   cv::Mat out(size, CV_32F);
   std::vector<std::uint8_t> v(frames.size());
-  const std::size_t mid = frames.size() / 2;
+  const bool median = quantile == 0.5;
+  const std::size_t mid = median ? frames.size() / 2
+                                 : static_cast<std::size_t>(std::clamp(quantile, 0.0, 1.0) * static_cast<double>(frames.size() - 1) + 0.5);
   for (int y = 0; y < size.height; ++y) {
     auto* o = out.ptr<float>(y);
     for (int x = 0; x < size.width; ++x) {
       for (std::size_t k = 0; k < frames.size(); ++k) v[k] = frames[k].ptr<std::uint8_t>(y)[x];
       std::nth_element(v.begin(), v.begin() + mid, v.end());
       float m = v[mid];
-      if (frames.size() % 2 == 0) m = 0.5f * (m + *std::max_element(v.begin(), v.begin() + mid));
+      if (median && frames.size() % 2 == 0) m = 0.5f * (m + *std::max_element(v.begin(), v.begin() + mid));
       o[x] = m;
     }
   }

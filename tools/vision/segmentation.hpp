@@ -27,9 +27,12 @@ namespace finverse::vision {
 // frame; the clip's temporal median everywhere; or (automatic) the model, but the median where
 // the median is darker than the model by more than the threshold in a region touching the border.
 enum class BackgroundModel { model, median, automatic };
-// automatic uses the median only when the view has at least this many frames (fewer: a fish that
-// moves little is part of its median).
+// automatic uses a temporal background only when the view has at least this many frames, and
+// there the 90th percentile of the frames rather than their median: a pixel the fish leaves in
+// one frame of ten or more is background there, while a vignette strip, a dark band or a body
+// that never moves stays dark (measured: docs/studies/footage_inputs.md, run 4).
 inline constexpr int kMedianMinFrames = 20;
+inline constexpr double kStaticQuantile = 0.9;
 
 struct SegmentationOptions {
   double blur_sigma_px = 0.7;      // pre-smoothing of the frame
@@ -49,7 +52,7 @@ struct SegmentationOptions {
 
 // What the segmentation of one frame may know beyond the frame.
 struct SegmentationContext {
-  cv::Mat median;    // CV_32F temporal median of the view's clip (empty: none)
+  cv::Mat median;    // CV_32F temporal background of the view's clip (median or kStaticQuantile; empty: none)
   cv::Mat previous;  // CV_8U the fish's mask in the previous frame (empty: none)
   cv::Rect fin_region;  // the user's rectangle that holds the fin (empty: none)
   bool cut_at_line = false;  // keep only the fin's side of root_line (fin_separation.hpp)
@@ -78,8 +81,8 @@ struct Segmentation {
 Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& options = {},
                          const SegmentationContext& context = {});
 
-// Per-pixel median (CV_32F) of 8-bit grey frames of one size.
-cv::Mat temporal_median(const std::vector<cv::Mat>& frames);
+// Per-pixel quantile (CV_32F; 0.5: the median) of 8-bit grey frames of one size.
+cv::Mat temporal_median(const std::vector<cv::Mat>& frames, double quantile = 0.5);
 
 // Signed distance (pixels, CV_32F) to the mask's boundary: positive outside, negative inside,
 // zero half-way between an inside and an outside pixel centre.

@@ -29,7 +29,7 @@ SingleViewResult track_single_view(const std::vector<long>& frames, const std::f
     const std::size_t k = std::min<std::size_t>(nf, 31);
     std::vector<cv::Mat> sample;
     for (std::size_t j = 0; j < k; ++j) sample.push_back(load(frames[k > 1 ? j * (nf - 1) / (k - 1) : 0]));
-    ctx.median = temporal_median(sample);
+    ctx.median = temporal_median(sample, mode == BackgroundModel::median ? 0.5 : kStaticQuantile);
   }
   SingleViewResult r;
   r.frames = frames;

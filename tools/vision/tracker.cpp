@@ -249,14 +249,16 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
           cv::Mat img = in.load(static_cast<std::size_t>(v), frames[k > 1 ? j * (nf - 1) / (k - 1) : 0]);
           if (!img.empty()) sample.push_back(img);
         }
-        if (sample.size() >= 3) medians[v] = temporal_median(sample);
+        if (sample.size() >= 3)
+          medians[v] = temporal_median(sample, so.background == BackgroundModel::median ? 0.5 : kStaticQuantile);
       } catch (const std::exception& e) {
 #pragma omp critical
         if (failure.empty()) failure = e.what();
       }
     }
     if (!failure.empty()) throw Error(failure);
-    log::info("background: temporal median of " + std::to_string(k) + " frames per view" +
+    log::info("background: temporal " + std::string(so.background == BackgroundModel::automatic ? "90th percentile" : "median") +
+              " of " + std::to_string(k) + " frames per view" +
               (so.background == BackgroundModel::automatic ? " (static dark structure touching the border)" : ""));
   }
   std::vector<cv::Mat> last_mask(nview);  // the fish's mask in each view's last frame that showed it
