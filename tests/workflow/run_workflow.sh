@@ -5,7 +5,7 @@
 #     executable standing as one missing_executable job, which fails with one line saying how to
 #     build it,
 #  2. the tiny case runs to completion, its stage files (kinematics, mesh, motion, loads,
-#     materials) meet their contracts (fin-contract check) and equal their golden files
+#     materials, fsi) meet their contracts (fin-contract check) and equal their golden files
 #     (tests/regression/<stage>/tiny_case, per-dataset tolerances beside each), its report
 #     (fin-report) has index.html, summary.json and the figures, and every summary.json is a
 #     valid finverse summary; stage files that disagree are refused by their first common reader,
@@ -34,6 +34,7 @@ done
 if grep -qE "^validation_" "$work/dry_all.log"; then cat "$work/dry_all.log"; echo "the default target plans validation cases"; exit 1; fi
 grep -qE "^loads +1 " "$work/dry_all.log" || { cat "$work/dry_all.log"; echo "the default target does not reach loads.h5"; exit 1; }
 grep -qE "^fit +1 " "$work/dry_all.log" || { cat "$work/dry_all.log"; echo "the default target does not reach materials.h5"; exit 1; }
+grep -qE "^fsi +1 " "$work/dry_all.log" || { cat "$work/dry_all.log"; echo "the default target does not reach fsi.h5"; exit 1; }
 grep -qE "^report +1 " "$work/dry_all.log" || { cat "$work/dry_all.log"; echo "the default target does not reach the report"; exit 1; }
 
 echo "== nothing built: the same DAG, and a missing executable says how to build it"
@@ -53,14 +54,14 @@ grep -qE "^[^ ]*/bin/fin-cfd is missing: run cmake -S [^ ]+ -B [^ ]+ -G Ninja &&
 
 echo "== tiny case"
 "${sm[@]}" --configfile "$src/config/cases/tiny.yaml" > "$work/run1.log" 2>&1 || { cat "$work/run1.log"; exit 1; }
-for stage in kinematics mesh motion loads materials; do
+for stage in kinematics mesh motion loads materials fsi; do
   "$build/bin/fin-contract" check "$work/results/tiny/$stage.h5" > /dev/null ||
     { echo "results/tiny/$stage.h5 does not meet its contract"; exit 1; }
 done
 # Every stage file of the tiny case against its golden file (per-dataset tolerances beside it,
 # justified in tests/regression/README.md).
 for golden in vision/tiny_case/kinematics mesh/tiny_case/mesh mesh/tiny_case/motion cfd/tiny_case/loads \
-              fit/tiny_case/materials; do
+              fit/tiny_case/materials fsi/tiny_case/fsi; do
   dir=$src/tests/regression/$(dirname "$golden") file=$(basename "$golden").h5
   "$build/bin/fin-diff" "$dir/$file" "$work/results/tiny/$file" --tolerances "$dir/tolerances.json" \
     > "$work/diff_$file.log" 2>&1 || { cat "$work/diff_$file.log"; echo "results/tiny/$file differs from its golden file $dir/$file"; exit 1; }
