@@ -90,6 +90,8 @@ FinFsiOptions options() {
   o.flow.periods = 1;
   o.flow.output_periods = 1;
   o.flow.output_interval = 1.0 / 20 / 4;  // T / 4
+  o.spectral_radius = 0;  // the pipeline's settings (config fsi.flags)
+  o.substeps = 2;
   return o;
 }
 
