@@ -47,12 +47,12 @@ struct FinFsiOptions {
   double absolute_tolerance = 1e-5;  // ... or |X_out - X_in| below this [c]
   int max_iterations = 15;
   bool strict = false;            // the cap is an error (default: accept the best iterate, counted)
-  // generalized-alpha rho_inf: 0.8 let the default fin blow up at t = 0.06 s (C_T -2, Newton
-  // failed; 0.5 ran through: docs/studies/fin_fsi.md).
-  double spectral_radius = 0.5;
+  // generalized-alpha rho_inf and structure sub-steps: 0.8 let the default fin fail at t = 0.06 s,
+  // 0.5 at c/10 in the second period; 0 with 2 sub-steps ran through (docs/studies/fin_fsi.md).
+  double spectral_radius = 0;
   double structure_tolerance = 1e-7;
   int structure_max_iterations = 40;  // Newton iterations per (sub-)step
-  int substeps = 1;                   // structure sub-steps per coupling step
+  int substeps = 2;                   // structure sub-steps per coupling step
   // Rayleigh damping C = a_M M + a_K K of the structure; < 0: the materials file's.
   double rayleigh_mass = -1, rayleigh_stiffness = -1;
   std::function<void(const std::string&)> progress;
