@@ -3,6 +3,8 @@
 //   - the run completes; fsi.h5's points are [frames, mesh nodes, 3] in the mesh's node order and
 //     the root nodes sit exactly where the drive puts them (heave, pitch about z through the root);
 //   - the coefficients are the total force over 0.5 rho U^2 A with A the mid-surface area;
+//   - driven instead by a tracked motion.h5 of that drive (per-ray root rotation, smooth start,
+//     periodic tiling), the root nodes sit at the tracked positions at every output frame;
 //   - bad input (no drive, or both a drive and a motion) is refused with finverse::Error.
 #include <gtest/gtest.h>
 
@@ -120,6 +122,52 @@ TEST(FinFsi, SmallFinRunsAndTheRootFollowsTheDrive) {
   for (std::size_t k = 0; k < f.time.size(); ++k) {
     EXPECT_NEAR(f.thrust(k), -f.force_total(k, 0) / q, 1e-12);
     EXPECT_TRUE(std::isfinite(f.thrust(k)));
+  }
+}
+
+TEST(FinFsi, TrackedRootMotionDrivesTheFin) {
+  // motion.h5 of the rigid fin carried by the drive (21 frames over one period, the last repeating
+  // the first: periodic), the fin driven by its tracked root (per-ray rotation), half a period of
+  // smooth start before the first frame; the root nodes sit at the tracked positions at every
+  // output (the frames of the last half period).
+  FinFsiInputs in = inputs();
+  const fem::RootDrive drive = fem::io::make_root_drive(in.mesh, fem::io::parse_root_drive({{"heave_over_chord", 0.05},
+                                                                                              {"pitch_center_deg", 2},
+                                                                                              {"pitch_edge_deg", 4},
+                                                                                              {"frequency_hz", 20},
+                                                                                              {"ramp_periods", 0}},
+                                                                                             "drive"),
+                                                        20, kC, "mesh");
+  const double T = 1.0 / 20;
+  const std::size_t nf = 21, nv = (kN + 1) * (kN + 1);
+  stage::Motion m;
+  m.period = T;
+  m.time = NdArray<double>({nf});
+  m.points = NdArray<double>({nf, nv, 3});
+  for (std::size_t k = 0; k < nf; ++k) {
+    m.time(k) = T * static_cast<double>(k) / 20;
+    for (std::size_t i = 0; i < nv; ++i) {
+      const Eigen::Vector3d p = drive.rigid_position(
+          Eigen::Vector3d(in.mesh.points(i, 0), in.mesh.points(i, 1), in.mesh.points(i, 2)), m.time(k));
+      for (int d = 0; d < 3; ++d) m.points(k, i, static_cast<std::size_t>(d)) = p(d);
+    }
+  }
+  in.drive.reset();
+  in.motion = m;
+  FinFsiOptions o = options();
+  o.flow.output_interval = 0;  // the frames
+  o.flow.periods = 1;
+  o.flow.output_periods = 0.5;
+  o.ramp_periods = 0.5;
+  const FinFsiResult r = run_fin_fsi(in, o);
+  const stage::Fsi& f = r.fsi;
+  ASSERT_EQ(f.time.size(), 10u);
+  for (std::size_t k = 0; k < f.time.size(); ++k) {
+    EXPECT_NEAR(f.time(k), T * static_cast<double>(k + 1) / 20, 1e-12);
+    for (int kk = 0; kk <= kN; ++kk) {
+      const auto n = static_cast<std::size_t>(node(0, kk));
+      EXPECT_NEAR(f.points(k, n, 1), m.points(k + 1, n, 1), 1e-12) << "frame " << k << " node " << n;
+    }
   }
 }
 
