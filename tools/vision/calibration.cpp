@@ -13,7 +13,6 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 
 #include <nlohmann/json.hpp>
@@ -21,6 +20,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "vision/video_clip.hpp"
 
 namespace finverse::vision {
 
@@ -76,13 +76,6 @@ bool is_image(const fs::path& p) {
   return e == ".png" || e == ".jpg" || e == ".jpeg" || e == ".tif" || e == ".tiff" || e == ".bmp" || e == ".pgm";
 }
 
-cv::Mat to_grey(const cv::Mat& img) {
-  if (img.channels() == 1) return img;
-  cv::Mat g;
-  cv::cvtColor(img, g, img.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
-  return g;
-}
-
 }  // namespace
 
 CameraRecording read_recording(const std::string& view, const fs::path& path, int every) {
@@ -104,11 +97,8 @@ CameraRecording read_recording(const std::string& view, const fs::path& path, in
       rec.frames.push_back(img);
     }
   } else if (fs::is_regular_file(path)) {
-    cv::VideoCapture cap(path.string());
-    if (!cap.isOpened()) throw Error(path.string() + ": cannot open as a video (view " + view + "), expected a video file or an image directory");
-    cv::Mat img;
-    for (long k = 0; cap.read(img); ++k)
-      if (k % every == 0) rec.frames.push_back(to_grey(img).clone());
+    const VideoClip clip(path);  // throws naming the file when it cannot decode it
+    for (long k = 0; k < clip.frames(); k += every) rec.frames.push_back(clip.grey(k));
   } else {
     throw Error(path.string() + ": no such directory or video (view " + view + ")");
   }

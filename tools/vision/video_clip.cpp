@@ -32,11 +32,12 @@ cv::Mat to_grey(const cv::Mat& frame) {
 
 void VideoClip::reopen() const {
   capture_.release();
-  // FFmpeg first (GStreamer, tried first by CAP_ANY, logs several lines on a file it cannot
-  // play); OpenCV's own log is silenced while probing, the error below is the one line.
+  // File backends only: FFmpeg first (GStreamer logs several lines on a file it cannot play),
+  // then GStreamer. CAP_ANY would also probe camera backends, which enumerate USB devices and
+  // leak what they allocate (LeakSanitizer); OpenCV's log is silenced while probing.
   const auto level = cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   bool ok = false;
-  for (const int api : {cv::CAP_FFMPEG, cv::CAP_ANY}) {
+  for (const int api : {cv::CAP_FFMPEG, cv::CAP_GSTREAMER}) {
     try {
       ok = capture_.open(file_.string(), api) && capture_.isOpened();
     } catch (const cv::Exception&) {
