@@ -151,6 +151,7 @@ void Assembler::assemble(const NodalState& state, const AssemblyRequest& req) {
     if (need_m) {
       Eigen::Map<Eigen::MatrixXd> M(me_.data() + mat_offset_[e], n, n);
       el.mass_matrix(state, M);
+      if (const double mf = model_.element_mass_factor(e); mf != 1.0) M *= mf;
     }
     if (req.mass_times || req.stiffness_times) {
       Eigen::VectorXd xe(n);
@@ -208,6 +209,7 @@ double Assembler::kinetic_energy(const NodalState& state, const Eigen::VectorXd&
     const int n = el.size();
     Eigen::MatrixXd M(n, n);
     el.mass_matrix(state, M);
+    M *= model_.element_mass_factor(e);
     Eigen::VectorXd v(n);
     for (int i = 0; i < n; ++i) v(i) = velocity(global_dof(el, i));
     t[e] = 0.5 * v.dot(M * v);

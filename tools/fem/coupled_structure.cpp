@@ -35,6 +35,7 @@ CoupledStructure::CoupledStructure(const Model& model, const CoupledStructureOpt
     if (seen[n]) throw InvalidInput("coupled structure: wet node " + std::to_string(n) + " repeated");
     seen[n] = true;
   }
+  opt_.dynamics = with_model_damping(model, opt_.dynamics);  // as the integrator does
   if (opt_.dynamics.rayleigh_mass != 0 || opt_.dynamics.rayleigh_stiffness != 0)
     damping_assembler_ = std::make_unique<Assembler>(model_, integrator_.dofs());
   initialize(options.start_time, Eigen::VectorXd::Zero(opt_.dim * static_cast<int>(wet_.size())));

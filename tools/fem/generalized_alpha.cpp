@@ -26,9 +26,15 @@ Eigen::VectorXd configuration_difference(const NodalState& a, const NodalState& 
 }
 }  // namespace
 
+DynamicOptions with_model_damping(const Model& model, DynamicOptions options) {
+  options.rayleigh_mass += model.rayleigh_mass();
+  options.rayleigh_stiffness += model.rayleigh_stiffness();
+  return options;
+}
+
 GeneralizedAlpha::GeneralizedAlpha(const Model& model, DynamicOptions options)
     : model_(model),
-      opt_(options),
+      opt_(with_model_damping(model, options)),
       dofs_((model.validate(), model)),
       assembler_(model_, dofs_),
       solver_(options.backend),

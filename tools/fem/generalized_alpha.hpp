@@ -15,7 +15,7 @@
 // gyroscopic terms (corotational_beam.hpp), this is exact in the linear range and first-order
 // consistent for large rotations; a fully consistent corotational inertia (Le, Battini & Hjiaj
 // 2014) is not implemented.
-// Damping: Rayleigh, C = a_M M + a_K K (K: current tangent).
+// Damping: Rayleigh, C = a_M M + a_K K (K: current tangent); the options' plus the model's.
 // Prescribed DOFs move as prescribed; their velocities/accelerations follow from the same Newmark
 // relations, so prescribed root motion enters consistently.
 #pragma once
@@ -48,6 +48,10 @@ struct DynamicOptions {
   // starting from zero) otherwise cannot meet increment_tolerance relative to its own increment.
   bool increment_roundoff_floor = false;
 };
+
+// options with the model's own Rayleigh damping (Model::set_rayleigh_damping) added to a_M, a_K:
+// what every dynamic solver integrates with.
+DynamicOptions with_model_damping(const Model& model, DynamicOptions options);
 
 struct DynamicState {
   NodalState configuration;

@@ -74,6 +74,7 @@ int Model::add_element(std::unique_ptr<Element> element, int region, std::option
   elements_.push_back(std::move(element));
   element_region_.push_back(region);
   element_modulus_.push_back(e0);
+  mass_factor_.push_back(1.0);
   stiffness_.resize(static_cast<int>(elements_.size()));
   return static_cast<int>(elements_.size()) - 1;
 }
@@ -165,7 +166,7 @@ void Model::set_gravity(const Vec3& g) {
 
 double Model::total_mass() const {
   double m = 0;
-  for (const auto& e : elements_) m += e->total_mass();
+  for (std::size_t e = 0; e < elements_.size(); ++e) m += mass_factor_[e] * elements_[e]->total_mass();
   return m;
 }
 
@@ -201,9 +202,11 @@ Eigen::VectorXd Model::gravity_load() const {
   if (gravity_.squaredNorm() == 0) return f;
   const NodalState s = reference_state();
   Eigen::VectorXd fe;
-  for (const auto& e : elements_) {
+  for (std::size_t i = 0; i < elements_.size(); ++i) {
+    const auto& e = elements_[i];
     fe.setZero(e->size());
     e->gravity_force(s, gravity_, fe);
+    fe *= mass_factor_[i];
     const auto nodes = e->nodes();
     const auto dofs = e->active_dofs();
     int k = 0;
@@ -223,7 +226,33 @@ Eigen::VectorXd Model::external_load(double t) const {
   Eigen::VectorXd f = lf * reference_load();
   if (!load_history_.empty()) f += load_history_.at(t);
   if (gravity_.squaredNorm() > 0) f += gravity_load();
+  for (const auto& g : load_functions_) g(*this, t, f);
   return f;
+}
+
+void Model::set_element_mass_factor(int e, double factor) {
+  if (e < 0 || e >= static_cast<int>(elements_.size()))
+    throw InvalidInput("element " + std::to_string(e) + " out of range");
+  if (!std::isfinite(factor) || factor <= 0) {
+    std::ostringstream os;
+    os << "element " << e << ": mass factor " << factor << ", expected a finite value > 0";
+    throw InvalidInput(os.str());
+  }
+  mass_factor_[e] = factor;
+}
+
+void Model::set_rayleigh_damping(double mass, double stiffness) {
+  if (!std::isfinite(mass) || !std::isfinite(stiffness) || mass < 0 || stiffness < 0) {
+    std::ostringstream os;
+    os << "Rayleigh damping a_M = " << mass << ", a_K = " << stiffness << ", expected finite values >= 0";
+    throw InvalidInput(os.str());
+  }
+  rayleigh_mass_ = mass;
+  rayleigh_stiffness_ = stiffness;
+}
+
+void Model::add_load_function(LoadFunction load) {
+  if (load) load_functions_.push_back(std::move(load));
 }
 
 void Model::validate() const {

@@ -30,6 +30,9 @@
 namespace finverse::fem {
 
 using TimeFunction = std::function<double(double)>;
+class Model;
+// Adds a load at time t to f (full length, 6 per node); may read the model (e.g. its moduli).
+using LoadFunction = std::function<void(const Model&, double, Eigen::VectorXd&)>;
 
 struct PrescribedDof {
   int node = 0;
@@ -71,6 +74,21 @@ class Model {
     return element_modulus_.at(element) * stiffness_.scale(element, t);
   }
   const StiffnessField& stiffness_field() const { return stiffness_; }
+  // Distal softening and similar fixed shapes of the modulus field, on top of the moduli a fitter
+  // sets (stiffness_field.hpp shape factor).
+  void set_element_stiffness_shape(int element, double factor) { stiffness_.set_shape(element, factor); }
+
+  // Mass of an element times a factor (mass matrix, gravity, total mass): a density error or an
+  // added inertia (candidate effects, issue 34). Throws InvalidInput unless finite and > 0.
+  void set_element_mass_factor(int element, double factor);
+  double element_mass_factor(int element) const { return mass_factor_[element]; }
+  // Rayleigh damping C = a_M M + a_K K carried by the model: the dynamic solvers add it to the
+  // a_M, a_K of their options. Throws InvalidInput for negative or non-finite values.
+  void set_rayleigh_damping(double mass, double stiffness);
+  double rayleigh_mass() const { return rayleigh_mass_; }
+  double rayleigh_stiffness() const { return rayleigh_stiffness_; }
+  // Further time-dependent loads (eigen-curvature moments of root actuation, ...), in external_load.
+  void add_load_function(LoadFunction load);
 
   void fix(int node, int dof);
   void fix_node(int node);  // all 6 DOFs
@@ -103,7 +121,7 @@ class Model {
   Eigen::VectorXd reference_load() const;
   // Full-length gravity load (dead, from the reference configuration).
   Eigen::VectorXd gravity_load() const;
-  // f_ext(t) = load_factor(t) * reference_load + load_history(t) + gravity_load
+  // f_ext(t) = load_factor(t) * reference_load + load_history(t) + gravity_load + load functions
   Eigen::VectorXd external_load(double t) const;
 
   // Throws InvalidInput naming the first problem: no elements, indices out of range, NaN loads.
@@ -119,6 +137,9 @@ class Model {
   std::vector<std::unique_ptr<Element>> elements_;
   std::vector<int> element_region_;
   std::vector<double> element_modulus_;  // E each element was built with
+  std::vector<double> mass_factor_;      // per element, 1 unless an effect changed it
+  double rayleigh_mass_ = 0, rayleigh_stiffness_ = 0;
+  std::vector<LoadFunction> load_functions_;
   StiffnessField stiffness_;
   LoadHistory load_history_;
   std::vector<PrescribedDof> prescribed_;

@@ -15,6 +15,7 @@ double ModulusModulation::factor(double t) const {
 
 void StiffnessField::resize(int elements) {
   factor_.resize(elements, 1.0);
+  shape_.resize(elements, 1.0);
   modulation_.resize(elements);
 }
 
@@ -55,8 +56,20 @@ void StiffnessField::clear_modulation(int e) {
   modulation_[e] = {};
 }
 
+void StiffnessField::set_shape(int e, double g) {
+  check(e);
+  if (!std::isfinite(g) || g <= 0) {
+    std::ostringstream os;
+    os << "element " << e << ": Young's modulus shape factor " << g << ", expected a finite value > 0";
+    throw InvalidInput(os.str());
+  }
+  shaped_ += (g != 1.0) - (shape_[e] != 1.0);
+  shape_[e] = g;
+}
+
 double StiffnessField::scale(int e, double t) const {
-  return modulated(e) ? factor_[e] * modulation_[e].factor(t) : factor_[e];
+  const double f = factor_[e] * shape_[e];
+  return modulated(e) ? f * modulation_[e].factor(t) : f;
 }
 
 bool StiffnessField::modulated(int e) const {

@@ -42,6 +42,9 @@ struct FinLayout {
   std::map<int, double> ray_length;    // ray id -> largest s [m]
   std::vector<int> shell_elements;     // membrane (and other shell) elements
   std::vector<int> root_nodes;
+  // Fin axes at rest: span (dorsal axis z, ventral -> dorsal), normal (out of the fin plane,
+  // lateral), chord (root -> tips); root_centre: mean of the root nodes.
+  Vec3 span_axis{0, 0, 1}, normal{0, 1, 0}, chord_axis{1, 0, 0}, root_centre{0, 0, 0};
   double beat_frequency = 0;  // [Hz], 0: unknown (time-periodic effects then need "frequency")
   double start_time = 0;      // time-dependent effects start from rest here ...
   double ramp = 0;            // ... and reach full amplitude after this many s (smooth, as the drive)

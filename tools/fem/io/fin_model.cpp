@@ -53,9 +53,10 @@ FinModel build_fin_model(const stage::Mesh& mesh, const MaterialSpec& spec, cons
       }
       region = it->second;
     }
-    m.add_element(std::make_unique<CorotationalShell>(n[0], n[1], n[2], X[n[0]], X[n[1]], X[n[2]],
-                                                      m.materials()[region], mesh.shell_thickness.data[e]),
-                  region);
+    fm.shell_element.push_back(
+        m.add_element(std::make_unique<CorotationalShell>(n[0], n[1], n[2], X[n[0]], X[n[1]], X[n[2]],
+                                                          m.materials()[region], mesh.shell_thickness.data[e]),
+                      region));
   }
 
   const size_t nb = mesh.beam_elements.shape.empty() ? 0 : mesh.beam_elements.dim(0);
@@ -76,7 +77,7 @@ FinModel build_fin_model(const stage::Mesh& mesh, const MaterialSpec& spec, cons
     const double s_mid = 0.5 * (mesh.beam_s(e, 0) + mesh.beam_s(e, 1));
     const Material& rm = m.materials()[it->second];
     const double E = s_mid >= spec.distal_s_from ? rm.youngs_modulus * spec.distal_factor : rm.youngs_modulus;
-    m.add_beam(a, b, it->second, section, hint, E);
+    fm.beam_element.push_back(m.add_beam(a, b, it->second, section, hint, E));
   }
 
   for (const auto& ms : spec.modulations) {

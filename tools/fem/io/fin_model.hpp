@@ -19,6 +19,8 @@ struct FinModel {
   int membrane_region = 0;
   std::map<int, int> ray_region;    // ray id -> model region
   std::map<int, int> shell_region;  // shell region id (> 0) -> model region
+  std::vector<int> shell_element;   // model element of each /triangles row
+  std::vector<int> beam_element;    // model element of each /beams/elements row
 };
 
 // source names the mesh file in messages. Root nodes are clamped; apply_root_motion replaces that
