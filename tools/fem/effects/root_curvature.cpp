@@ -10,9 +10,12 @@
 // current modulus E(t), so a fitted or modulated E scales the actuation. The moment axis turns
 // with the ray root's prescribed rotation (the zone sits at the root; its own bending is not
 // followed): exact for small rotations and for the root pitch about z.
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
+
+#include <Eigen/Geometry>
 
 #include "fem/beam_section.hpp"
 #include "fem/corotational_beam.hpp"
@@ -58,9 +61,8 @@ class RootCurvature final : public ParameterisedEffect {
     std::vector<ZoneElement> zone;
     for (const auto& b : layout.beams) {
       if (!in_group(layout, b.ray)) continue;
-      const double l = root_fraction_ * layout.ray_length.at(b.ray);
-      const double lo = std::min(b.s0, b.s1), hi = std::max(b.s0, b.s1);
-      const double inside = std::clamp(std::min(hi, l) - lo, 0.0, hi - lo);
+      const double lo = std::min(b.s0, b.s1), hi = std::max(b.s0, b.s1);  // fractions of the ray
+      const double inside = std::clamp(std::min(hi, root_fraction_) - lo, 0.0, hi - lo);
       if (inside <= 0) continue;
       const auto* beam = dynamic_cast<const CorotationalBeam*>(&model.element(b.element));
       if (!beam) throw InvalidInput("effect root_curvature: element " + std::to_string(b.element) + " is no beam");
@@ -80,7 +82,7 @@ class RootCurvature final : public ParameterisedEffect {
       z.axis = axis;
       z.length_over_flex = 1.0 / flex;  // flex was integral(ds/I)/L
       z.curvature_weight = inside / (hi - lo);
-      z.zone_length = l;
+      z.zone_length = root_fraction_ * layout.ray_length.at(b.ray);
       zone.push_back(z);
     }
     if (zone.empty()) throw InvalidInput("effect root_curvature: group " + group_name() + " has no ray elements");

@@ -34,12 +34,12 @@ struct FinLayout {
     int element = 0;        // model element index
     int ray = 0;            // ray id (mesh.h5 /beams/ray)
     int node0 = 0, node1 = 0;
-    double s0 = 0, s1 = 0;  // arc length from the ray's root at node0, node1 [m]
+    double s0 = 0, s1 = 0;  // arc-length fraction from the ray's root (0) to its tip (1) at node0, node1
   };
   std::vector<Beam> beams;             // every ray element
   std::map<int, RayGroup> ray_group;   // ray id -> group
   std::map<int, double> ray_eta;       // ray id -> eta (+1 dorsal .. -1 ventral)
-  std::map<int, double> ray_length;    // ray id -> largest s [m]
+  std::map<int, double> ray_length;    // ray id -> length at rest (sum of its elements) [m]
   std::vector<int> shell_elements;     // membrane (and other shell) elements
   std::vector<int> root_nodes;
   // Fin axes at rest: span (dorsal axis z, ventral -> dorsal), normal (out of the fin plane,

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "fem/errors.hpp"
 
 namespace finverse::fem::io {
@@ -38,8 +40,7 @@ FinLayout make_fin_layout(const stage::Mesh& mesh, const std::string& source) {
     b.s0 = mesh.beam_s(e, 0);
     b.s1 = mesh.beam_s(e, 1);
     L.beams.push_back(b);
-    double& len = L.ray_length[b.ray];
-    len = std::max({len, b.s0, b.s1});
+    L.ray_length[b.ray] += (X(static_cast<std::size_t>(b.node1)) - X(static_cast<std::size_t>(b.node0))).norm();
     const bool first = b.s0 <= b.s1;
     const double s = std::min(b.s0, b.s1);
     const Vec3 at = X(static_cast<std::size_t>(first ? b.node0 : b.node1));
