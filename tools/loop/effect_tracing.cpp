@@ -1,0 +1,216 @@
+// The add-refit-test loop over candidate effects (effect_tracing.hpp).
+#include "loop/effect_tracing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "fit/residual_function.hpp"
+#include "fit/uncertainty.hpp"
+#include "loop/errors.hpp"
+#include "loop/information_criterion.hpp"
+
+namespace finverse::loop {
+namespace {
+
+// The training rows of the traced model's residual as a fit::ResidualFunction for the polish.
+class TrainingResidual : public fit::ResidualFunction {
+ public:
+  TrainingResidual(const TracedModel& model, std::vector<std::string> effects, int n, std::vector<int> frames,
+                   long rows_per_frame)
+      : model_(model), effects_(std::move(effects)), n_(n), frames_(std::move(frames)), rows_(rows_per_frame) {
+    sqrt_w_ = Eigen::VectorXd::Ones(residual_count() / 3);
+  }
+  int parameter_count() const override { return n_; }
+  int residual_count() const override { return static_cast<int>(rows_ * static_cast<long>(frames_.size())); }
+  Eigen::VectorXd residuals(const Eigen::VectorXd& physical) const override {
+    return pick(model_.residuals(effects_, physical));
+  }
+  const Eigen::VectorXd& sqrt_weights() const override { return sqrt_w_; }
+  Eigen::VectorXd pick(const Eigen::VectorXd& all) const {
+    Eigen::VectorXd r(residual_count());
+    for (std::size_t j = 0; j < frames_.size(); ++j) r.segment(j * rows_, rows_) = all.segment(frames_[j] * rows_, rows_);
+    return r;
+  }
+
+ private:
+  const TracedModel& model_;
+  std::vector<std::string> effects_;
+  int n_;
+  std::vector<int> frames_;
+  long rows_;
+  Eigen::VectorXd sqrt_w_;
+};
+
+struct Split {
+  std::vector<int> training, held_out;
+  long rows_per_frame = 0;
+};
+
+double rms_rows(const Eigen::VectorXd& r) { return r.size() ? std::sqrt(r.squaredNorm() / (r.size() / 3.0)) : 0.0; }
+
+Eigen::VectorXd pick_frames(const Eigen::VectorXd& all, const std::vector<int>& frames, long rows) {
+  Eigen::VectorXd r(rows * static_cast<long>(frames.size()));
+  for (std::size_t j = 0; j < frames.size(); ++j) r.segment(j * rows, rows) = all.segment(frames[j] * rows, rows);
+  return r;
+}
+
+ModelState state_of(const TracedModel& model, const Eigen::VectorXd& all, const Split& split, int parameters) {
+  ModelState s;
+  const Eigen::VectorXd train = pick_frames(all, split.training, split.rows_per_frame);
+  const Eigen::VectorXd held = pick_frames(all, split.held_out, split.rows_per_frame);
+  s.rss = train.squaredNorm();
+  s.training_rows = train.size();
+  s.parameters = parameters;
+  s.bic = bic(s.rss, s.training_rows, parameters);
+  s.held_out_rms = rms_rows(held);
+  s.trailing_edge_rms = model.trailing_edge_rms(all);
+  return s;
+}
+
+fit::ParameterSpace extended(const fit::ParameterSpace& space, const std::vector<fit::Parameter>& more) {
+  auto p = space.parameters();
+  p.insert(p.end(), more.begin(), more.end());
+  return fit::ParameterSpace(p, "effect parameters");
+}
+
+}  // namespace
+
+HeldOutSplit held_out_split(const std::vector<double>& times, double period) {
+  HeldOutSplit s;
+  const int nf = static_cast<int>(times.size());
+  if (nf >= 2 && period > 0 && times.back() - times.front() >= 2 * period * (nf - 1.0) / nf) {
+    const double start = times.back() - period * (nf - 1.0) / nf - 1e-9 * period;
+    for (int k = 0; k < nf; ++k)
+      if (times[k] > start) s.held_out.push_back(k);
+    s.kind = "last_cycle";
+    return s;
+  }
+  for (int k = 1; k < nf; k += 2) s.held_out.push_back(k);
+  s.kind = "interleaved";
+  return s;
+}
+
+TraceResult trace_effects(const TracedModel& model, const TraceOptions& options) {
+  const int nf = model.frame_count();
+  Split split;
+  std::set<int> held(options.held_out_frames.begin(), options.held_out_frames.end());
+  for (int k : held)
+    if (k < 0 || k >= nf) throw InvalidInput("trace: held-out frame " + std::to_string(k) + " out of range");
+  for (int k = 0; k < nf; ++k) (held.count(k) ? split.held_out : split.training).push_back(k);
+  if (split.training.empty()) throw InvalidInput("trace: every frame is held out; nothing left to fit");
+
+  TraceResult out;
+  out.space = model.base_space();
+  out.parameters = model.base_start();
+  std::vector<std::string> effects;
+  Eigen::VectorXd all = model.residuals(effects, out.parameters);
+  ++out.evaluations;
+  if (all.size() % nf != 0 || (all.size() / nf) % 3 != 0)
+    throw InvalidInput("trace: the model's residual is not frame_count() blocks of 3-vectors");
+  split.rows_per_frame = all.size() / nf;
+  out.base_initial = state_of(model, all, split, out.space.size());
+
+  auto options_lm = options.lm;
+  Eigen::MatrixXd jacobian;
+  {
+    TrainingResidual f(model, effects, out.space.size(), split.training, split.rows_per_frame);
+    const Eigen::VectorXd z0 = out.space.to_scaled(out.parameters);
+    if (options.refit_base) {
+      const auto lm = fit::levenberg_marquardt(out.space, f, z0, options_lm);
+      out.evaluations += lm.evaluations;
+      out.parameters = out.space.to_physical(lm.z);
+      jacobian = lm.jacobian;
+      all = model.residuals(effects, out.parameters);
+      ++out.evaluations;
+    } else {
+      jacobian = fit::finite_difference_jacobian(out.space, f, z0, f.pick(all), options_lm.fd_step, options_lm.central,
+                                                 options_lm.threads, &out.evaluations);
+    }
+  }
+  ModelState current = state_of(model, all, split, out.space.size());
+
+  std::vector<std::string> remaining = model.candidates();
+  while (true) {
+    if (static_cast<int>(out.added.size()) >= options.max_effects) {
+      out.stop_reason = "max_effects reached";
+      break;
+    }
+    if (remaining.empty()) {
+      out.stop_reason = "no candidate left";
+      break;
+    }
+    TraceStep step;
+    step.before = current;
+    const Eigen::VectorXd r = pick_frames(all, split.training, split.rows_per_frame);
+    const Eigen::MatrixXd basis = orthonormal_basis(jacobian);
+    for (const auto& c : remaining) {
+      const auto dirs = model.score_directions(c);
+      Eigen::MatrixXd s(r.size(), static_cast<Eigen::Index>(dirs.size()));
+      auto with = effects;
+      with.push_back(c);
+      for (std::size_t j = 0; j < dirs.size(); ++j) {
+        Eigen::VectorXd p(out.parameters.size() + dirs[j].parameters.size());
+        p << out.parameters, dirs[j].parameters;
+        const Eigen::VectorXd rc = pick_frames(model.residuals(with, p), split.training, split.rows_per_frame);
+        ++step.evaluations;
+        s.col(static_cast<Eigen::Index>(j)) = (rc - r) / dirs[j].step;
+      }
+      step.scores.push_back({c, score_test(r, basis, out.space.size(), s)});
+    }
+    std::stable_sort(step.scores.begin(), step.scores.end(), [](const auto& a, const auto& b) {
+      return a.score.statistic > b.score.statistic;
+    });
+    const auto& best = step.scores.front();
+    if (!(best.score.p_value * static_cast<double>(remaining.size()) < options.alpha)) {
+      out.stop_reason = "no candidate significant (score test)";
+      out.evaluations += step.evaluations;
+      out.steps.push_back(std::move(step));
+      break;
+    }
+    step.tried = best.name;
+    const auto more = model.effect_parameters(best.name);
+    const fit::ParameterSpace space = extended(out.space, more);
+    auto with = effects;
+    with.push_back(best.name);
+    Eigen::VectorXd p0(space.size());
+    p0 << out.parameters, model.effect_start(best.name, best.score.step);
+    TrainingResidual f(model, with, space.size(), split.training, split.rows_per_frame);
+    const auto lm = fit::levenberg_marquardt(space, f, space.to_scaled(p0), options_lm);
+    step.evaluations += lm.evaluations;
+    const Eigen::VectorXd p = space.to_physical(lm.z);
+    const Eigen::VectorXd all_after = model.residuals(with, p);
+    ++step.evaluations;
+    step.after = state_of(model, all_after, split, space.size());
+    const int first = out.space.size();
+    const int ne = static_cast<int>(more.size());
+    step.magnitude = p.segment(first, ne);
+    step.lower95 = Eigen::VectorXd::Constant(ne, NAN);
+    step.upper95 = Eigen::VectorXd::Constant(ne, NAN);
+    if (lm.jacobian.size() != 0) {
+      const auto u = fit::compute_uncertainty(space, lm.z, lm.residuals, lm.jacobian);
+      step.lower95 = u.lower95.segment(first, ne);
+      step.upper95 = u.upper95.segment(first, ne);
+    }
+    for (const auto& q : more) step.effect_parameter_names.push_back(q.name);
+    step.accepted = step.after.bic < step.before.bic && step.after.held_out_rms < step.before.held_out_rms;
+    out.evaluations += step.evaluations;
+    const bool accepted = step.accepted;
+    out.steps.push_back(std::move(step));
+    if (!accepted) {
+      out.stop_reason = "BIC or held-out error did not improve";
+      break;
+    }
+    effects = with;
+    out.added.push_back(best.name);
+    out.space = space;
+    out.parameters = p;
+    jacobian = lm.jacobian;
+    all = all_after;
+    current = out.steps.back().after;
+    remaining.erase(std::find(remaining.begin(), remaining.end(), best.name));
+  }
+  return out;
+}
+
+}  // namespace finverse::loop
