@@ -35,6 +35,8 @@ include: "rules/fit.smk"
 include: "rules/fsi.smk"
 include: "rules/bench.smk"
 include: "rules/report.smk"
+include: "rules/trout.smk"
+include: "rules/calibrate.smk"
 
 
 # The default target: the pipeline on the case, and its validation cases when the case asks for
