@@ -22,6 +22,10 @@ DatasetSpec may_be_nan(DatasetSpec d) {
   return d;
 }
 
+AttributeSpec effects_attr() {
+  return {"effects", "", "JSON array of the candidate effects (fem/effects) the structure ran with; absent: none",
+          false, true};
+}
 AttributeSpec period_attr() { return {"T", "s", "period of periodic data; absent when not periodic"}; }
 std::vector<AttributeSpec> flow_attrs() {
   return {{"rho", "kg m-3", "fluid density used for the coefficients", true},
@@ -62,7 +66,7 @@ std::vector<FileSpec> build() {
                        opt({"root/pitch_phase", f64, {"nr"}, "rad", "root pitch phase relative to the heave (< 0: lags)"}),
                    },
                    {period_attr(),
-                    {"effects", "", "JSON object of the extra effects in the truth model", false, true},
+                    {"effects", "", "JSON object of the extra effects in the truth model (structural: the fem/effects list planted by truth.effects)", false, true},
                     {"motion_source", "", "what moved the truth: prescribed_kinematics or fsi", false, true},
                     {"root_drive", "", "JSON object of the root drive parameters (drive.json of the FSI truth)", false, true}}});
 
@@ -124,7 +128,7 @@ std::vector<FileSpec> build() {
                        {"points", f64, {"nf", "nv", "3"}, "m", "mesh node positions"},
                        opt({"velocity", f64, {"nf", "nv", "3"}, "m s-1", "mesh node velocities"}),
                    },
-                   {period_attr()}});
+                   {period_attr(), effects_attr()}});
 
   {
     FileSpec s{"finverse/loads", 1, "loads.h5", "fin-cfd",
@@ -202,6 +206,7 @@ std::vector<FileSpec> build() {
                    opt({"velocity", f64, {"nt", "nv", "3"}, "m s-1", "mesh node velocities"}),
                },
                flow_attrs()};
+    s.attributes.push_back(effects_attr());
     for (auto& d : force_datasets("nt")) s.datasets.push_back(d);
     s.datasets.push_back({"coupling/iterations", i32, {"nt"}, "", "coupling iterations of each step"});
     s.datasets.push_back({"coupling/residual", f64, {"nt"}, "m", "final interface displacement change of each step"});

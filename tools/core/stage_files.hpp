@@ -138,13 +138,17 @@ struct Motion {
   static constexpr const char* kSchema = "finverse/motion";
   NdArray<double> time, points, velocity;  // velocity optional (empty = absent)
   std::optional<double> period;
+  std::optional<std::string> effects;  // structural responses only (fin-fem run --effects)
 
   template <class V> void fields(V&& v) {
     v("time", time);
     v("points", points);
     v("velocity", velocity);
   }
-  template <class A> void attributes(A&& a) { a("T", period); }
+  template <class A> void attributes(A&& a) {
+    a("T", period);
+    a("effects", effects);
+  }
 };
 
 // Force histories shared by loads.h5 and fsi.h5.
@@ -199,6 +203,7 @@ struct Fsi : Forces {
   NdArray<double> coupling_relative_residual, reference_points;
   NdArray<std::int32_t> probe_nodes;
   NdArray<double> probe_time, probe_displacement;
+  std::optional<std::string> effects;  // fin-fsi fin --effects
 
   template <class V> void fields(V&& v) {
     v("time", time);
@@ -212,6 +217,10 @@ struct Fsi : Forces {
     v("probes/nodes", probe_nodes);
     v("probes/time", probe_time);
     v("probes/displacement", probe_displacement);
+  }
+  template <class A> void attributes(A&& a) {
+    Forces::attributes(a);
+    a("effects", effects);
   }
 };
 

@@ -254,3 +254,24 @@ TEST(PeriodicMotion, RepeatsWholePeriodsAndKeepsTheSeamOnce) {
   EXPECT_FALSE(io::needs_periodic_extension(aperiodic, 0.25, 0.65));
   EXPECT_THROW(io::periodic_extension(aperiodic, 0.25, 0.65), InvalidInput);
 }
+
+TEST_F(FileRun, EffectsChangeTheResponseAndAreRecorded) {
+  o_.run.analysis = Analysis::quasi_static;
+  io::run_from_files(o_, {});
+  const auto plain = stage::read<stage::Motion>(o_.out);
+  EXPECT_FALSE(plain.effects.has_value());
+  const int tip = node(nx, nz);
+  // Softer distal rays (EI e^{-2 s/L}) let the loaded tip go further.
+  write_text("effects.json", R"([{"name": "distal_softening", "rate": 2.0}])");
+  o_.effects = dir_ / "effects.json";
+  fs::remove(o_.out);
+  io::run_from_files(o_, {});
+  const auto soft = stage::read<stage::Motion>(o_.out);
+  ASSERT_TRUE(soft.effects.has_value());
+  EXPECT_EQ(nlohmann::json::parse(*soft.effects)[0]["name"], "distal_softening");
+  EXPECT_GT(std::abs(soft.points(4, tip, 1)), 1.2 * std::abs(plain.points(4, tip, 1)));
+  // Out of range: one line naming the file, effect and parameter; nothing written.
+  write_text("effects.json", R"([{"name": "distal_softening", "rate": 9.0}])");
+  fs::remove(o_.out);
+  expect_failure<InvalidInput>("effects.json: effect distal_softening: rate = 9, expected -2 .. 5");
+}

@@ -7,6 +7,7 @@
 #include "core/stage_files.hpp"
 #include "core/stage_identity.hpp"
 #include "fem/errors.hpp"
+#include "fem/io/fin_layout.hpp"
 #include "fem/io/fin_model.hpp"
 #include "fem/io/material_spec.hpp"
 #include "fem/io/periodic_motion.hpp"
@@ -17,6 +18,8 @@ namespace finverse::fem::io {
 FileRunSummary run_from_files(const FileRunOptions& o, const nlohmann::json& config) {
   const stage::Mesh mesh = stage::read<stage::Mesh>(o.mesh);
   const MaterialSpec spec = read_material_spec(o.materials);
+  Effects effects;
+  if (o.effects) effects = read_effects(*o.effects);
   std::optional<stage::Loads> loads;
   std::optional<stage::Motion> motion;
   if (o.loads) {
@@ -53,7 +56,18 @@ FileRunSummary run_from_files(const FileRunOptions& o, const nlohmann::json& con
   if (ramp == 0) ramp = times.size() > 1 ? 10 * (times[1] - times[0]) : 1.0;
   if (!(ramp > 0)) throw InvalidInput("fin-fem run: --ramp must be > 0");
 
-  FinModel fm = build_fin_model(mesh, spec, o.mesh.string());
+  FinLayout layout;
+  stage::Mesh shaped = mesh;  // the rest shape the model is built on (rest-shape effects)
+  if (!effects.empty()) {
+    layout = make_fin_layout(mesh, o.mesh.string());
+    const std::optional<double> T = loads ? loads->period : motion->period;
+    if (T && *T > 0) layout.beat_frequency = 1.0 / *T;
+    else if (motion && motion->period && *motion->period > 0) layout.beat_frequency = 1.0 / *motion->period;
+    layout.start_time = times.front() - ramp;
+    layout.ramp = ramp;
+    reshape_mesh(shaped, effects, layout);
+  }
+  FinModel fm = build_fin_model(shaped, spec, o.mesh.string());
   if (loads) {
     const double dropped = apply_loads(fm.model, *loads, ramp, o.loads->string());
     if (dropped > 0) {
@@ -63,8 +77,12 @@ FileRunSummary run_from_files(const FileRunOptions& o, const nlohmann::json& con
       log::warn(m.str());
     }
   }
-  if (motion) apply_root_motion(fm.model, mesh, *motion, o.root_rotation, ramp, o.motion->string());
+  if (motion) apply_root_motion(fm.model, shaped, *motion, o.root_rotation, ramp, o.motion->string());
   fm.model.set_gravity(Vec3(o.gravity[0], o.gravity[1], o.gravity[2]));
+  if (!effects.empty()) {
+    apply_effects(fm.model, effects, layout);
+    log::info("effects: " + effects_to_json(effects).dump());
+  }
 
   RunOptions run = o.run;
   run.start_time = times.front() - ramp;
@@ -92,8 +110,11 @@ FileRunSummary run_from_files(const FileRunOptions& o, const nlohmann::json& con
   std::vector<std::filesystem::path> inputs{o.mesh, o.materials};
   if (o.loads) inputs.push_back(*o.loads);
   if (o.motion) inputs.push_back(*o.motion);
+  if (o.effects) inputs.push_back(*o.effects);
   std::optional<double> period = loads ? loads->period : motion->period;
-  write_run_output(o.out, o.pvd, mesh, frames, period, Provenance{"fin-fem", config, inputs});
+  std::optional<std::string> recorded;
+  if (o.effects) recorded = effects_to_json(effects).dump();
+  write_run_output(o.out, o.pvd, mesh, frames, period, Provenance{"fin-fem", config, inputs}, recorded);
   return summary;
 }
 

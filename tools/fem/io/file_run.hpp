@@ -3,7 +3,8 @@
 // analysis over the output times (structural_run.hpp) with progress and ETA on stderr; write the
 // response (run_output.hpp). Output times: those of loads.h5, else those of motion.h5 (one of
 // the two is required; with both, the load times must lie within the motion's, or the motion be
-// periodic (motion.h5 T): it is then repeated to cover them, periodic_motion.hpp).
+// periodic (motion.h5 T): it is then repeated to cover them, periodic_motion.hpp). Effects
+// (fin_layout.hpp): rest shapes before the model is built, the others after loads and motion.
 #pragma once
 
 #include <array>
@@ -21,6 +22,9 @@ namespace finverse::fem::io {
 struct FileRunOptions {
   std::filesystem::path mesh, materials, out;
   std::optional<std::filesystem::path> loads, motion, pvd;
+  // Candidate effects (fem/effects, a JSON list): applied to the model, recorded in the output's
+  // "effects" attribute. Periodic effects take the loads' or motion's period as the beat.
+  std::optional<std::filesystem::path> effects;
   RunOptions run;
   RootRotation root_rotation = RootRotation::fit;
   double ramp = 0;  // s before the first output time; 0: ten output intervals

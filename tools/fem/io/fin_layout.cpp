@@ -82,6 +82,15 @@ void reshape_mesh(stage::Mesh& mesh, const Effects& effects, const FinLayout& la
   std::vector<Vec3> rest(nv);
   for (std::size_t i = 0; i < nv; ++i) rest[i] = Vec3(mesh.points(i, 0), mesh.points(i, 1), mesh.points(i, 2));
   for (const auto& e : effects) e->reshape(rest, layout);
+  // The immersed-boundary body follows its source node (ibm/source_node), so the FSI sees the
+  // same rest shape as the structure.
+  const std::size_t ni = mesh.ibm_points.shape.empty() ? 0 : mesh.ibm_points.dim(0);
+  if (mesh.ibm_source_node.data.size() == ni)
+    for (std::size_t i = 0; i < ni; ++i) {
+      const auto src = static_cast<std::size_t>(mesh.ibm_source_node.data[i]);
+      if (src >= nv) throw InvalidInput("mesh: /ibm/source_node names a node out of range");
+      for (int d = 0; d < 3; ++d) mesh.ibm_points(i, static_cast<std::size_t>(d)) += rest[src](d) - mesh.points(src, static_cast<std::size_t>(d));
+    }
   for (std::size_t i = 0; i < nv; ++i)
     for (int d = 0; d < 3; ++d) mesh.points(i, static_cast<std::size_t>(d)) = rest[i](d);
 }

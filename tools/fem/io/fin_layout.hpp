@@ -21,7 +21,7 @@ using Effects = std::vector<std::unique_ptr<StructuralEffect>>;
 // the mesh for a mesh without rays or root nodes.
 FinLayout make_fin_layout(const stage::Mesh& mesh, const std::string& source = "mesh.h5");
 
-// Moves mesh.points by the rest-shape effects (none: unchanged).
+// Moves mesh.points (and the IBM points with their source nodes) by the rest-shape effects.
 void reshape_mesh(stage::Mesh& mesh, const Effects& effects, const FinLayout& layout);
 
 // Applies every effect to a model built from the mesh (after its loads and root motion); throws

@@ -26,8 +26,10 @@ stage::Motion to_motion(const std::vector<RunFrame>& frames, std::optional<doubl
 
 void write_run_output(const std::filesystem::path& h5, const std::optional<std::filesystem::path>& pvd,
                       const stage::Mesh& mesh, const std::vector<RunFrame>& frames,
-                      std::optional<double> period, const Provenance& provenance) {
+                      std::optional<double> period, const Provenance& provenance,
+                      std::optional<std::string> effects) {
   stage::Motion m = to_motion(frames, period);
+  m.effects = std::move(effects);
   stage::write(h5, m, provenance);
   if (!pvd) return;
   std::vector<double> times;

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/provenance.hpp"
@@ -20,6 +21,7 @@ stage::Motion to_motion(const std::vector<RunFrame>& frames, std::optional<doubl
 
 void write_run_output(const std::filesystem::path& h5, const std::optional<std::filesystem::path>& pvd,
                       const stage::Mesh& mesh, const std::vector<RunFrame>& frames,
-                      std::optional<double> period, const Provenance& provenance);
+                      std::optional<double> period, const Provenance& provenance,
+                      std::optional<std::string> effects = std::nullopt);  // the "effects" attribute
 
 }  // namespace finverse::fem::io
