@@ -37,6 +37,7 @@ include: "rules/bench.smk"
 include: "rules/report.smk"
 include: "rules/trout.smk"
 include: "rules/calibrate.smk"
+include: "rules/flap.smk"
 
 
 # The default target: the pipeline on the case, and its validation cases when the case asks for

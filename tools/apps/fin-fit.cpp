@@ -6,6 +6,7 @@
 //   fin-fit uniform_plate                                            sec. 3.3 twin, eq. (1)
 //   fin-fit hybrid_plate --case data/cases/hybrid_plate_small_heave.json   eq. (1), eq. (2)
 //   fin-fit noise | identifiability --case ...                       noise; no loads
+//   fin-fit flap --reference data/reference/hessenthaler2017.json    flap modulus (issue 34)
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -18,6 +19,7 @@
 #include "core/summary.hpp"
 #include "fit/io/file_fit.hpp"
 #include "fit/validation/fin_twin_grade.hpp"
+#include "fit/validation/hessenthaler_flap_fit.hpp"
 #include "fit/validation/hybrid_plate_fit.hpp"
 #include "fit/validation/uniform_plate_fit.hpp"
 
@@ -156,7 +158,27 @@ int main(int argc, char** argv) {
   gc->add_option("--name", twin_name, "case name (<out-dir>/<name>/summary.json)")->capture_default_str();
   gc->add_option("--out-dir", out_dir, "directory that receives <case>/summary.json")->capture_default_str();
 
+  // The Hessenthaler (2017) flap: E from its measured buoyancy-only deflection (issue 34).
+  finverse::fit::validation::FlapFitOptions fl;
+  std::string flap_model = "shell";
+  auto* fc = app.add_subcommand("flap", "Hessenthaler 2017 silicone flap: E from the buoyancy-only tip deflection");
+  fc->add_option("--reference", fl.reference, "hessenthaler2017.json")->required();
+  fc->add_option("--name", fl.name, "case name (<out-dir>/<name>/summary.json)")->capture_default_str();
+  fc->add_option("--out-dir", out_dir, "directory that receives <name>/summary.json")->capture_default_str();
+  fc->add_option("--model", flap_model, "graded model: beam or shell (both are in the mesh study)")
+      ->check(CLI::IsMember({"beam", "shell"}))
+      ->capture_default_str();
+  fc->add_flag("--coarse", fl.coarse, "CI variant: the two coarsest meshes of each model");
+  fc->add_option("--load-steps", fl.load_steps, "initial Newton load steps")->capture_default_str();
+
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
+    if (*fc) {
+      const auto start = std::chrono::steady_clock::now();
+      fl.model = finverse::fem::validation::parse_flap_model(flap_model);
+      auto summary = finverse::fit::validation::run_hessenthaler_flap_fit(fl);
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return finish(std::move(summary), fl.name, out_dir, wall);
+    }
     if (*gc) {
       auto summary = finverse::fit::validation::grade_fin_twin(
           finverse::stage::read<finverse::stage::Materials>(graded), finverse::fem::io::read_material_spec(truth_file),

@@ -1,0 +1,126 @@
+// The Hessenthaler (2017) flap under buoyancy alone: geometry and data from hessenthaler2017.json,
+// beam or shell-strip model, load-controlled static Newton (see hessenthaler_flap.hpp).
+#include "fem/validation/hessenthaler_flap.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fem/errors.hpp"
+#include "fem/model.hpp"
+#include "fem/static_solver.hpp"
+#include "fem/validation/shell_meshes.hpp"
+
+namespace finverse::fem::validation {
+
+namespace {
+
+double positive(const nlohmann::json& root, const std::vector<std::string>& keys,
+                const std::filesystem::path& path) {
+  const nlohmann::json* j = &root;
+  std::string name;
+  for (const auto& k : keys) {
+    name += (name.empty() ? "" : ".") + k;
+    if (!j->is_object() || !j->contains(k))
+      throw InvalidInput(path.string() + ": missing key '" + name + "'");
+    j = &(*j)[k];
+  }
+  if (!j->is_number() || !std::isfinite(j->get<double>()) || j->get<double>() <= 0)
+    throw InvalidInput(path.string() + ": '" + name + "' must be a positive number");
+  return j->get<double>();
+}
+
+}  // namespace
+
+HessenthalerFlap read_hessenthaler_flap(const std::filesystem::path& reference) {
+  std::ifstream in(reference);
+  if (!in) throw InvalidInput("cannot open reference file " + reference.string());
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    throw InvalidInput("reference file " + reference.string() + " is not valid JSON: " + e.what());
+  }
+  HessenthalerFlap f;
+  const double mm = 1e-3;
+  f.length = positive(j, {"geometry", "flap_mm", "length"}, reference) * mm;
+  f.width = positive(j, {"geometry", "flap_mm", "width"}, reference) * mm;
+  f.thickness = positive(j, {"geometry", "flap_mm", "thickness"}, reference) * mm;
+  f.fluid_density = positive(j, {"fluid", "density"}, reference);
+  f.solid_density = positive(j, {"solid", "density"}, reference);
+  f.tip_deflection_no_flow = positive(j, {"measured_tip_deflection_mm", "no_flow_buoyancy_only"}, reference) * mm;
+  f.tip_deflection_phase_I = positive(j, {"measured_tip_deflection_mm", "phase_I_steady_flow"}, reference) * mm;
+  f.voxel = positive(j, {"measurement_resolution", "mri_voxel_flap_mm"}, reference) * mm;
+  f.others_shear_modulus = positive(j, {"material_calibration_by_others", "neo_hookean_shear_modulus_Pa"}, reference);
+  f.poisson_ratio = positive(j, {"material_calibration_by_others", "nu"}, reference);
+  f.uniaxial_shear_modulus = positive(j, {"uniaxial_test", "neo_hookean_shear_modulus_Pa"}, reference);
+  f.uniaxial_tip_deflection = positive(j, {"uniaxial_test", "tip_deflection_no_flow_mm"}, reference) * mm;
+  if (f.fluid_density <= f.solid_density)
+    throw InvalidInput(reference.string() + ": fluid.density must exceed solid.density (a buoyant flap)");
+  if (f.poisson_ratio >= 0.5)
+    throw InvalidInput(reference.string() + ": material_calibration_by_others.nu must be below 0.5");
+  return f;
+}
+
+FlapModel parse_flap_model(const std::string& name) {
+  if (name == "beam") return FlapModel::beam;
+  if (name == "shell") return FlapModel::shell;
+  throw InvalidInput("flap model '" + name + "': expected beam or shell");
+}
+
+const char* to_string(FlapModel model) { return model == FlapModel::beam ? "beam" : "shell"; }
+
+FlapDeflection flap_buoyancy_deflection(const HessenthalerFlap& flap, double E, const FlapMesh& mesh,
+                                        int load_steps, SolverBackend backend) {
+  if (!(E > 0) || !std::isfinite(E)) throw InvalidInput("flap: Young's modulus must be positive and finite");
+  if (mesh.along < 1 || (mesh.model == FlapModel::shell && mesh.across < 1))
+    throw InvalidInput("flap: the mesh needs at least one cell along and across");
+  const double L = flap.length, q = flap.buoyancy_per_length();
+  // The flap along +x, its width along y, its thickness (and the buoyancy) along +z.
+  Model model;
+  const Material material{"silicone", E, flap.poisson_ratio, flap.solid_density};
+  std::vector<std::pair<int, double>> tip;  // node, weight of the tip centre
+  if (mesh.model == FlapModel::beam) {
+    const int mat = model.add_material(material);
+    for (int i = 0; i <= mesh.along; ++i) model.add_node(Vec3(L * i / mesh.along, 0, 0));
+    for (int i = 0; i < mesh.along; ++i)
+      model.add_beam(i, i + 1, mat, TaperedRectangle::uniform(flap.width, flap.thickness), Vec3(0, 1, 0));
+    model.fix_node(0);
+    // Lumped: half of each element's load at either end (O(h^2) in the tip deflection).
+    for (int i = 1; i <= mesh.along; ++i)
+      model.add_nodal_load(i, 2, q * L / mesh.along * (i == mesh.along ? 0.5 : 1.0));
+    tip.push_back({mesh.along, 1.0});
+  } else {
+    const TriangleMesh tm = rectangle_mesh(L, flap.width, mesh.along, mesh.across);
+    const std::vector<int> id = add_shell_mesh(model, tm, material, flap.thickness);
+    const double cell = (L / mesh.along) * (flap.width / mesh.across), p = q / flap.width;
+    for (int j = 0; j <= mesh.across; ++j) {
+      const double wj = (j == 0 || j == mesh.across) ? 0.5 : 1.0;
+      model.fix_node(id[tm.node(0, j)]);
+      for (int i = 1; i <= mesh.along; ++i) {
+        const double wi = i == mesh.along ? 0.5 : 1.0;
+        model.add_nodal_load(id[tm.node(i, j)], 2, p * cell * wi * wj);
+      }
+      tip.push_back({id[tm.node(mesh.along, j)], wj / mesh.across});
+    }
+  }
+  StaticOptions so;
+  so.steps = load_steps;
+  so.backend = backend;
+  StaticSolver solver(model, so);
+  NodalState state = model.reference_state();
+  const NodalState reference = state;
+  const StaticResult r = solver.solve(state, 0.0, 1.0);
+  FlapDeflection d;
+  d.newton_iterations = r.total_iterations;
+  for (const auto& [node, w] : tip) {
+    const Vec3 u = state.position[node] - reference.position[node];
+    d.tip += w * u.z();
+    d.tip_axial += w * u.x();
+  }
+  return d;
+}
+
+}  // namespace finverse::fem::validation

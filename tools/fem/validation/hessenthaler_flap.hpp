@@ -1,0 +1,62 @@
+// The silicone flap of Hessenthaler et al. (2017, Int. J. Numer. Meth. Biomed. Eng. 33:e2848, the
+// no-flow experiment) as a structural model: an 11 x 2 x 65 mm strip clamped at one end, lying
+// across gravity (its thickness along g), loaded only by its net buoyancy (rho_f - rho_s) g per
+// unit volume, a dead load that keeps its direction. The flap is lighter than the glycerol, so it
+// bends up by ~45 % of its length: geometrically nonlinear, solved with the corotational beam
+// (default) or the corotational shell strip under load-controlled Newton.
+// Beam or shell: a strip bent to radius R lies between the beam value E b h^3 / 12 and the plate
+// value E b h^3 / 12 (1 - nu^2) according to Searle's parameter b^2 / (R h) (small: free
+// anticlastic curvature, the beam); here b^2 / (R h) ~ 0.5, and the shell with nu = 0.45 says how
+// far from the beam value the strip actually is.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "fem/sparse_solver.hpp"
+
+namespace finverse::fem::validation {
+
+struct HessenthalerFlap {
+  double length = 0.065, width = 0.011, thickness = 0.002;  // [m]
+  double fluid_density = 1163.3, solid_density = 1058.3;    // [kg/m^3]
+  double gravity = 9.81;                                    // [m/s^2]
+  double poisson_ratio = 0.45;
+  double tip_deflection_no_flow = 0.02950;                  // measured [m]
+  double tip_deflection_phase_I = 0.01641;                  // measured [m]
+  double voxel = 0.977e-3;                                  // MRI voxel of the flap images [m]
+  double others_shear_modulus = 61000;                      // neo-Hookean calibration [Pa]
+  double uniaxial_shear_modulus = 96900;                    // tensile test [Pa]
+  double uniaxial_tip_deflection = 0.0217;                  // what 96.9 kPa gives [m]
+  // Net upward load per unit length [N/m].
+  double buoyancy_per_length() const {
+    return (fluid_density - solid_density) * gravity * width * thickness;
+  }
+};
+
+// Reads hessenthaler2017.json (data/reference). Throws InvalidInput naming the file and the key.
+HessenthalerFlap read_hessenthaler_flap(const std::filesystem::path& reference);
+
+enum class FlapModel { beam, shell };
+FlapModel parse_flap_model(const std::string& name);  // "beam" | "shell"; InvalidInput otherwise
+const char* to_string(FlapModel model);
+
+struct FlapMesh {
+  FlapModel model = FlapModel::beam;
+  int along = 32;   // elements (beam) or cells (shell) along the flap
+  int across = 4;   // shell cells across the width (2 triangles each)
+};
+
+struct FlapDeflection {
+  double tip = 0;        // tip centre's displacement along the buoyancy [m]
+  double tip_axial = 0;  // its displacement along the flap's axis (shortening < 0) [m]
+  int newton_iterations = 0;
+};
+
+// Static deflection under buoyancy for Young's modulus E [Pa] (Poisson ratio flap.poisson_ratio),
+// the load ramped in load_steps Newton steps. Throws NotConverged when Newton fails.
+FlapDeflection flap_buoyancy_deflection(const HessenthalerFlap& flap, double youngs_modulus,
+                                        const FlapMesh& mesh, int load_steps = 8,
+                                        SolverBackend backend = SolverBackend::cholmod);
+
+}  // namespace finverse::fem::validation
