@@ -5,12 +5,18 @@
 //   fin-calibrate anipose --calibration calibration.toml --unit mm --out cameras.yml
 //   fin-calibrate simulate --cameras rig.yml --out-dir rec      (validation: a rendered board recording)
 //   fin-calibrate score --truth rig.yml --cameras cameras.yml --report report.json --summary summary.json
+//   fin-calibrate template --image fin.png --points fin.csv --mm-per-px 0.02 --out template.json
+//
+// template (issue 35 item 6) lives here rather than in an app of its own: like the rest of
+// fin-calibrate it turns what a lab measured on its own images into finverse's inputs, and the
+// image scale it needs is a calibration.
 //
 // checkerboard refuses (exit 1, one line, no cameras.yml) a calibration whose reprojection RMS is
 // above --max-reprojection-px; its report.json gives the RMS per camera either way.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +29,7 @@
 #include "vision/anipose_import.hpp"
 #include "vision/calibration.hpp"
 #include "vision/camera.hpp"
+#include "vision/digitised_template.hpp"
 #include "vision/dlt_import.hpp"
 #include "vision/validation/calibration_scores.hpp"
 #include "vision/validation/checkerboard_recording.hpp"
@@ -129,7 +136,49 @@ int main(int argc, char** argv) {
   score->add_option("--summary", summary, "summary.json to write")->required();
   score->add_option("--work-dir", work, "where the DLT and Anipose files of the import check go (default: beside --summary)");
 
+  // template
+  auto* tpl = app.add_subcommand("template", "a fin template.json from a side-view image and its digitised outline and rays");
+  fs::path image, points, overlay;
+  std::optional<double> mm_per_px, scale_mm;
+  DigitisedTemplateOptions dto;
+  tpl->add_option("--image", image, "side-view image of the spread fin (the pixels the CSV refers to)")->required()->check(CLI::ExistingFile);
+  tpl->add_option("--points", points, "CSV kind,id,x_px,y_px: outline, root/ray/tip per ray (1: dorsal), scale")
+      ->required()
+      ->check(CLI::ExistingFile);
+  auto* mpp = tpl->add_option("--mm-per-px", mm_per_px, "image scale")->check(CLI::PositiveNumber);
+  tpl->add_option("--scale-mm", scale_mm, "distance between the CSV's two scale points (mm)")->check(CLI::PositiveNumber)->excludes(mpp);
+  tpl->add_option("--outline-tolerance-px", dto.outline_tolerance_px, "a ray may leave the digitised outline by this much")->capture_default_str();
+  tpl->add_option("--ray-points", dto.sections.points_per_ray, "template points per ray")->capture_default_str()->check(CLI::Range(2, 1000));
+  tpl->add_option("--edge-ray-thickness", dto.sections.edge_root_thickness, "root thickness of the edge rays / c")->capture_default_str();
+  tpl->add_option("--center-ray-thickness", dto.sections.center_root_thickness, "root thickness of the middle ray / c")->capture_default_str();
+  tpl->add_option("--tip-thickness-ratio", dto.sections.tip_thickness_ratio, "ray thickness at the tip / at the root")->capture_default_str();
+  tpl->add_option("--ray-width-ratio", dto.sections.width_over_thickness, "in-plane ray width / thickness")->capture_default_str();
+  tpl->add_option("--membrane-thickness", dto.sections.membrane_thickness, "membrane thickness / c")->capture_default_str();
+  tpl->add_option("--overlay", overlay, "PNG of the image with the digitised outline and rays drawn over it");
+  tpl->add_option("--out", out, "template.json to write")->required();
+
   return cli::run(app, standard, argc, argv, [&]() -> int {
+    if (*tpl) {
+      const cv::Mat img = cv::imread(image.string(), cv::IMREAD_UNCHANGED);
+      if (img.empty()) throw Error(image.string() + ": cannot read the image (--image)");
+      const auto fin = read_digitised_fin(points);
+      if (mm_per_px) {
+        dto.metres_per_px = 1e-3 * *mm_per_px;
+      } else if (scale_mm) {
+        if (!fin.scale_points) throw Error(points.string() + ": --scale-mm needs two scale rows (scale,1,x,y and scale,2,x,y)");
+        const double px = cv::norm((*fin.scale_points)[0] - (*fin.scale_points)[1]);
+        if (!(px > 0)) throw Error(points.string() + ": the two scale points coincide");
+        dto.metres_per_px = 1e-3 * *scale_mm / px;
+      } else {
+        throw Error("template: give the image scale, --mm-per-px or --scale-mm (with two scale rows in " + points.string() + ")");
+      }
+      if (!overlay.empty()) write_png_atomic(overlay, draw_digitised_fin(img, fin));
+      const auto t = template_from_digitised(fin, dto, img.size());
+      mesh::write_template(out, t);
+      log::info("wrote " + out.string() + ": " + std::to_string(t.ray_count()) + " rays, chord " + std::to_string(1e3 * t.chord) +
+                " mm, planform " + std::to_string(1e6 * t.area()) + " mm^2 (" + std::to_string(1e3 * dto.metres_per_px) + " mm/px)");
+      return kExitOk;
+    }
     if (*cb) {
       CalibrationOptions opt;
       if (!board_file.empty()) {

@@ -26,6 +26,7 @@
 #include "mesh/template_options.hpp"
 #include "vision/camera.hpp"
 #include "vision/frame_files.hpp"
+#include "vision/keypoint_files.hpp"
 #include "vision/single_view.hpp"
 #include "vision/tracker.hpp"
 #include "vision/tracking_summary.hpp"
@@ -130,6 +131,25 @@ int main(int argc, char** argv) {
   app.add_option("--max-area-ratio", to.quality.max_area_ratio,
                  "fit check: the fitted over segmented silhouette area in a view (median over frames) within this factor")
       ->capture_default_str();
+  // Keypoints of the ray roots and tips (DeepLabCut per view, Anipose 3-D): tools/vision/keypoint_files.hpp.
+  std::vector<std::string> keypoint_specs;
+  fs::path keypoints_3d, keypoints_out;
+  std::string keypoints_unit = "mm";
+  double keypoint_min_score = 0.6;
+  app.add_option("--keypoints", keypoint_specs, "view=dlc.csv: DeepLabCut 2-D keypoints ray<N>_root / ray<N>_tip of that view (repeatable)")
+      ->delimiter(',');
+  app.add_option("--keypoints-3d", keypoints_3d, "Anipose pose-3d CSV of the keypoints ray<N>_root / ray<N>_tip")->check(CLI::ExistingFile);
+  app.add_option("--keypoints-unit", keypoints_unit, "length unit of --keypoints-3d and of the written 3-D CSV: m, cm or mm")
+      ->check(CLI::IsMember({"m", "cm", "mm"}))
+      ->capture_default_str();
+  app.add_option("--keypoint-weight", fo.keypoints.weight, "weight of a keypoint's residual (px; 3-D: per --keypoint-sigma-3d)")
+      ->capture_default_str();
+  app.add_option("--keypoint-sigma-3d", fo.keypoints.sigma_3d_chords, "3-D keypoints: the distance that weighs like a pixel (chords)")
+      ->capture_default_str();
+  app.add_option("--keypoint-min-score", keypoint_min_score, "keypoints below this likelihood (DeepLabCut) or score (Anipose) are left out")
+      ->capture_default_str();
+  app.add_option("--keypoints-out", keypoints_out,
+                 "folder: the fitted ray roots and tips as DeepLabCut CSVs (<view>.csv) and an Anipose pose-3d CSV (pose_3d.csv)");
   app.add_option("--ignore-view", ignore_views, "leave these views out (validation: one view removed)")->delimiter(',');
   app.add_option("--perturb-calibration-px", perturb_px, "shift every principal point by this many px in a seeded direction (validation)")
       ->capture_default_str();
@@ -256,12 +276,34 @@ int main(int argc, char** argv) {
                 (coverage ? ", coverage" : ""));
     }
 
+    // Keypoints: read, matched to the views by name, and given to the fit frame by frame.
+    std::vector<vision::KeypointTable> tables;
+    std::vector<std::pair<std::size_t, const vision::KeypointTable*>> image_tables;
+    tables.reserve(keypoint_specs.size() + 1);
+    for (const auto& spec : keypoint_specs) {
+      const auto eq = spec.find('=');
+      const auto name = eq == std::string::npos ? "" : spec.substr(0, eq);
+      const auto cam = std::find_if(cameras.begin(), cameras.end(), [&](const auto& c) { return c.name == name; });
+      if (eq == std::string::npos || cam == cameras.end())
+        throw Error("--keypoints: '" + spec + "', expected view=file.csv with a view of " + cameras_file.string());
+      tables.push_back(vision::read_deeplabcut_csv(spec.substr(eq + 1)));
+      image_tables.emplace_back(static_cast<std::size_t>(cam - cameras.begin()), &tables.back());
+    }
+    const double unit_m = keypoints_unit == "m" ? 1.0 : keypoints_unit == "cm" ? 1e-2 : 1e-3;
+    if (!keypoints_3d.empty()) tables.push_back(vision::read_anipose_csv(keypoints_3d));
+    const auto keypoints = vision::keypoint_record(image_tables, keypoints_3d.empty() ? nullptr : &tables.back(), unit_m,
+                                                   keypoint_min_score, fin.ray_count());
+    if (!keypoint_specs.empty() || !keypoints_3d.empty())
+      log::info("keypoints: " + std::to_string(keypoints.size()) + " frames with ray roots or tips (weight " +
+                std::to_string(fo.keypoints.weight) + ")");
+
     const vision::Tracker tracker(fin, to);
     std::optional<stage::Truth> truth;
     vision::TruthReference reference{nullptr, calibrated, truth_file.string()};
     if (!summary_out.empty()) truth = stage::read<stage::Truth>(truth_file), reference.points = &truth->points;
     const vision::FrameLoader load = [&](std::size_t v, long k) { return files.load(v, k); };
-    auto r = tracker.track({cameras, files.frames, load, frames_spec.size() == 1 ? frames_spec[0] : "--frames"},
+    auto r = tracker.track({cameras, files.frames, load, frames_spec.size() == 1 ? frames_spec[0] : "--frames",
+                            keypoints.empty() ? nullptr : &keypoints},
                            truth ? &reference : nullptr);
     log::info("tracking: " + std::to_string(r.seconds_per_frame) + " s per frame set after the first (" + std::to_string(r.first_seconds) +
               " s, cold start); " + std::to_string(cameras.size()) + " views, " + std::to_string(cli::threads_in_use()) +
@@ -271,6 +313,14 @@ int main(int argc, char** argv) {
     if (!tmpl.file.empty()) prov.inputs.push_back(tmpl.file);
     stage::write(out, r.kinematics, prov);
     log::info("wrote " + out.string());
+    if (!keypoints_out.empty()) {
+      fs::create_directories(keypoints_out);
+      const auto ends = tracker.model().ray_ends();
+      for (const auto& c : calibrated)
+        vision::write_deeplabcut_csv(keypoints_out / (c.name + ".csv"), vision::fitted_ray_ends(r.frames, r.kinematics.points, ends, &c, 1.0));
+      vision::write_anipose_csv(keypoints_out / "pose_3d.csv", vision::fitted_ray_ends(r.frames, r.kinematics.points, ends, nullptr, unit_m));
+      log::info("wrote the fitted ray ends to " + keypoints_out.string());
+    }
 
     int status = kExitOk;
     if (!r.verdict.failure.empty()) {

@@ -26,7 +26,8 @@ SkeletonFitter::SkeletonFitter(const Skeleton& s, const SkinBinding& b, const Nd
 }
 
 SkeletonFitter::Linearisation SkeletonFitter::linearise(const std::vector<ViewData>& views, const Pose& pose, const Pose* prediction,
-                                                        double neighbour_sigma, bool use_rays) const {
+                                                        double neighbour_sigma, bool use_rays,
+                                                        const FrameKeypoints* keypoints) const {
   const std::size_t P = s_.parameter_count();
   const auto frames = forward_kinematics(s_, pose);
   const auto X = skin(b_, frames);
@@ -50,6 +51,7 @@ SkeletonFitter::Linearisation SkeletonFitter::linearise(const std::vector<ViewDa
   }
   Linearisation L{NormalEquations(P), std::move(stats)};
   for (const auto& ne : per_view) L.ne += *ne;
+  if (keypoints) add_keypoint_residuals(views, *keypoints, ends_, X, &J, o_.keypoints, s_.chord, L.ne);
   // Priors, one row per parameter (or pair): r = (p - centre) / sigma.
   auto prior = [&](int i, double centre, double sigma) {
     L.ne.add(i, 1.0);
@@ -87,9 +89,12 @@ SkeletonFitter::Linearisation SkeletonFitter::linearise(const std::vector<ViewDa
   return L;
 }
 
-FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& start, const Pose* prediction, int max_iterations) const {
+FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& start, const Pose* prediction, int max_iterations,
+                             const FrameKeypoints* keypoints) const {
   const std::size_t P = s_.parameter_count();
   if (start.p.size() != P) throw Error("skeleton fit: start pose has the wrong size");
+  if (keypoints && keypoints->empty()) keypoints = nullptr;
+  if (keypoints && ends_.root.size() != s_.rays) throw Error("skeleton fit: keypoints given but the ray ends are not set");
   FrameFit out;
   Pose pose = start;
   // From the rest pose the first frame is far off: first let all rays move nearly together
@@ -101,7 +106,7 @@ FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& sta
     // to its own image ray, so the cold first stage aligns silhouettes alone.
     const double nsig = cold && stage == 0 ? 0.1 * o_.neighbour_sigma : o_.neighbour_sigma;
     const bool rays = !(cold && stage == 0);
-    auto L = linearise(views, pose, prediction, nsig, rays);
+    auto L = linearise(views, pose, prediction, nsig, rays, keypoints);
     double lambda = 1e-2;
     int rejected = 0;
     for (int it = 0; it < max_iterations; ++it) {
@@ -120,7 +125,7 @@ FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& sta
       const double largest_taken = std::min(largest, o_.max_step);
       Pose cand = pose;
       for (std::size_t i = 0; i < P; ++i) cand.p[i] += delta[i];
-      auto Lc = linearise(views, cand, prediction, nsig, rays);
+      auto Lc = linearise(views, cand, prediction, nsig, rays, keypoints);
       char line[128];
       std::snprintf(line, sizeof line, "LM stage %d step %d: lambda %.2e, cost %.6g -> %.6g, |step| %.3g", stage, it, lambda,
                     L.ne.cost(), Lc.ne.cost(), delta.norm());
@@ -148,6 +153,10 @@ FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& sta
   out.rms_px.assign(nvw, std::numeric_limits<double>::quiet_NaN());
   out.area_ratio.assign(nvw, std::numeric_limits<double>::quiet_NaN());
   out.valid.assign(nvw, 0);
+  if (keypoints && !keypoints->image.empty()) {
+    NormalEquations scratch(0);
+    out.keypoint_rms_px = add_keypoint_residuals(views, *keypoints, ends_, out.points, nullptr, o_.keypoints, s_.chord, scratch);
+  }
 #pragma omp parallel for schedule(dynamic)
   for (std::ptrdiff_t v = 0; v < static_cast<std::ptrdiff_t>(nvw); ++v) {
     if (!views[v].valid) continue;

@@ -3,6 +3,8 @@
 // translation and every joint's rotation vector) minimising
 //   sum over views of the silhouette chamfer residuals (silhouette_residual.hpp), in pixels,
 //   + the distances of the projected ray axes to the detected rays (ray_features.hpp), pixels,
+//   + keypoints of the ray roots and tips when given (DeepLabCut 2-D per view, Anipose 3-D;
+//     keypoint_residual.hpp),
 //   + in the views named in coverage_views, the pixel coverages of the model against the soft
 //     segmentation (coverage_residual.hpp: places the outline to a fraction of a pixel, which the
 //     pixel-centre chamfer cannot, on the few-pixel-wide edge-on strips),
@@ -19,10 +21,12 @@
 // fixed order, so results do not depend on the thread count.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "vision/coverage_residual.hpp"
+#include "vision/keypoint_residual.hpp"
 #include "vision/ray_features.hpp"
 #include "vision/silhouette_residual.hpp"
 #include "vision/skeleton.hpp"
@@ -39,6 +43,7 @@ struct FitOptions {
   CoverageOptions coverage;
   std::vector<std::string> coverage_views;
   double coverage_chamfer_weight = 1.0;     // factor on the chamfer weight where the coverage term is on
+  KeypointOptions keypoints;                // the ray root/tip keypoints, when a frame has them
   // The fitter's neutral values; fin-track runs tracking_fit_options() (tracker.hpp), the one
   // source of its defaults, which --help and kinematics.h5's configuration show.
   int iterations = 12;              // LM iterations per frame (warm started)
@@ -59,6 +64,7 @@ struct FrameFit {
   NdArray<double> points;            // [nv,3] skinned template
   std::vector<double> iou, rms_px;   // per view; NaN where the view is missing
   std::vector<double> area_ratio;    // per view: fitted over segmented silhouette area; NaN where missing
+  double keypoint_rms_px = std::numeric_limits<double>::quiet_NaN();  // 2-D keypoints' RMS residual, when given
   std::vector<char> valid;
   int iterations = 0;
   double cost = 0;
@@ -70,21 +76,27 @@ class SkeletonFitter {
   SkeletonFitter(const Skeleton& skeleton, const SkinBinding& binding, const NdArray<std::int32_t>& triangles,
                  std::vector<int> ray_vertices, const FitOptions& options);
 
-  // Fits one frame from `start`. `prediction` (may be null) is the temporal prior's centre.
-  FrameFit fit(const std::vector<ViewData>& views, const Pose& start, const Pose* prediction, int max_iterations) const;
+  // The template vertices at the ray roots and tips, which keypoints pull on (needed only with them).
+  void set_ray_ends(RayEnds ends) { ends_ = std::move(ends); }
+
+  // Fits one frame from `start`. `prediction` (may be null) is the temporal prior's centre;
+  // `keypoints` (may be null) the frame's ray keypoints.
+  FrameFit fit(const std::vector<ViewData>& views, const Pose& start, const Pose* prediction, int max_iterations,
+               const FrameKeypoints* keypoints = nullptr) const;
 
   const Skeleton& skeleton() const { return s_; }
 
  private:
   struct Linearisation;
   Linearisation linearise(const std::vector<ViewData>& views, const Pose& pose, const Pose* prediction, double neighbour_sigma,
-                          bool use_rays) const;
+                          bool use_rays, const FrameKeypoints* keypoints) const;
 
   const Skeleton& s_;
   const SkinBinding& b_;
   const NdArray<std::int32_t>& tri_;
   std::vector<int> ray_vertices_;
   std::vector<MeshEdge> edges_;
+  RayEnds ends_;
   FitOptions o_;
 };
 

@@ -53,6 +53,15 @@ TrackingModel make_tracking_model(const mesh::FinTemplate& fin, int surface_subd
   return m;
 }
 
+RayEnds TrackingModel::ray_ends() const {
+  RayEnds e;
+  for (std::size_t r = 0; r + 1 < ray_offsets.size(); ++r) {
+    e.root.push_back(ray_vertices(static_cast<std::size_t>(ray_offsets(r))));
+    e.tip.push_back(ray_vertices(static_cast<std::size_t>(ray_offsets(r + 1)) - 1));
+  }
+  return e;
+}
+
 Pose predict_pose(const Pose& last, const Pose* before, double gap_ratio, double velocity) {
   Pose pred = last;
   if (before)
@@ -65,6 +74,7 @@ Tracker::Tracker(const mesh::FinTemplate& fin, const TrackerOptions& options)
   fitter_ = std::make_unique<SkeletonFitter>(
       model_.skeleton, model_.binding, model_.surface.triangles,
       std::vector<int>(model_.ray_vertices.data.begin(), model_.ray_vertices.data.end()), options_.fit);
+  fitter_->set_ray_ends(model_.ray_ends());
 }
 
 Tracker::~Tracker() = default;
@@ -305,8 +315,11 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
       r.seconds -= log::elapsed_seconds() - ts;  // not part of the tracking time
     }
     FrameFit fit;
+    const FrameKeypoints* keypoints = nullptr;
+    if (in.keypoints)
+      if (const auto it = in.keypoints->find(frames[i]); it != in.keypoints->end()) keypoints = &it->second;
     if (poses.empty()) {
-      fit = fitter_->fit(views, Pose::rest(model_.skeleton), nullptr, fo.first_iterations);
+      fit = fitter_->fit(views, Pose::rest(model_.skeleton), nullptr, fo.first_iterations, keypoints);
     } else {
       // Over the possibly uneven frame spacing.
       const bool two = poses.size() >= 2;
@@ -315,7 +328,7 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
               : 0.0;
       const Pose pred =
           predict_pose(poses.back(), two ? &poses[poses.size() - 2] : nullptr, ratio, options_.prediction_velocity);
-      fit = fitter_->fit(views, pred, &pred, fo.iterations);
+      fit = fitter_->fit(views, pred, &pred, fo.iterations, keypoints);
     }
     r.seconds += log::elapsed_seconds() - t0;
     if (i == 0) r.first_seconds = r.seconds;

@@ -22,6 +22,7 @@
 #include "vision/camera.hpp"
 #include "vision/fin_surface.hpp"
 #include "vision/fit_quality.hpp"
+#include "vision/keypoint_residual.hpp"
 #include "vision/segmentation.hpp"
 #include "vision/skeleton.hpp"
 #include "vision/skeleton_fit.hpp"
@@ -56,6 +57,7 @@ struct TrackingModel {
   Skeleton skeleton;
   SkinBinding binding;
   NdArray<std::int32_t> ray_offsets, ray_vertices;
+  RayEnds ray_ends() const;  // the first and last vertex of every ray's axis
 };
 TrackingModel make_tracking_model(const mesh::FinTemplate& fin, int surface_subdivisions, int segments);
 
@@ -68,6 +70,7 @@ struct TrackInput {
   std::vector<long> frames;     // frame indices, ascending (gaps allowed)
   FrameLoader load;
   std::string source = "frames";  // names the record in messages
+  const KeypointRecord* keypoints = nullptr;  // ray root/tip keypoints by frame index (may be null)
 };
 
 // Validation: the true surface of every frame index and the calibration as given (the fit's may
