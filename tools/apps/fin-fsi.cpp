@@ -7,6 +7,7 @@
 //       [--checkpoint ckpt.h5 --checkpoint-every N] [--restart ckpt.h5 [--restart-new-coupling]]
 //   fin-fsi --threads N fin --mesh mesh.h5 --materials (M.json | materials.h5 [--base-materials M.json])
 //       (--root-drive drive.json | --motion motion.h5) --out fsi.h5 [fin-cfd fin's flow flags]
+//       [--effects effects.json]
 //       [--periods P --output-periods 1] [--summary s.json]
 #include <filesystem>
 #include <fstream>
@@ -177,7 +178,7 @@ struct PitchingPlateCommand {
 // the tracked root motion) to fsi.h5 (tools/fsi/fin_fsi_run.hpp).
 struct FinCommand {
   finverse::fsi::FinFsiOptions o;
-  std::string mesh, materials, base_materials, root_drive, motion, out, summary_path;
+  std::string mesh, materials, base_materials, root_drive, motion, out, summary_path, effects;
   CLI::App* fin = nullptr;
 
   void add(CLI::App& app) {
@@ -189,6 +190,7 @@ struct FinCommand {
     fin->add_option("--base-materials", base_materials,
                     "with a materials.h5: the materials JSON fin-fit started from (default: the one its config names)")
         ->check(CLI::ExistingFile);
+    fin->add_option("--effects", effects, "candidate effects the structure runs with: JSON list (tools/fem/effects)");
     auto* rd = fin->add_option("--root-drive", root_drive, "root drive JSON (heave + per-ray pitch)")
                    ->check(CLI::ExistingFile);
     auto* mo = fin->add_option("--motion", motion, "motion.h5: drive the root by its tracked root motion (per ray)")
@@ -284,6 +286,14 @@ struct FinCommand {
       inputs.push_back(motion);
     } else {
       throw finverse::Error("fin-fsi fin: expected --root-drive drive.json or --motion motion.h5");
+    }
+    if (!effects.empty()) {
+      std::ifstream ein(effects);
+      if (!ein) throw finverse::Error(effects + ": cannot open the effects file");
+      in.effects = nlohmann::json::parse(ein, nullptr, false);
+      if (in.effects.is_discarded()) throw finverse::Error(effects + ": not valid JSON");
+      in.effects_name = effects;
+      inputs.push_back(effects);
     }
     o.progress = [](const std::string& line) { std::cerr << line << "\n"; };
     fs::FinFsiResult r = fs::run_fin_fsi(in, o);

@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "core/flow_scales.hpp"
 #include "fem/coupled_structure.hpp"
+#include "fem/io/fin_layout.hpp"
 #include "fem/io/fin_model.hpp"
 #include "fem/root_drive.hpp"
 #include "fsi/acceleration_factory.hpp"
@@ -109,8 +110,23 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
   const auto wall0 = std::chrono::steady_clock::now();
   if (in.drive.has_value() == in.motion.has_value())
     throw Error("fin fsi: expected exactly one of --root-drive and --motion");
-  const stage::Mesh& mesh = in.mesh;
   const std::string& mn = in.mesh_name;
+  fem::io::Effects effects;
+  fem::FinLayout effect_layout;
+  stage::Mesh shaped;  // the rest shape with the rest-shape effects
+  if (!in.effects.empty()) {
+    try {
+      effects = fem::make_effects(in.effects, in.effects_name);
+      effect_layout = fem::io::make_fin_layout(in.mesh, mn);
+      shaped = in.mesh;
+      fem::io::reshape_mesh(shaped, effects, effect_layout);
+    } catch (const std::exception& e) {
+      throw Error(std::string("fin fsi: ") + e.what());
+    }
+    if (in.build_model && shaped.points.data != in.mesh.points.data)
+      throw Error(in.effects_name + ": a rest-shape effect needs the structure built from the mesh (a materials file)");
+  }
+  const stage::Mesh& mesh = effects.empty() ? in.mesh : shaped;
   if (mesh.points.rank() != 2 || mesh.points.dim(1) != 3 || mesh.points.dim(0) < 3)
     throw Error(mn + ": /points: expected [nv, 3] with nv >= 3");
   const auto nv = static_cast<Eigen::Index>(mesh.points.dim(0));
@@ -242,6 +258,16 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
                     {"ramp_periods", o.ramp_periods},
                     {"ramp_time_s", o.ramp_time},
                     {"periodic", periodic}};
+  }
+  if (!effects.empty()) {
+    effect_layout.beat_frequency = 1 / T;
+    effect_layout.start_time = in.drive ? 0.0 : t_start;
+    effect_layout.ramp = in.drive ? in.drive->ramp_periods * T : t_first_output - t_start;
+    try {
+      fem::io::apply_effects(model, effects, effect_layout);
+    } catch (const std::exception& e) {
+      throw Error(in.effects_name + ": " + e.what());
+    }
   }
   const long per_period = std::lround(T / interval);
   if (periodic && (per_period < 1 || std::abs(per_period * interval - T) > 1e-6 * interval))
@@ -472,6 +498,7 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
   f.U = U;
   f.reference_area = area;
   if (periodic) f.period = T;
+  if (!effects.empty()) f.effects = fem::effects_to_json(effects).dump();
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return res;
 }

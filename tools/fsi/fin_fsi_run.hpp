@@ -68,6 +68,11 @@ struct FinFsiInputs {
   std::optional<fem::io::RootDriveSpec> drive;  // exactly one of drive and motion
   std::optional<stage::Motion> motion;
   std::string motion_name = "motion.h5";
+  // Candidate effects (fem/effects JSON list; empty: none): the structure runs with them (rest
+  // shapes move the mesh and its IBM body first; the beat is the drive's or motion's period) and
+  // fsi.h5 records them in its "effects" attribute.
+  nlohmann::json effects = nlohmann::json::array();
+  std::string effects_name = "effects.json";
 };
 
 struct FinFsiResult {

@@ -5,6 +5,7 @@
 //   - the coefficients are the total force over 0.5 rho U^2 A with A the mid-surface area;
 //   - driven instead by a tracked motion.h5 of that drive (per-ray root rotation, smooth start,
 //     periodic tiling), the root nodes sit at the tracked positions at every output frame;
+//   - candidate effects reach the structure and are recorded in fsi.h5;
 //   - bad input (no drive, or both a drive and a motion) is refused with finverse::Error.
 #include <gtest/gtest.h>
 
@@ -169,6 +170,21 @@ TEST(FinFsi, TrackedRootMotionDrivesTheFin) {
       EXPECT_NEAR(f.points(k, n, 1), m.points(k + 1, n, 1), 1e-12) << "frame " << k << " node " << n;
     }
   }
+}
+
+TEST(FinFsi, EffectsAreAppliedToTheStructureAndRecorded) {
+  // One run (the physics of each effect is tested in tests/unit/fem/test_effects.cpp): structural
+  // damping on the fin's structure, recorded in fsi.h5; an unknown effect is refused before any step.
+  FinFsiInputs in = inputs();
+  in.effects = nlohmann::json::parse(R"([{"name": "rayleigh_damping", "mass": 50}])");
+  const FinFsiResult r = run_fin_fsi(in, options());
+  ASSERT_TRUE(r.fsi.effects.has_value());
+  const auto recorded = nlohmann::json::parse(*r.fsi.effects);
+  EXPECT_EQ(recorded[0]["name"], "rayleigh_damping");
+  EXPECT_EQ(recorded[0]["mass"], 50.0);
+  for (std::size_t k = 0; k < r.fsi.time.size(); ++k) EXPECT_TRUE(std::isfinite(r.fsi.points(k, node(kN, 2), 1)));
+  in.effects = nlohmann::json::parse(R"([{"name": "ray_stiffening"}])");
+  EXPECT_THROW(run_fin_fsi(in, options()), Error);
 }
 
 TEST(FinFsi, RefusesNoDriveOrTwoDrives) {
