@@ -9,6 +9,8 @@
 //   fin-synth --out-dir results/trout_caudal --periods 1 --views side,back,ventral
 //   fin-synth --out-dir results/c --motion-source fsi --fsi truth/fsi.h5 --fsi-mesh truth/mesh.h5
 //             --materials data/cases/trout_fin_materials.json --root-drive truth/drive.json
+//   fin-synth --out-dir results/f --footage realistic        the fish's body, vignetting, gradient,
+//             saturation, debris and JPEG compression (vision/fish_body, footage_effects, renderer)
 //
 // Writes <out-dir>/truth.h5 (stage::Truth), cameras.yml, frames/<view>/NNNNNN.png, template.json
 // and truth.pvd (ParaView). Same inputs, seed and threads give byte-identical files.
@@ -35,6 +37,8 @@
 #include "mesh/template_options.hpp"
 #include "vision/camera.hpp"
 #include "vision/fin_surface.hpp"
+#include "vision/fish_body.hpp"
+#include "vision/footage_effects.hpp"
 #include "vision/fsi_motion_source.hpp"
 #include "vision/kinematic_model.hpp"
 #include "vision/renderer.hpp"
@@ -100,6 +104,20 @@ void record_root(const vision::PrescribedKinematics& model, double heave_m, cons
   }
 }
 
+// The realistic preset of --footage (docs/studies/realistic_footage.md): every appearance flag the
+// user did not give takes its value here.
+void apply_footage_preset(const CLI::App& app, bool& body, vision::RenderOptions& ren, vision::DebrisOptions& debris,
+                          int& jpeg_quality) {
+  auto unset = [&](const char* flag) { return app.count(flag) == 0; };
+  if (unset("--body")) body = true;
+  if (unset("--vignetting")) ren.vignetting = 0.55;
+  if (unset("--vignetting-power")) ren.vignetting_power = 4;
+  if (unset("--background-gradient")) ren.background_gradient = 0.2;
+  if (unset("--gain")) ren.gain = 1.25;
+  if (unset("--debris")) debris.count = 40;
+  if (unset("--jpeg-quality")) jpeg_quality = 75;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -140,13 +158,45 @@ int main(int argc, char** argv) {
   app.add_option("--periods", periods, "flapping periods to record")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--views", views, "camera views (side, back, ventral)")->delimiter(',')->capture_default_str();
   app.add_option("--cameras", cameras_in, "use this cameras.yml instead of the default rig")->check(CLI::ExistingFile);
+  double half_field = 1.1, field_centre = 0.5;
+  app.add_option("--field-chords", half_field, "default rig: half the field of view around the aim point (chords)")
+      ->capture_default_str();
+  app.add_option("--field-centre", field_centre, "default rig: x of the cameras' aim point (chords; the fin's root at 0)")
+      ->capture_default_str();
   app.add_option("--width", width, "image width (px)")->capture_default_str();
   app.add_option("--height", height, "image height (px)")->capture_default_str();
   app.add_option("--supersample", ren.supersample, "anti-aliasing samples per pixel per axis")->capture_default_str();
   app.add_option("--blur-samples", blur_samples, "motion-blur sub-frames per frame (1: no blur)")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--exposure", exposure, "shutter open time / frame interval (motion blur)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--noise-sigma", ren.noise_sigma, "sensor noise (8-bit levels, 0 = none)")->capture_default_str();
-  app.add_option("--seed", seed, "seed of the sensor noise")->capture_default_str();
+  app.add_option("--seed", seed, "seed of the sensor noise and the debris")->capture_default_str();
+  // Realistic footage (issue 35, item 8): each effect on its own, or all of them with --footage.
+  std::string footage = "clean";
+  bool body = false;
+  vision::FishBodyOptions body_options;
+  vision::DebrisOptions debris;
+  int jpeg_quality = 0;
+  app.add_option("--footage", footage,
+                 "appearance: clean (the backlit tank) or realistic (body, --vignetting 0.55 --vignetting-power 4 "
+                 "--background-gradient 0.2 --gain 1.25 --debris 40 --jpeg-quality 75); the flags below override it")
+      ->check(CLI::IsMember({"clean", "realistic"}))
+      ->capture_default_str();
+  app.add_flag("--body,!--no-body", body, "draw the fish's opaque body and peduncle, moving with the fin's root");
+  app.add_option("--body-length", body_options.length, "body: snout to peduncle (chords)")->capture_default_str();
+  app.add_option("--body-depth", body_options.max_depth, "body: largest dorsal-ventral depth (chords)")->capture_default_str();
+  app.add_option("--body-width", body_options.max_width, "body: largest lateral width (chords)")->capture_default_str();
+  app.add_option("--body-level", body_options.level, "body: grey level when lit (0..1)")->capture_default_str();
+  app.add_option("--background-level", ren.background, "backlight at the image centre (fraction of full scale)")->capture_default_str();
+  app.add_option("--vignetting", ren.vignetting, "fraction the backlight falls to the image corners")->capture_default_str();
+  app.add_option("--vignetting-power", ren.vignetting_power, "falloff exponent of the vignetting in the radius")->capture_default_str();
+  app.add_option("--background-gradient", ren.background_gradient, "fraction the backlight falls from the right to the left edge")
+      ->capture_default_str();
+  app.add_option("--gain", ren.gain, "sensor gain (> 1: the bright background clips at 255)")->capture_default_str();
+  app.add_option("--debris", debris.count, "debris specks per view (a third still, the rest drifting)")->capture_default_str();
+  app.add_option("--debris-radius", debris.max_radius_px, "largest debris speck radius (px)")->capture_default_str();
+  app.add_option("--debris-drift", debris.drift_px_per_s, "fastest debris drift (px/s)")->capture_default_str();
+  app.add_option("--jpeg-quality", jpeg_quality, "JPEG-compress every frame at this quality, as MJPG video does (0: none)")
+      ->capture_default_str();
   app.add_option("--surface-subdivisions", subdivisions, "truth surface columns per gap between rays (even)")->capture_default_str();
   app.add_option("--vtk", vtk, "also write truth.pvd for ParaView")->capture_default_str();
   app.add_option("--motion-source", motion_source, "what moves the truth fin: prescribed kinematics or the fin FSI")
@@ -163,6 +213,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
 
   return cli::run(app, standard, argc, argv, [&] {
+    if (footage == "realistic") apply_footage_preset(app, body, ren, debris, jpeg_quality);
+    if (jpeg_quality < 0 || jpeg_quality > 100) throw Error("--jpeg-quality: expected 1..100 (0: no compression)");
+    for (const char* flag : {"--body-length", "--body-depth", "--body-width", "--body-level"})
+      if (!body && app.count(flag) > 0) throw Error(std::string(flag) + ": only with --body (or --footage realistic)");
+    for (const char* flag : {"--field-chords", "--field-centre"})
+      if (!cameras_in.empty() && app.count(flag) > 0) throw Error(std::string(flag) + ": only for the default rig, not with --cameras");
     const auto fin = mesh::make_template(tmpl);
     kin.chord_m = fin.chord;
     const auto surface = vision::make_fin_surface(fin, subdivisions);
@@ -210,7 +266,7 @@ int main(int argc, char** argv) {
               std::to_string(1 / T) + " Hz, T = " + std::to_string(T) + " s; " + std::to_string(nf) + " frames at " +
               std::to_string(fps) + " fps");
 
-    const auto cameras = cameras_in.empty() ? vision::default_rig(views, fin.chord, width, height) : vision::read_cameras(cameras_in);
+    const auto cameras = cameras_in.empty() ? vision::default_rig(views, fin.chord, width, height, half_field, field_centre) : vision::read_cameras(cameras_in);
     fs::create_directories(out_dir);
     for (const auto& c : cameras) fs::create_directories(out_dir / "frames" / c.name);
 
@@ -236,7 +292,11 @@ int main(int argc, char** argv) {
     }
     truth.effects = effects.dump();
 
-    const vision::Renderer renderer(surface, ren);
+    std::optional<vision::FishBody> fish_body;
+    if (body) fish_body.emplace(surface, body_options);
+    const vision::Renderer renderer(surface, ren, fish_body ? &*fish_body : nullptr);
+    std::vector<vision::Debris> specks;
+    for (std::size_t v = 0; v < cameras.size(); ++v) specks.emplace_back(debris, seed, v, cameras[v].width, cameras[v].height);
     const double dt = 1.0 / fps;
     log::Progress progress("render", nf);
     std::size_t done = 0;
@@ -255,7 +315,10 @@ int main(int argc, char** argv) {
           sub.push_back(source.positions(surface, t + exposure * dt * (j / (blur_samples - 1.0) - 0.5)));
         const double t0 = log::elapsed_seconds();
         for (std::size_t v = 0; v < cameras.size(); ++v) {
-          const auto img = renderer.render_frame(cameras[v], sub, vision::noise_key(seed, v, k));
+          cv::Mat exposure = renderer.render_exposure(cameras[v], sub);
+          specks[v].draw(exposure, t);
+          cv::Mat img = renderer.sensor(exposure, vision::noise_key(seed, v, k));
+          if (jpeg_quality > 0) img = vision::jpeg_round_trip(img, jpeg_quality);
           std::vector<unsigned char> png;
           if (!cv::imencode(".png", img, png)) throw Error("cannot encode PNG");
           char name[32];

@@ -51,12 +51,14 @@ Camera look_at(const std::string& name, int width, int height, double focal_px, 
   return c;
 }
 
-std::vector<Camera> default_rig(const std::vector<std::string>& views, double chord, int width, int height) {
+std::vector<Camera> default_rig(const std::vector<std::string>& views, double chord, int width, int height,
+                                double half_field, double centre_x) {
   if (width < 16 || height < 16) throw Error("--width/--height: images must be at least 16 x 16 pixels");
+  if (!(half_field > 0 && half_field < 6)) throw Error("--field-chords: expected a half field of view in (0, 6) chords");
   const double distance = 12 * chord;
-  const double half_view = 1.1 * chord;  // fin, heave and trailing-edge excursion fit inside
+  const double half_view = half_field * chord;  // 1.1: fin, heave and trailing-edge excursion fit inside
   const double focal = 0.5 * std::min(width, height) * distance / half_view;
-  const cv::Vec3d centre(0.5 * chord, 0, 0);
+  const cv::Vec3d centre(centre_x * chord, 0, 0);
   std::vector<Camera> rig;
   for (const auto& v : views) {
     // Slightly oblique, like cameras around a flow tank, so no view is exactly edge-on.

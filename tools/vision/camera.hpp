@@ -32,8 +32,11 @@ Camera look_at(const std::string& name, int width, int height, double focal_px, 
 
 // The paper's views of a fin of chord c (root at x = 0, span along z): "side" (from -y, flow to
 // the right), "back" (from downstream, +x) and "ventral" (from below, -z). Each sees a square of
-// about 2.2 c around the fin with mild barrel distortion, as a macro lens would give.
-std::vector<Camera> default_rig(const std::vector<std::string>& views, double chord, int width, int height);
+// about 2.2 c around the fin with mild barrel distortion, as a macro lens would give. A wider
+// field (half_field chords either side of the aim point at x = centre_x chords) frames the whole
+// fish, as a 2-D swimming clip does.
+std::vector<Camera> default_rig(const std::vector<std::string>& views, double chord, int width, int height,
+                                double half_field = 1.1, double centre_x = 0.5);
 
 // Validation of the calibration's influence: every principal point shifted by `px` pixels in a
 // direction drawn (uniformly) from `seed`, one draw per camera in order.

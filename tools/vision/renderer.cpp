@@ -49,9 +49,15 @@ std::uint64_t noise_key(std::uint64_t seed, std::uint64_t view, std::uint64_t fr
   return splitmix64(splitmix64(splitmix64(seed) ^ view) ^ frame);
 }
 
-Renderer::Renderer(const FinSurface& surface, const RenderOptions& options) : surface_(surface), o_(options) {
+Renderer::Renderer(const FinSurface& surface, const RenderOptions& options, const FishBody* body)
+    : surface_(surface), o_(options), body_(body) {
   if (o_.supersample < 1 || o_.supersample > 8) throw Error("--supersample: expected 1..8");
   if (!(o_.noise_sigma >= 0)) throw Error("--noise-sigma: expected >= 0");
+  if (!(o_.background > 0 && o_.background <= 1)) throw Error("--background-level: expected a grey level in (0, 1]");
+  if (!(o_.vignetting >= 0 && o_.vignetting < 1)) throw Error("--vignetting: expected a fraction in [0, 1)");
+  if (!(o_.vignetting_power > 0)) throw Error("--vignetting-power: expected > 0");
+  if (!(o_.background_gradient >= 0 && o_.background_gradient < 1)) throw Error("--background-gradient: expected a fraction in [0, 1)");
+  if (!(o_.gain > 0)) throw Error("--gain: expected > 0");
 }
 
 cv::Mat Renderer::render_clean(const Camera& cam, const NdArray<double>& pos) const {
@@ -159,13 +165,24 @@ cv::Mat Renderer::render_clean(const Camera& cam, const NdArray<double>& pos) co
 
   cv::Mat img(H, W, CV_32F);
   const double cx = 0.5 * (W - 1), cy = 0.5 * (H - 1), r2max = cx * cx + cy * cy;
+  // The opaque body hides the background and every fin fragment behind it.
+  const OpaqueLayer body = body_ ? body_->rasterize(cam, pos, S) : OpaqueLayer{};
   for (int y = 0; y < H; ++y) {
     float* row = img.ptr<float>(y);
+    const float* body_depth = body_ ? body.depth.ptr<float>(y) : nullptr;
+    const float* body_level = body_ ? body.level.ptr<float>(y) : nullptr;
     for (int x = 0; x < W; ++x) {
       const double r2 = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) / r2max;
-      double c = o_.background * (1 - o_.vignetting * r2);
+      const double falloff = o_.vignetting_power == 2 ? r2 : std::pow(r2, 0.5 * o_.vignetting_power);
+      double c = o_.background * (1 - o_.vignetting * falloff);
+      if (o_.background_gradient > 0) c *= 1 - o_.background_gradient * (1 - x / (W - 1.0));
       const std::size_t pix = static_cast<std::size_t>(y) * W + x;
-      for (int k = count[pix] - 1; k >= 0; --k) {  // back to front
+      int front = count[pix];
+      if (body_depth && std::isfinite(body_depth[x])) {
+        c = body_level[x];
+        while (front > 0 && frags[pix * kFragments + front - 1].depth > body_depth[x]) --front;
+      }
+      for (int k = front - 1; k >= 0; --k) {  // back to front
         const Fragment& f = frags[pix * kFragments + k];
         c = c * (1 - f.alpha) + f.level * f.alpha;
       }
@@ -179,12 +196,20 @@ cv::Mat Renderer::render_clean(const Camera& cam, const NdArray<double>& pos) co
 }
 
 cv::Mat Renderer::render_frame(const Camera& cam, const std::vector<NdArray<double>>& subframes, std::uint64_t key) const {
+  return sensor(render_exposure(cam, subframes), key);
+}
+
+cv::Mat Renderer::render_exposure(const Camera& cam, const std::vector<NdArray<double>>& subframes) const {
   if (subframes.empty()) throw Error("renderer: no sub-frames to render");
   cv::Mat acc = cv::Mat::zeros(cam.height, cam.width, CV_32F);
   for (const auto& p : subframes) acc += render_clean(cam, p);
   acc /= static_cast<double>(subframes.size());
+  return acc;
+}
+
+cv::Mat Renderer::sensor(const cv::Mat& acc, std::uint64_t key) const {
   cv::Mat levels;
-  acc.convertTo(levels, CV_64F, 255.0);
+  acc.convertTo(levels, CV_64F, 255.0 * o_.gain);
   if (o_.noise_sigma > 0) {
     // Box-Muller on our own uniform draws: std::normal_distribution is not specified bit for bit.
     std::mt19937_64 rng(key);

@@ -21,6 +21,7 @@
 #include "core/nd_array.hpp"
 #include "vision/camera.hpp"
 #include "vision/fin_surface.hpp"
+#include "vision/fish_body.hpp"
 
 namespace finverse::vision {
 
@@ -28,16 +29,20 @@ struct RenderOptions {
   int supersample = 2;           // samples per pixel along each axis (anti-aliasing)
   double background = 0.85;      // backlit tank, fraction of full scale at the image centre
   double vignetting = 0.15;      // background falls by this fraction towards the corners
+  double vignetting_power = 2;   // ... as (r / r_corner)^power (2: gentle; 4 and more: a dark rim)
+  double background_gradient = 0;  // background falls by this fraction from the right to the left edge
   double membrane_alpha = 0.45;  // opacity of the membrane
   double ray_alpha = 0.9;        // opacity of a ray
   double membrane_level = 0.55;  // grey level of lit membrane
   double ray_level = 0.15;       // grey level of lit ray
   double noise_sigma = 2.0;      // sensor noise, standard deviation in 8-bit levels (0: none)
+  double gain = 1.0;             // sensor gain; above 1 the bright background clips at 255
 };
 
 class Renderer {
  public:
-  Renderer(const FinSurface& surface, const RenderOptions& options);
+  // `body` (optional, not owned): the fish's opaque body drawn with the fin (fish_body.hpp).
+  Renderer(const FinSurface& surface, const RenderOptions& options, const FishBody* body = nullptr);
 
   // Noise-free image in [0, 1] (CV_32F) of the surface at `positions` [nv,3].
   cv::Mat render_clean(const Camera& camera, const NdArray<double>& positions) const;
@@ -46,10 +51,15 @@ class Renderer {
   // entry means none) plus sensor noise drawn from a generator seeded with `noise_key`, so a
   // frame is a pure function of its inputs.
   cv::Mat render_frame(const Camera& camera, const std::vector<NdArray<double>>& subframes, std::uint64_t noise_key) const;
+  // render_frame in two steps, so scene effects (footage_effects.hpp) can come between: the
+  // average of the sub-frame images (CV_32F, [0, 1]), then the sensor (gain, noise, 8 bits).
+  cv::Mat render_exposure(const Camera& camera, const std::vector<NdArray<double>>& subframes) const;
+  cv::Mat sensor(const cv::Mat& exposure, std::uint64_t noise_key) const;
 
  private:
   const FinSurface& surface_;
   RenderOptions o_;
+  const FishBody* body_;
 };
 
 // Mixes a seed, a view index and a frame index into the noise key of one frame.

@@ -1,0 +1,58 @@
+// The fish's body and caudal peduncle in front of the fin, for realistic virtual footage (issue 35,
+// item 8): in a lab's clip the caudal fin is attached to an opaque body, and the tracker must cut
+// the fin from it (fin_separation.hpp). The body is a tapered solid of elliptic cross-section on
+// the x axis, from the snout at x = -L to the peduncle at the fin's root (x = 0), deepest (z) and
+// widest (y) at 40 % of its length from the snout, narrowing to the peduncle, whose depth is a
+// little more than the fin's root segment so the fin's root sits inside it. It moves rigidly with
+// the fin's root (the mean of the root vertices), which is what a swimming fish's peduncle does
+// to first order; it is drawn opaque with the fin's lighting (light at the camera).
+#pragma once
+
+#include <limits>
+
+#include <opencv2/core.hpp>
+
+#include "core/nd_array.hpp"
+#include "vision/camera.hpp"
+#include "vision/fin_surface.hpp"
+
+namespace finverse::vision {
+
+struct FishBodyOptions {
+  double length = 4.0;           // snout to peduncle, in chords
+  double max_depth = 1.0;        // dorsal-ventral (z) depth at its deepest, in chords
+  double max_width = 0.45;       // lateral (y) width at its widest, in chords
+  double peduncle_depth = 1.15;  // depth at the peduncle over the fin's root segment
+  double peduncle_width = 0.12;  // width at the peduncle, in chords
+  double level = 0.2;            // grey level of the lit body (the fin's membrane: 0.55)
+  int stations = 48;             // cross-sections from snout to peduncle
+  int sides = 32;                // vertices around a cross-section
+};
+
+// One sample layer of the opaque body in a camera: camera-frame depth (+inf where the body is
+// absent) and the body's grey level, CV_32F, at the renderer's supersampled resolution.
+struct OpaqueLayer {
+  cv::Mat depth, level;
+};
+
+class FishBody {
+ public:
+  // Throws finverse::Error naming the flag when an option is out of range.
+  FishBody(const FinSurface& fin, const FishBodyOptions& options);
+
+  // The body's vertices [nb,3] (m) for the fin at `fin_positions` [nv,3].
+  NdArray<double> place(const NdArray<double>& fin_positions) const;
+  const NdArray<std::int32_t>& triangles() const { return triangles_; }
+
+  // Z-buffered rasterisation at `supersample` samples per pixel and axis (the renderer's grid).
+  OpaqueLayer rasterize(const Camera& camera, const NdArray<double>& fin_positions, int supersample) const;
+
+ private:
+  const FinSurface& fin_;
+  FishBodyOptions o_;
+  NdArray<double> rest_;              // [nb,3] at the fin's rest pose
+  NdArray<std::int32_t> triangles_;   // [nt,3]
+  std::vector<std::size_t> root_;     // the fin's root vertices (s = 0)
+};
+
+}  // namespace finverse::vision
