@@ -220,6 +220,61 @@ std::vector<FileSpec> build() {
     s.datasets.push_back(opt({"probes/displacement", f64, {"ns", "np", "3"}, "m", "displacement of the probe nodes at every step"}));
     specs.push_back(s);
   }
+  // Closing the loop (issue 34, fin-loop): the residual and its decomposition, then the trail of
+  // the effect tracing.
+  {
+    FileSpec s{"finverse/residual", 1, "residual.h5", "fin-loop",
+               "Model prediction minus reconstruction per node and frame on one mesh and time base, with its "
+               "cycle mean, harmonics of the beat frequency, principal spatial modes (POD), where they sit "
+               "and their phase against the root motion.",
+               {
+                   {"time", f64, {"nf"}, "s", "frame times"},
+                   {"residual", f64, {"nf", "nv", "3"}, "m", "prediction - reconstruction"},
+                   {"regions/names", str, {"nreg"}, "", "region names: root, distal, dorsal_edge, ventral_edge, middle"},
+                   {"regions/node_region", i32, {"nv"}, "", "region of each node (index into regions/names)"},
+                   {"root/displacement", f64, {"nf"}, "m", "root region's mean displacement along its principal direction"},
+                   opt({"harmonics/mean", f64, {"nv", "3"}, "m", "cycle mean of the residual (constant term of the harmonic fit)"}),
+                   opt({"harmonics/amplitude", f64, {"nk", "nv"}, "m", "amplitude of harmonic k = 1..nk of the beat frequency per node"}),
+                   opt({"harmonics/phase", f64, {"nk", "nv"}, "rad", "phase of harmonic k (x = A cos(k w t + phase)) on the node's dominant axis"}),
+                   {"modes/energy_fraction", f64, {"nm"}, "1", "share of the weighted residual energy of each POD mode"},
+                   {"modes/shape", f64, {"nm", "nv", "3"}, "1", "spatial shape of each mode (unit area-weighted norm)"},
+                   {"modes/coefficient", f64, {"nf", "nm"}, "m", "time coefficient of each mode"},
+                   {"modes/region_fraction", f64, {"nm", "nreg"}, "1", "share of each mode's energy per region"},
+                   {"modes/rho", f64, {"nm", "3"}, "1", "correlation of the coefficient with the root displacement, velocity, acceleration"},
+                   {"modes/character", str, {"nm"}, "", "stiffness-like, damping-like, inertia-like, or stiffness- or inertia-like"},
+               },
+               {period_attr(),
+                {"prediction_kind", "", "what the prediction is: fsi or fem", false, true},
+                {"flags", "", "JSON list of reasons a part of the analysis cannot be trusted; absent when none", false, true}}};
+    specs.push_back(s);
+  }
+  specs.push_back({"finverse/loop", 1, "loop.h5", "fin-loop",
+                   "Effect tracing: per step the candidates' score statistics, the effect tried, its fitted "
+                   "magnitude with a 95% interval, and the error before and after.",
+                   {
+                       {"candidates", str, {"nc"}, "", "candidate effects (name or name:group)"},
+                       {"steps/tried", str, {"ns"}, "", "candidate refitted at each step; empty when none was significant"},
+                       {"steps/accepted", i32, {"ns"}, "", "1 when BIC improved and the held-out error fell"},
+                       may_be_nan({"steps/score", f64, {"ns", "nc"}, "1", "score (Lagrange-multiplier) statistic of each candidate; NaN once added"}),
+                       may_be_nan({"steps/p_value", f64, {"ns", "nc"}, "1", "chi-square tail of the score; NaN once added"}),
+                       may_be_nan({"steps/projected_fraction", f64, {"ns", "nc"}, "1", "share of the candidate's sensitivity off span(J); NaN once added"}),
+                       {"steps/parameter_names", str, {"ns"}, "", "the tried effect's parameters, comma-separated"},
+                       may_be_nan({"steps/magnitude", f64, {"ns", "2"}, "", "the tried effect's fitted parameters (NaN-padded)"}),
+                       may_be_nan({"steps/lower95", f64, {"ns", "2"}, "", "lower 95% bound of each"}),
+                       may_be_nan({"steps/upper95", f64, {"ns", "2"}, "", "upper 95% bound of each"}),
+                       {"steps/bic_before", f64, {"ns"}, "1", "BIC on the training frames before the step"},
+                       may_be_nan({"steps/bic_after", f64, {"ns"}, "1", "BIC after the refit; NaN when none was tried"}),
+                       {"steps/held_out_before", f64, {"ns"}, "m", "RMS error on the held-out frames before"},
+                       may_be_nan({"steps/held_out_after", f64, {"ns"}, "m", "after; NaN when none was tried"}),
+                       {"steps/trailing_edge_before", f64, {"ns"}, "m", "residual RMS over the trailing edge before"},
+                       may_be_nan({"steps/trailing_edge_after", f64, {"ns"}, "m", "after; NaN when none was tried"}),
+                       {"parameters/names", str, {"np"}, "", "the final model's refitted parameters (base, then effects)"},
+                       {"parameters/values", f64, {"np"}, "", "their values"},
+                       {"held_out_frames", i32, {"nh"}, "", "frames no fit used"},
+                   },
+                   {{"stop_reason", "", "why the tracing stopped", true, true},
+                    {"held_out_kind", "", "last_cycle, or interleaved frames when fewer than two periods", true, true},
+                    {"trailing_edge_excursion", "m", "the reconstruction's trailing-edge excursion", false, false}}});
   (void)i64;
   return specs;
 }
