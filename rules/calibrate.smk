@@ -13,7 +13,7 @@
 _CFIN = config["fin"]
 _CV = "results/validation/footage_calibration"
 _C_VIEWS = "side,back,ventral"
-_C_POSES = 21 if COARSE else 63
+_C_POSES = 28 if COARSE else 63
 _C_SUPERSAMPLE = 2 if COARSE else 4
 
 register_validation(

@@ -70,6 +70,57 @@ long frame_number(const fs::path& p) {
   return value;
 }
 
+// A camera of the rig as seen from the root camera (root -> camera: R, t) and the board's
+// corners it found in one frame.
+struct RigView {
+  const Camera* camera;
+  cv::Matx33d R;
+  cv::Vec3d t;
+  const std::vector<cv::Point2f>* corners;
+};
+
+// Gauss-Newton on the board's pose in the root camera's frame (R_b, t_b: board -> root camera)
+// over the reprojection errors of its corners in every view; returns their RMS (px).
+double refine_board_pose(const std::vector<RigView>& views, const std::vector<cv::Point3f>& object, cv::Matx33d& R_b, cv::Vec3d& t_b) {
+  auto residuals = [&](const cv::Vec3d& rv, const cv::Vec3d& tv) {
+    cv::Matx33d R;
+    cv::Rodrigues(rv, R);
+    std::vector<double> r;
+    for (const auto& v : views) {
+      cv::Vec3d rvec;
+      cv::Rodrigues(v.R * R, rvec);
+      const cv::Vec3d tvec = v.R * tv + v.t;
+      std::vector<cv::Point2f> p;
+      cv::projectPoints(object, rvec, tvec, cv::Mat(v.camera->K), cv::Mat(v.camera->dist), p);
+      for (std::size_t i = 0; i < p.size(); ++i) r.push_back(p[i].x - (*v.corners)[i].x), r.push_back(p[i].y - (*v.corners)[i].y);
+    }
+    return r;
+  };
+  cv::Vec3d rv, tv = t_b;
+  cv::Rodrigues(R_b, rv);
+  auto r = residuals(rv, tv);
+  auto sq = [](const std::vector<double>& x) { double s = 0; for (double e : x) s += e * e; return s; };
+  for (int it = 0; it < 20; ++it) {
+    cv::Mat J(static_cast<int>(r.size()), 6, CV_64F);
+    for (int k = 0; k < 6; ++k) {
+      cv::Vec3d drv = rv, dtv = tv;
+      const double h = k < 3 ? 1e-7 : 1e-7 * std::max(1e-3, cv::norm(tv));
+      (k < 3 ? drv[k] : dtv[k - 3]) += h;
+      const auto rp = residuals(drv, dtv);
+      for (std::size_t i = 0; i < r.size(); ++i) J.at<double>(static_cast<int>(i), k) = (rp[i] - r[i]) / h;
+    }
+    cv::Mat delta;
+    if (!cv::solve(J, -cv::Mat(r), delta, cv::DECOMP_SVD)) break;
+    const cv::Vec3d nrv = rv + cv::Vec3d(delta.ptr<double>()), ntv = tv + cv::Vec3d(delta.ptr<double>() + 3);
+    const auto nr = residuals(nrv, ntv);
+    if (sq(nr) >= sq(r)) break;
+    rv = nrv, tv = ntv, r = nr;
+  }
+  cv::Rodrigues(rv, R_b);
+  t_b = tv;
+  return std::sqrt(sq(r) / std::max<std::size_t>(1, r.size() / 2));
+}
+
 bool is_image(const fs::path& p) {
   std::string e = p.extension().string();
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -266,15 +317,11 @@ RigCalibration calibrate_rig(const std::vector<BoardObservations>& observations,
   std::size_t root = 0;
   while (!seen(root, static_cast<std::size_t>(w))) ++root;
 
-  // Root camera: world -> board (inverse of the given board pose) -> camera (the board's pose).
-  cv::Matx33d R_bw, R_bc;
-  cv::Rodrigues(options.board_rvec, R_bw);
-  cv::Rodrigues(board_rvec[root][w], R_bc);
-  std::vector<cv::Matx33d> R_wc(n);
-  std::vector<cv::Vec3d> t_wc(n);
+  // The cameras are first chained in the root camera's frame (R_wc, t_wc: root -> camera); the
+  // world board then places the whole rig at once (below).
+  std::vector<cv::Matx33d> R_wc(n, cv::Matx33d::eye());
+  std::vector<cv::Vec3d> t_wc(n, cv::Vec3d(0, 0, 0));
   std::vector<bool> placed(n, false);
-  R_wc[root] = R_bc * R_bw.t();
-  t_wc[root] = board_tvec[root][w] - R_wc[root] * options.board_tvec;
   placed[root] = true;
 
   // Grow the tree: each step links the unplaced camera sharing most frames with a placed one.
@@ -350,9 +397,26 @@ RigCalibration calibrate_rig(const std::vector<BoardObservations>& observations,
     log::info(observations[bj].view + " chained to " + observations[bi].view + " over " +
               std::to_string(best) + " shared frames, RMS " + std::to_string(rms) + " px");
   }
+  // World: the world board's pose in the root camera's frame, fitted to its corners in every
+  // camera that found it (one view alone leaves its tilt uncertain, and that error rotates the
+  // whole rig), composed with the given board -> world pose.
+  std::vector<RigView> world_views;
+  for (std::size_t c = 0; c < n; ++c)
+    if (seen(c, static_cast<std::size_t>(w)))
+      world_views.push_back({&rig.cameras[c], R_wc[c], t_wc[c], &observations[c].corners[static_cast<std::size_t>(w)]});
+  cv::Matx33d R_b;
+  cv::Vec3d t_b = board_tvec[root][w];
+  cv::Rodrigues(board_rvec[root][w], R_b);
+  const double world_rms = refine_board_pose(world_views, object, R_b, t_b);
+  log::info("world board (frame " + std::to_string(w) + ") seen by " + std::to_string(world_views.size()) +
+            " camera(s), RMS " + std::to_string(world_rms) + " px");
+  cv::Matx33d R_bw;
+  cv::Rodrigues(options.board_rvec, R_bw);
+  const cv::Matx33d R_root = R_b * R_bw.t();
+  const cv::Vec3d t_root = t_b - R_root * options.board_tvec;
   for (std::size_t c = 0; c < n; ++c) {
-    cv::Rodrigues(R_wc[c], rig.cameras[c].rvec);
-    rig.cameras[c].tvec = t_wc[c];
+    cv::Rodrigues(R_wc[c] * R_root, rig.cameras[c].rvec);
+    rig.cameras[c].tvec = R_wc[c] * t_root + t_wc[c];
   }
   return rig;
 }

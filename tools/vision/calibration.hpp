@@ -3,7 +3,8 @@
 // cornerSubPix), intrinsics per camera (calibrateCamera, Zhang's method), the cameras chained to
 // each other through the frames they share (stereoCalibrate with the intrinsics fixed, along a
 // spanning tree of the camera pairs with most shared frames), and the world frame placed by one
-// frame's board (its pose in the world given by the user: the board laid in the flume's axes).
+// frame's board (its pose in the world given by the user: the board laid in the flume's axes),
+// whose pose is fitted to its corners in every camera that sees it.
 #pragma once
 
 #include <filesystem>

@@ -132,10 +132,11 @@ TEST(CheckerboardCalibration, SimulatedRecordingGivesBackTheRig) {
   EXPECT_LT(result.max_rms_px(), 0.2);
   for (std::size_t c = 0; c < rig.size(); ++c) {
     const auto e = compare_cameras(rig[c], result.cameras[c], rig_focus(rig), 0.005);
-    // Guard, not the goal (0.5 mm, 0.1 deg: missed, measured 0.63 mm / 0.18 deg here):
-    // the world board's pose comes from one telephoto view. A mis-ordered grid gives ~180 deg.
-    EXPECT_LT(e.centre_mm, 1.5) << rig[c].name;
-    EXPECT_LT(e.rotation_deg, 0.5) << rig[c].name;
+    // Guard, not the goal (graded in the footage_calibration validation): 18 poses of two
+    // 400 px cameras measured 0.68 / 0.55 mm, 0.064 / 0.030 deg with the world board fitted in
+    // both views (one view alone gave 0.18 deg). A mis-ordered grid gives ~180 deg.
+    EXPECT_LT(e.centre_mm, 1.0) << rig[c].name;
+    EXPECT_LT(e.rotation_deg, 0.15) << rig[c].name;
   }
 }
 

@@ -73,10 +73,14 @@ std::vector<BoardPose> checkerboard_poses(const std::vector<Camera>& cameras, co
                                           const RecordingOptions& options) {
   const cv::Vec3d focus = rig_focus(cameras);
   const std::size_t n = cameras.size();
-  std::vector<std::vector<std::size_t>> aims;
+  // The first pose, the world board, faces the whole rig: a user lays it where every camera sees
+  // it, and its pose from several views is what fixes the rig's orientation in the world.
+  std::vector<std::vector<std::size_t>> aims(1);
+  for (std::size_t i = 0; i < n; ++i) aims[0].push_back(i);
   for (std::size_t i = 0; i < n; ++i) aims.push_back({i});
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j) aims.push_back({i, j});
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (n > 2) aims.push_back({i, j});
   const double extent = board.square_m * (std::max(board.cols, board.rows) + 1);
   const cv::Vec3d centre_local(0.5 * (board.cols - 1) * board.square_m, 0.5 * (board.rows - 1) * board.square_m, 0);
   std::mt19937_64 rng(options.seed);

@@ -1,6 +1,7 @@
 // A simulated checkerboard recording through a rig of cameras (validation of fin-calibrate, issue
 // 35): board poses spread around the point the cameras look at, tilted towards one camera or a
-// pair of cameras so every camera gets intrinsics-rich frames and every pair shares frames, each
+// pair of cameras so every camera gets intrinsics-rich frames and every pair shares frames (the
+// first pose, the world board, towards the whole rig), each
 // view rendered through the camera model (distortion included) with sub-pixel anti-aliasing
 // (supersample^2 rays per pixel, each intersected with the board plane) and seeded sensor noise.
 // And the scores of a calibrated rig against the true one.
