@@ -37,6 +37,7 @@ include: "rules/bench.smk"
 include: "rules/report.smk"
 include: "rules/trout.smk"
 include: "rules/calibrate.smk"
+include: "rules/footage.smk"
 include: "rules/flap.smk"
 
 
