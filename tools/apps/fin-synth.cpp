@@ -289,6 +289,9 @@ int main(int argc, char** argv) {
       const auto j = nlohmann::json::parse(in);
       for (const char* key : {"distal", "modulation", "rayleigh", "shell_region"})
         if (j.contains(key)) effects[key] = j[key];
+      // The candidate effects the FSI structure ran with (config truth.effects, fin-fsi --effects).
+      if (const auto planted = h5::File::open_read(fsi_file).attr_string(".", "effects"))
+        effects["structural"] = nlohmann::json::parse(*planted);
     }
     truth.effects = effects.dump();
 
