@@ -130,10 +130,36 @@ rule validation_thin_plate_loads:
 # (U = Re nu / c, water), on fin-cfd fin's default grid plus config loads.flags; its cost:
 # docs/studies/cfd_run_cost.md. A checkpoint every 100 steps: after an interruption rerun the
 # command with --restart results/<case>/loads.checkpoint.h5 (the same loads.h5, bit for bit).
+import math
+import re
+
 _CFD_CASE_OUT = f"results/{config['case']}"
 _LOADS_FLAGS = f"--reynolds {config['fin']['reynolds']} --checkpoint-every 100"
 if config["loads"]["flags"]:
     _LOADS_FLAGS += " " + config["loads"]["flags"]
+
+
+def _loads_last_output():
+    """Index of the loads run's last output when the motion is periodic (whole fin.periods), else
+    None. fin-cfd fin counts outputs from the start in steps of T / ceil(T fps) (the largest
+    interval up to a frame that divides T; cfd/io/fin_flow_case.cpp) over its --periods (2 unless
+    loads.flags says), with T = A / (St U), U = Re nu / c (core/flow_scales.hpp, water)."""
+    fin = config["fin"]
+    if not float(fin["periods"]).is_integer():
+        return None
+    speed = fin["reynolds"] * 1.0e-6 / fin["chord_m"]
+    period = fin["strouhal_excursion_over_chord"] * fin["chord_m"] / (fin["strouhal"] * speed)
+    cfd_periods = ([2.0] + [float(p) for p in re.findall(r"--periods[ =](\S+)", _LOADS_FLAGS)])[-1]
+    return round(cfd_periods * math.ceil(period * fin["fps"] - 1e-9))
+
+
+# Fig. 17: one flow snapshot (velocity, pressure, vorticity, lambda_2) at the last output, beside
+# loads.h5 as loads.flow.pvd + loads.flow/*.vtr (ParaView), drawn by the report
+# (tools/scripts/report_figures.py). Only on a periodic record, where the last output is known here.
+_LOADS_LAST = _loads_last_output()
+_LOADS_SNAPSHOT = {"flow": f"{_CFD_CASE_OUT}/loads.flow.pvd"} if _LOADS_LAST else {}
+if _LOADS_LAST:
+    _LOADS_FLAGS += f" --snapshot-every {_LOADS_LAST}"
 
 rule loads:
     input:
@@ -145,6 +171,7 @@ rule loads:
         # The run's check: nodal loads against the integrated force, and issue 30's smoothness
         # goals over the last period (a missed goal is a result, not a failed stage).
         summary=f"{_CFD_CASE_OUT}/loads_summary.json",
+        **_LOADS_SNAPSHOT,
     log:
         f"results/logs/{config['case']}/loads.log",
     benchmark:

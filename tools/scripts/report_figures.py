@@ -7,13 +7,15 @@ score table inline, each score marked met / missed / not available.
     tools/scripts/report_figures.py results/<case>/report
 
 Figures: fig10_pressure_jump.png, fig11_moduli.png, fig12_root_pitch.png,
-fig14_trailing_edge.png, fig15_profiles.png, fig16_forces.png (a figure whose data is absent is
-listed on the page as not available). Exit 2 with one line for a missing or malformed input.
+fig14_trailing_edge.png, fig15_profiles.png, fig16_forces.png, fig17_wake.png (lambda_2 from the
+last frame of ../loads.flow.pvd or ../fsi.flow.pvd beside the stage files, linked on the page); a
+figure whose data is absent is listed on the page as not available. Exit 2 with one line for a missing or malformed input.
 """
 import html
 import json
 import os
 import sys
+import zlib
 
 import matplotlib
 
@@ -174,6 +176,96 @@ def fig16(d, out):
     return "fig16_forces.png"
 
 
+def read_vtr(path):
+    """Coordinates and cell arrays of a VTK XML rectilinear grid as core/vtk_output.cpp writes it:
+    appended raw data, zlib-compressed blocks (VTK's XML format; no VTK module needed)."""
+    import xml.etree.ElementTree as ET
+
+    with open(path, "rb") as f:
+        raw = f.read()
+    start = raw.index(b"<AppendedData")
+    data = raw[raw.index(b"_", start) + 1:]
+    root = ET.fromstring(raw[:start] + b"</VTKFile>")
+    if root.get("compressor") != "vtkZLibDataCompressor" or root.get("type") != "RectilinearGrid":
+        raise ValueError("expected a zlib-compressed VTK RectilinearGrid")
+    head = np.dtype("<u8" if root.get("header_type") == "UInt64" else "<u4")
+    types = {"Float64": "<f8", "Float32": "<f4", "Int32": "<i4", "Int64": "<i8", "UInt8": "u1"}
+
+    def array(e):
+        off = int(e.get("offset"))
+        nblocks = int(np.frombuffer(data, head, 1, off)[0])
+        sizes = np.frombuffer(data, head, 3 + nblocks, off).astype(np.int64)
+        pos = off + head.itemsize * (3 + nblocks)
+        chunks = []
+        for size in sizes[3:]:
+            chunks.append(zlib.decompress(data[pos:pos + size]))
+            pos += size
+        a = np.frombuffer(b"".join(chunks), types[e.get("type")])
+        k = int(e.get("NumberOfComponents", "1"))
+        return a.reshape(-1, k) if k > 1 else a
+
+    piece = root.find("RectilinearGrid/Piece")
+    coords = [array(e) for e in piece.find("Coordinates")]
+    cells = {e.get("Name"): array(e) for e in piece.find("CellData")}
+    return coords, cells
+
+
+def flow_snapshot(out):
+    """The last frame of a flow snapshot series beside the stage files (the loads stage writes
+    loads.flow.pvd, rules/cfd.smk), or None."""
+    import xml.etree.ElementTree as ET
+
+    case_dir = os.path.dirname(os.path.abspath(out))
+    for name in ("fsi.flow.pvd", "loads.flow.pvd"):
+        pvd = os.path.join(case_dir, name)
+        if os.path.exists(pvd):
+            frames = ET.parse(pvd).getroot().findall("Collection/DataSet")
+            if frames:
+                last = max(frames, key=lambda d: float(d.get("timestep")))
+                return pvd, float(last.get("timestep")), os.path.join(case_dir, last.get("file"))
+    return None
+
+
+def fig17(d, out):
+    """lambda_2 < 0 (vortex cores, Jeong & Hussain 1995) in the wake at the snapshot's time: the
+    mid-span plane (x-y) and the minimum over y (x-z, a side projection), in units of (U/c)^2."""
+    snap = flow_snapshot(out)
+    if not snap:
+        return None
+    pvd, t, vtr = snap
+    try:
+        (x, y, z), cells = read_vtr(vtr)
+    except (OSError, ValueError, KeyError, AttributeError, zlib.error) as e:
+        print(f"report_figures.py: {vtr}: {e}; expected the flow snapshot that {os.path.basename(pvd)} names",
+              file=sys.stderr)
+        sys.exit(2)
+    nx, ny, nz = len(x) - 1, len(y) - 1, len(z) - 1
+    lam = cells["lambda2"].reshape(nz, ny, nx)  # VTK cell order: x fastest
+    c = d["chord"]
+    u = cells["velocity"][:, 0]
+    speed = float(np.median(u)) or 1.0  # the free stream fills most of the box
+    lam = lam / (speed / c) ** 2
+    xc, yc, zc = (0.5 * (a[1:] + a[:-1]) / c for a in (x, y, z))
+    k = int(np.argmin(np.abs(zc - 0.5 * (zc[0] + zc[-1]))))  # the box is centred on the swept fin
+    levels = [-100, -30, -10, -3, -1, -0.3, 0]
+    panels = [(lam[k], (xc, yc), ("x / c", "y / c"), f"mid-span plane z = {zc[k]:.2f} c")]
+    if nz > 1:  # a 3-D box: the side projection too
+        panels.append((lam.min(axis=1), (xc, zc), ("x / c", "z / c"), "minimum over y (side projection)"))
+    fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.2), squeeze=False)
+    axes = axes[0]
+    for ax, (field, (h, v), (hl, vl), title) in zip(axes, panels):
+        m = ax.contourf(h, v, np.minimum(field, 0), levels=levels, cmap="Blues_r",
+                        extend="min")
+        ax.set_aspect("equal")
+        ax.set_xlabel(hl)
+        ax.set_ylabel(vl)
+        ax.set_title(title, fontsize=9)
+    fig.colorbar(m, ax=axes, label="λ2 (c/U)$^2$ where < 0")
+    fig.suptitle(f"λ2 at t = {t:.4f} s ({os.path.basename(pvd)}, ParaView)", fontsize=10)
+    save(fig, os.path.join(out, "fig17_wake.png"), tight=False)
+    return "fig17_wake.png"
+
+
 FIGURES = [
     ("Fig. 10: pressure jump at two instants", fig10),
     ("Fig. 11: fitted E, I and EI per ray against the truth (95 % intervals)", fig11),
@@ -181,6 +273,7 @@ FIGURES = [
     ("Fig. 14: trailing-edge points 1-3, lateral displacement", fig14),
     ("Fig. 15: chordwise and spanwise profiles, W-shape measures", fig15),
     ("Fig. 16: C_T and C_L over the record", fig16),
+    ("Fig. 17: the wake, λ2 < 0 at the last output", fig17),
 ]
 COLOURS = {"met": "#c8f0c8", "missed": "#f6c4c4", "not available": "#e4e4e4", "info": "#ffffff"}
 
@@ -189,7 +282,7 @@ def fmt(v):
     return "—" if v is None else f"{v:.4g}"
 
 
-def page(summary, figures):
+def page(summary, figures, out):
     rows = []
     for s in summary["scores"]:
         rows.append(
@@ -203,6 +296,10 @@ def page(summary, figures):
     for title, name in figures:
         if name:
             figs.append(f"<h3>{html.escape(title)}</h3><img src='{name}' style='max-width:100%'>")
+            snap = flow_snapshot(out) if name == "fig17_wake.png" else None
+            if snap:
+                link = html.escape(os.path.relpath(snap[0], os.path.abspath(out)))
+                figs.append(f"<p>ParaView (velocity, pressure, vorticity, λ2): <a href='{link}'>{link}</a></p>")
         else:
             figs.append(f"<h3>{html.escape(title)}</h3><p><i>not available: its input file is absent</i></p>")
     return ("<!DOCTYPE html><html><head><meta charset='utf-8'><title>finverse report: "
@@ -231,7 +328,7 @@ def main():
     figures = [(title, fn(data, out)) for title, fn in FIGURES]
     tmp = os.path.join(out, "index.html.tmp")
     with open(tmp, "w") as f:
-        f.write(page(summary, figures))
+        f.write(page(summary, figures, out))
     os.replace(tmp, os.path.join(out, "index.html"))
     return 0
 
