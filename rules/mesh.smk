@@ -9,6 +9,7 @@
 # (results/<case>/truth/mesh.h5, the case's template) with the known materials (truth.materials)
 # and the root drive truth.root_drive (St and A from fin:), and fin-synth renders that motion and
 # records the materials and drive in truth.h5; prescribed renders the prescribed kinematics.
+# truth.effects (issue 34): candidate effects planted in the truth structure (truth_effects).
 #
 # Default case: one flapping period. f = St U / A with U = Re nu / c = 0.1 m/s (water;
 # core/flow_scales.hpp) and A = 1.0 c, the trailing edge's peak-to-peak excursion
@@ -32,6 +33,15 @@ _TEMPLATE_FLAGS = (
 _TRUTH = config["truth"]
 _TRUTH_OUT = f"{_OUT}/truth"
 _TRUTH_FSI = _TRUTH["source"] == "fsi"
+# Planted candidate effects (issue 34, tools/fem/effects): the truth FSI's structure runs with
+# them and truth.h5 records them (fin-synth reads them back from fsi.h5). The prescribed
+# kinematics has no structure for them to act on, and fin-synth binds the truth surface to the
+# flat rest mesh, so a rest-shape effect cannot be rendered yet: both are refused here, not ignored.
+_TRUTH_EFFECTS = _TRUTH.get("effects", [])
+if _TRUTH_EFFECTS and not _TRUTH_FSI:
+    raise ValueError("config truth.effects: planted effects need truth.source fsi (the prescribed kinematics has no structure)")
+if any(e.get("name") == "cupped_rest_shape" for e in _TRUTH_EFFECTS):
+    raise ValueError("config truth.effects: cupped_rest_shape changes the truth's rest shape, which fin-synth cannot render yet")
 
 
 rule truth_mesh:
@@ -71,12 +81,39 @@ rule truth_drive:
         os.replace(output[0] + ".tmp", output[0])
 
 
+rule truth_effects:
+    """effects.json of the truth FSI, checked by fin-fem (unknown name or range: one line, exit 2)."""
+    input:
+        exe=EXE("fin-fem"),
+    output:
+        f"{_TRUTH_OUT}/effects.json",
+    log:
+        f"results/logs/{_CASE}/truth_effects.log",
+    params:
+        effects=_TRUTH_EFFECTS,
+    run:
+        with open(output[0] + ".tmp", "w") as f:
+            json.dump(params.effects, f, indent=2, sort_keys=True)
+            f.write("\n")
+        shell("{input.exe} effects --check {output}.tmp > /dev/null 2> {log}")
+        os.replace(output[0] + ".tmp", output[0])
+
+
+def _truth_fsi_inputs(wildcards):
+    inputs = {
+        "exe": EXE("fin-fsi"),
+        "mesh": f"{_TRUTH_OUT}/mesh.h5",
+        "drive": f"{_TRUTH_OUT}/drive.json",
+        "materials": os.path.join(REPO, _TRUTH["materials"]),
+    }
+    if _TRUTH_EFFECTS:  # without effects the rule stays as it was (no rerun of a 25-min truth)
+        inputs["effects"] = f"{_TRUTH_OUT}/effects.json"
+    return inputs
+
+
 rule truth_fsi:
     input:
-        exe=EXE("fin-fsi"),
-        mesh=f"{_TRUTH_OUT}/mesh.h5",
-        drive=f"{_TRUTH_OUT}/drive.json",
-        materials=os.path.join(REPO, _TRUTH["materials"]),
+        unpack(_truth_fsi_inputs),
     output:
         fsi=f"{_TRUTH_OUT}/fsi.h5",
         summary=f"{_TRUTH_OUT}/fsi_summary.json",
@@ -88,7 +125,8 @@ rule truth_fsi:
     resources:
         mem_mb=2000,
     params:
-        flags=f"--reynolds {_FIN['reynolds']} {_TRUTH['flags']}",
+        flags=f"--reynolds {_FIN['reynolds']} {_TRUTH['flags']}"
+        + (f" --effects {_TRUTH_OUT}/effects.json" if _TRUTH_EFFECTS else ""),
     shell:
         "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --materials {input.materials}"
         " --root-drive {input.drive} --out {output.fsi} --summary {output.summary} {params.flags} 2> {log}"

@@ -16,6 +16,7 @@
 //   fin-fem run --mesh mesh.h5 --materials materials.json --loads loads.h5 --motion motion.h5
 //       --analysis quasi_static --out response.h5 [--pvd response.pvd] [--effects effects.json]
 // (--loads also takes nodal_loads.h5: a structural load case without flow fields)
+//   fin-fem effects [--check effects.json]   the candidate effects (tools/fem/effects) / check a list
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -25,6 +26,7 @@
 
 #include "core/cli.hpp"
 #include "core/summary.hpp"
+#include "fem/effects/structural_effect.hpp"
 #include "fem/io/file_run.hpp"
 #include "fem/validation/cases.hpp"
 #include "fem/validation/hybrid_plate.hpp"
@@ -172,7 +174,28 @@ int main(int argc, char** argv) {
   rn->add_flag("--unsymmetric-tangent", file_run.run.static_options.unsymmetric_tangent,
                "static/quasi_static: full non-symmetric tangent with UMFPACK LU");
 
+  std::string effects_check;
+  auto* ef = app.add_subcommand("effects", "list the candidate effects (names, parameters, ranges) as JSON, or check a list");
+  ef->add_option("--check", effects_check, "effects JSON list to check (unknown name or value out of range: exit 2)");
+
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
+    if (*ef) {
+      if (!effects_check.empty()) {
+        const auto list = finverse::fem::read_effects(effects_check);
+        std::cout << finverse::fem::effects_to_json(list).dump(2) << "\n";
+        return 0;
+      }
+      nlohmann::json out = nlohmann::json::array();
+      for (const auto& name : finverse::fem::effect_names()) {
+        const auto e = finverse::fem::make_effect({{"name", name}});
+        nlohmann::json j{{"name", name}, {"defaults", e->to_json()}};
+        for (const auto& p : e->parameters())
+          j["parameters"].push_back({{"name", p.name}, {"unit", p.unit}, {"lower", p.lower}, {"upper", p.upper}});
+        out.push_back(j);
+      }
+      std::cout << out.dump(2) << "\n";
+      return 0;
+    }
     const auto start = std::chrono::steady_clock::now();
     const auto backend = finverse::fem::parse_solver_backend(solver);
     if (*rn) {
