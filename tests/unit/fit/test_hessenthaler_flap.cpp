@@ -33,6 +33,9 @@ TEST(HessenthalerFlap, ShellStripWithoutPoissonIsTheBeam) {
   EXPECT_GT(beam.tip, 0.3 * flap.length);  // large deflection: the nonlinear regime
   EXPECT_NEAR(shell.tip / beam.tip, 1.0, 0.01);
   EXPECT_LT(beam.tip_axial, 0.0);
+  ASSERT_EQ(shell.centreline.size(), 17u);
+  EXPECT_NEAR(shell.centreline.back()[1], shell.tip, 1e-12);
+  EXPECT_NEAR(shell.centreline.front()[0], 0.0, 1e-12);
 }
 
 TEST(HessenthalerFlap, FitRecoversTheModulus) {

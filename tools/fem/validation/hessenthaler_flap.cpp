@@ -74,14 +74,21 @@ const char* to_string(FlapModel model) { return model == FlapModel::beam ? "beam
 
 FlapDeflection flap_buoyancy_deflection(const HessenthalerFlap& flap, double E, const FlapMesh& mesh,
                                         int load_steps, SolverBackend backend) {
+  return flap_deflection(flap, E, mesh, flap.buoyancy_per_length(), load_steps, backend);
+}
+
+FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const FlapMesh& mesh, double q,
+                               int load_steps, SolverBackend backend) {
   if (!(E > 0) || !std::isfinite(E)) throw InvalidInput("flap: Young's modulus must be positive and finite");
+  if (!std::isfinite(q)) throw InvalidInput("flap: the load per length must be finite");
   if (mesh.along < 1 || (mesh.model == FlapModel::shell && mesh.across < 1))
     throw InvalidInput("flap: the mesh needs at least one cell along and across");
-  const double L = flap.length, q = flap.buoyancy_per_length();
+  const double L = flap.length;
   // The flap along +x, its width along y, its thickness (and the buoyancy) along +z.
   Model model;
   const Material material{"silicone", E, flap.poisson_ratio, flap.solid_density};
   std::vector<std::pair<int, double>> tip;  // node, weight of the tip centre
+  std::vector<std::vector<std::pair<int, double>>> stations(mesh.along + 1);  // the same per station
   if (mesh.model == FlapModel::beam) {
     const int mat = model.add_material(material);
     for (int i = 0; i <= mesh.along; ++i) model.add_node(Vec3(L * i / mesh.along, 0, 0));
@@ -92,6 +99,7 @@ FlapDeflection flap_buoyancy_deflection(const HessenthalerFlap& flap, double E, 
     for (int i = 1; i <= mesh.along; ++i)
       model.add_nodal_load(i, 2, q * L / mesh.along * (i == mesh.along ? 0.5 : 1.0));
     tip.push_back({mesh.along, 1.0});
+    for (int i = 0; i <= mesh.along; ++i) stations[i].push_back({i, 1.0});
   } else {
     const TriangleMesh tm = rectangle_mesh(L, flap.width, mesh.along, mesh.across);
     const std::vector<int> id = add_shell_mesh(model, tm, material, flap.thickness);
@@ -99,6 +107,7 @@ FlapDeflection flap_buoyancy_deflection(const HessenthalerFlap& flap, double E, 
     for (int j = 0; j <= mesh.across; ++j) {
       const double wj = (j == 0 || j == mesh.across) ? 0.5 : 1.0;
       model.fix_node(id[tm.node(0, j)]);
+      for (int i = 0; i <= mesh.along; ++i) stations[i].push_back({id[tm.node(i, j)], wj / mesh.across});
       for (int i = 1; i <= mesh.along; ++i) {
         const double wi = i == mesh.along ? 0.5 : 1.0;
         model.add_nodal_load(id[tm.node(i, j)], 2, p * cell * wi * wj);
@@ -119,6 +128,11 @@ FlapDeflection flap_buoyancy_deflection(const HessenthalerFlap& flap, double E, 
     const Vec3 u = state.position[node] - reference.position[node];
     d.tip += w * u.z();
     d.tip_axial += w * u.x();
+  }
+  for (const auto& station : stations) {
+    std::array<double, 2> xz{0, 0};
+    for (const auto& [node, w] : station) xz[0] += w * state.position[node].x(), xz[1] += w * state.position[node].z();
+    d.centreline.push_back(xz);
   }
   return d;
 }

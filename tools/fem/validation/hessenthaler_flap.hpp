@@ -10,8 +10,10 @@
 // far from the beam value the strip actually is.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "fem/sparse_solver.hpp"
 
@@ -50,11 +52,19 @@ struct FlapMesh {
 struct FlapDeflection {
   double tip = 0;        // tip centre's displacement along the buoyancy [m]
   double tip_axial = 0;  // its displacement along the flap's axis (shortening < 0) [m]
+  // Deformed centreline from the clamp to the tip, (x, z) per station along the flap [m] (shell:
+  // the width's mean at each row of nodes).
+  std::vector<std::array<double, 2>> centreline;
   int newton_iterations = 0;
 };
 
-// Static deflection under buoyancy for Young's modulus E [Pa] (Poisson ratio flap.poisson_ratio),
-// the load ramped in load_steps Newton steps. Throws NotConverged when Newton fails.
+// Static deflection under a uniform dead load of `load_per_length` [N/m] along +z (the buoyancy's
+// direction) for Young's modulus E [Pa] (Poisson ratio flap.poisson_ratio), ramped in load_steps
+// Newton steps. Throws NotConverged when Newton fails.
+FlapDeflection flap_deflection(const HessenthalerFlap& flap, double youngs_modulus, const FlapMesh& mesh,
+                               double load_per_length, int load_steps = 8,
+                               SolverBackend backend = SolverBackend::cholmod);
+// The same under the flap's net buoyancy alone.
 FlapDeflection flap_buoyancy_deflection(const HessenthalerFlap& flap, double youngs_modulus,
                                         const FlapMesh& mesh, int load_steps = 8,
                                         SolverBackend backend = SolverBackend::cholmod);

@@ -51,6 +51,30 @@ std::string mesh_tag(const fv::FlapMesh& m) {
 
 double shear_modulus(double E, double nu) { return E / (2.0 * (1.0 + nu)); }
 
+// The uniform load per length [N/m] under which the flap's tip sits at `tip` (Illinois regula
+// falsi on [0, upper]; the tip deflection grows monotonically with the load).
+double uniform_load_for_tip(const fv::HessenthalerFlap& flap, double E, const fv::FlapMesh& mesh, double tip,
+                            double upper, int load_steps) {
+  const auto miss = [&](double q) { return fv::flap_deflection(flap, E, mesh, q, load_steps).tip - tip; };
+  double a = 0, fa = -tip, b = upper, fb = miss(upper);
+  if (fb < 0) throw InvalidInput("flap: the Phase I tip lies beyond the buoyancy-only deflection");
+  int side = 0;
+  for (int k = 0; k < 60 && std::abs(b - a) > 1e-9 * upper; ++k) {
+    const double c = (a * fb - b * fa) / (fb - fa), fc = miss(c);
+    if (std::abs(fc) < 1e-9 * tip) return c;
+    if (fc * fb > 0) {
+      b = c, fb = fc;
+      if (side == -1) fa /= 2;
+      side = -1;
+    } else {
+      a = c, fa = fc;
+      if (side == 1) fb /= 2;
+      side = 1;
+    }
+  }
+  return 0.5 * (a + b);
+}
+
 }  // namespace
 
 double fit_flap_modulus(const fv::HessenthalerFlap& flap, const fv::FlapMesh& mesh, double measured,
@@ -154,6 +178,14 @@ Summary run_hessenthaler_flap_fit(const FlapFitOptions& o) {
   s.at_most("phase_I_prediction_missing", 1.0, 0.0,
             "issue 34 validation 2 (ii): fin-fsi prediction of the Phase I tip (measured 16.41 mm) not yet run");
   s.info("phase_I_tip_measured", flap.tip_deflection_phase_I, "m");
+  // Before any flow model: the structure alone (buoyancy, fitted E) against the Phase I tip, and
+  // the load a flow has to add to bring the tip there if that load were uniform along the flap
+  // (negative: towards the flap's rest line). Not a prediction: a scale for (ii) and the loop.
+  const double q_b = flap.buoyancy_per_length();
+  const double q_I = uniform_load_for_tip(flap, E, graded, flap.tip_deflection_phase_I, q_b, o.load_steps);
+  s.info("phase_I_residual_without_flow_loads", at_fit.tip - flap.tip_deflection_phase_I, "m");
+  s.info("phase_I_equivalent_uniform_flow_load", q_I - q_b, "N/m");
+  s.info("phase_I_equivalent_uniform_flow_load_over_buoyancy", (q_I - q_b) / q_b);
 
   s.parameters() = {{"reference", o.reference.string()},
                     {"graded_model", mesh_tag(graded)},
@@ -163,7 +195,8 @@ Summary run_hessenthaler_flap_fit(const FlapFitOptions& o) {
                     {"bounds_Pa", {o.lower, o.upper}},
                     {"coarse", o.coarse},
                     {"model_evaluations", evaluations},
-                    {"mesh_study", study}};
+                    {"mesh_study", study},
+                    {"centreline_no_flow_at_fit_m", at_fit.centreline}};
   return s;
 }
 

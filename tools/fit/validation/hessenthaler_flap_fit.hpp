@@ -11,7 +11,9 @@
 // Also: a mesh study (the fitted E on each mesh), the shear modulus mu = E / 2 (1 + nu) against the
 // neo-Hookean 61 kPa others calibrated, and the model check that the uniaxial test's 96.9 kPa
 // gives ~21.7 mm. Phase I (the flow case, 16.41 mm) is the coupled FSI's part and is reported as
-// missing here until a run supplies it.
+// missing here until a run supplies it; what is given is the structure-alone residual against it,
+// the uniform load a flow would have to add, and the no-flow centreline at the fitted E.
+// Numbers and the list of what Phase I needs: docs/studies/hessenthaler_flap.md.
 #pragma once
 
 #include <filesystem>
