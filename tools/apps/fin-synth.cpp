@@ -197,6 +197,9 @@ int main(int argc, char** argv) {
   app.add_option("--debris-drift", debris.drift_px_per_s, "fastest debris drift (px/s)")->capture_default_str();
   app.add_option("--jpeg-quality", jpeg_quality, "JPEG-compress every frame at this quality, as MJPG video does (0: none)")
       ->capture_default_str();
+  bool video = false;
+  app.add_flag("--video", video,
+               "write frames/<view>.avi (MJPG at --jpeg-quality, 75 when 0) instead of PNG folders, as a lab's camera records");
   app.add_option("--surface-subdivisions", subdivisions, "truth surface columns per gap between rays (even)")->capture_default_str();
   app.add_option("--vtk", vtk, "also write truth.pvd for ParaView")->capture_default_str();
   app.add_option("--motion-source", motion_source, "what moves the truth fin: prescribed kinematics or the fin FSI")
@@ -268,7 +271,12 @@ int main(int argc, char** argv) {
 
     const auto cameras = cameras_in.empty() ? vision::default_rig(views, fin.chord, width, height, half_field, field_centre) : vision::read_cameras(cameras_in);
     fs::create_directories(out_dir);
-    for (const auto& c : cameras) fs::create_directories(out_dir / "frames" / c.name);
+    fs::create_directories(out_dir / "frames");
+    if (!video)
+      for (const auto& c : cameras) fs::create_directories(out_dir / "frames" / c.name);
+    // With --video the frames are kept and written view by view after rendering (a video is sequential).
+    std::vector<std::vector<cv::Mat>> clips(video ? cameras.size() : 0, std::vector<cv::Mat>(nf));
+    const int video_quality = jpeg_quality > 0 ? jpeg_quality : 75;
 
     stage::Truth truth;
     truth.template_points = surface.rest;
@@ -321,6 +329,10 @@ int main(int argc, char** argv) {
           cv::Mat exposure = renderer.render_exposure(cameras[v], sub);
           specks[v].draw(exposure, t);
           cv::Mat img = renderer.sensor(exposure, vision::noise_key(seed, v, k));
+          if (video) {
+            clips[v][k] = img;
+            continue;
+          }
           if (jpeg_quality > 0) img = vision::jpeg_round_trip(img, jpeg_quality);
           std::vector<unsigned char> png;
           if (!cv::imencode(".png", img, png)) throw Error("cannot encode PNG");
@@ -337,6 +349,8 @@ int main(int argc, char** argv) {
       }
     }
     if (!failure.empty()) throw Error(failure);
+    for (std::size_t v = 0; v < clips.size(); ++v)
+      vision::write_mjpg_avi(out_dir / "frames" / (cameras[v].name + ".avi"), clips[v], fps, video_quality);
     progress.finish();
     log::info("render: " + std::to_string(1e3 * render_seconds / (nf * cameras.size())) + " ms per view-frame (" +
               std::to_string(cameras[0].width) + "x" + std::to_string(cameras[0].height) + ", supersample " +

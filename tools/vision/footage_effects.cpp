@@ -8,7 +8,10 @@
 #include <string>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 
 namespace finverse::vision {
@@ -63,6 +66,24 @@ cv::Mat jpeg_round_trip(const cv::Mat& frame, int quality) {
   cv::Mat out = cv::imdecode(buf, cv::IMREAD_UNCHANGED);
   if (out.empty()) throw Error("cannot decode JPEG");
   return out;
+}
+
+void write_mjpg_avi(const std::filesystem::path& avi, const std::vector<cv::Mat>& frames, double fps, int quality) {
+  if (quality < 1 || quality > 100) throw Error("--jpeg-quality: expected 1..100 for the MJPG video");
+  if (frames.empty()) throw Error(avi.string() + ": no frames to write");
+  const auto tmp = temporary_for(avi).replace_extension(".avi");
+  cv::VideoWriter out(tmp.string(), cv::CAP_OPENCV_MJPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), fps, frames[0].size(),
+                      true);
+  if (!out.isOpened()) throw Error(avi.string() + ": cannot write an MJPG AVI here");
+  out.set(cv::VIDEOWRITER_PROP_QUALITY, quality);
+  for (const auto& f : frames) {
+    if (f.size() != frames[0].size() || f.type() != CV_8U) throw Error(avi.string() + ": frames of one size, 8-bit grey, expected");
+    cv::Mat bgr;  // three equal channels: FFmpeg's decoder misreads OpenCV's single-channel MJPEG
+    cv::cvtColor(f, bgr, cv::COLOR_GRAY2BGR);
+    out.write(bgr);
+  }
+  out.release();
+  std::filesystem::rename(tmp, avi);
 }
 
 }  // namespace finverse::vision

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -39,5 +40,10 @@ class Debris {
 
 // The frame after a JPEG round trip at `quality` (1..100), as an MJPG recording stores it.
 cv::Mat jpeg_round_trip(const cv::Mat& frame, int quality);
+
+// `frames` (8-bit grey, one size) as an MJPG AVI at `fps` and JPEG `quality`, written by OpenCV's
+// own MJPEG encoder (no external backend, so the file is the same wherever it runs) into a
+// temporary renamed into place.
+void write_mjpg_avi(const std::filesystem::path& avi, const std::vector<cv::Mat>& frames, double fps, int quality);
 
 }  // namespace finverse::vision

@@ -13,12 +13,14 @@
 #include <unistd.h>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "core/error.hpp"
 #include "vision/fish_body.hpp"
 #include "vision/footage_effects.hpp"
 #include "vision/kinematic_model.hpp"
 #include "vision/renderer.hpp"
+#include "vision/video_clip.hpp"
 
 using namespace finverse;
 using namespace finverse::vision;
@@ -117,6 +119,22 @@ TEST(FootageEffects, DebrisSeededAndJpegMild) {
   EXPECT_GT(cv::norm(grey, j, cv::NORM_INF), 0.0);
   EXPECT_LT(cv::norm(grey, j, cv::NORM_L1) / grey.total(), 12.0);
   EXPECT_THROW(jpeg_round_trip(grey, 0), Error);
+}
+
+TEST(FootageEffects, MjpgAviReadsBackFrameForFrame) {
+  const auto avi = fs::temp_directory_path() / ("footage_" + std::to_string(::getpid()) + ".avi");
+  std::vector<cv::Mat> frames;
+  for (int k = 0; k < 4; ++k) {
+    cv::Mat f(48, 64, CV_8U, cv::Scalar(200));
+    cv::circle(f, {16 + 8 * k, 24}, 6, cv::Scalar(40), -1);
+    frames.push_back(f);
+  }
+  write_mjpg_avi(avi, frames, 250, 90);
+  const VideoClip clip(avi);
+  ASSERT_EQ(clip.frames(), 4);
+  EXPECT_NEAR(clip.fps(), 250, 1e-6);
+  for (int k = 0; k < 4; ++k) EXPECT_LT(cv::norm(clip.grey(k), frames[k], cv::NORM_L1) / frames[k].total(), 3.0) << k;
+  fs::remove(avi);
 }
 
 TEST(FinSynth, RealisticFootageDeterministicAndBadFlagsExit2) {
