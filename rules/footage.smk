@@ -99,8 +99,8 @@ rule validation_footage_2d:
     resources:
         mem_mb=1500,
     shell:
-        "({input.exe} midline --frames {input.frames}/ventral --fps {_F2D_FPS} --out {output.midline} --csv {output.csv}"
-        " --threads {threads}"
+        "({input.exe} --threads {threads} midline --frames {input.frames}/ventral --fps {_F2D_FPS} --out {output.midline}"
+        " --csv {output.csv}"
         " && (/usr/bin/python3 {_FSCORES} midline --midline {output.midline} --truth {input.truth} --cameras {input.cameras}"
         "  --view ventral --name footage_2d --out {output.summary} " + METRIC_MISSED_IS_A_RESULT + ")) 2> {log}"
 
