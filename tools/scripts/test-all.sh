@@ -25,11 +25,13 @@ cmake -S . -B build-asan "${generator[@]}" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_
 # Only what the unit tests need: the sanitized build runs no other test.
 cmake --build build-asan -j "$jobs" --target unit_tests
 echo "== Debug + ASan/UBSan unit tests"
-# Tests that repeat a code path many times over (objective scans, short fits, a noise run) take
-# 30-90 s each under the sanitizers; their code paths run in the quicker tests of the same
-# suites, and they themselves run in the Release stage above.
+# Tests that repeat a code path many times over (objective scans, short fits, a noise run, a whole
+# fin-track run, a 48-pose calibration) take 10-90 s each under the sanitizers; their code paths run
+# in the quicker tests of the same suites, and they themselves run in the Release stage above.
 heavy='DynamicObjective.VanishesAtTheTruth|UniformPlateTwin.ObjectiveVanishes|UniformPlateFit.AShortFit'
 heavy+='|FinLoadNoise.ATranslatingTwoCellPlate|Objectives.EvaluationTimes'
+heavy+='|FinTrackFitQuality.ASingleViewExitsOneWithItsReasonAndAFlaggedRecord'
+heavy+='|CheckerboardCalibration.SimulatedRecordingGivesBackTheRig'
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan -j "$jobs" --output-on-failure --timeout 1800 -L unit -E "$heavy"
 echo "== all tests passed"
