@@ -9,6 +9,8 @@
 //       (--root-drive drive.json | --motion motion.h5) --out fsi.h5 [fin-cfd fin's flow flags]
 //       [--effects effects.json]
 //       [--periods P --output-periods 1] [--summary s.json]
+//   fin-fsi hessenthaler_plane --reference data/reference/hessenthaler2017.json --youngs-modulus E
+//       --out-dir DIR [--name N]   (issue 34: the Phase I flow, plane version only)
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -28,6 +30,7 @@
 #include "fsi/fin_fsi_run.hpp"
 #include "core/summary.hpp"
 #include "core/summary_print.hpp"
+#include "fsi/validation/hessenthaler_plane_fsi.hpp"
 #include "fsi/validation/pitching_plate_fsi.hpp"
 #include "fsi/validation/seed_table1.hpp"
 #include "fsi/validation/turek_hron_fsi.hpp"
@@ -316,6 +319,39 @@ struct FinCommand {
   }
 };
 
+// fin-fsi hessenthaler_plane: the Hessenthaler (2017) Phase I flow as a 2-D section (a label,
+// not the 3-D experiment; hessenthaler_plane_fsi.hpp).
+struct HessenthalerPlaneCommand {
+  fv::HessenthalerPlaneOptions o;
+  std::string out_dir = "results/validation", name = "loop_hessenthaler_phase_I_plane";
+  CLI::App* hp = nullptr;
+
+  void add(CLI::App& app) {
+    hp = app.add_subcommand("hessenthaler_plane", "Hessenthaler 2017 Phase I flow, plane version (issue 34)");
+    hp->add_option("--reference", o.reference, "hessenthaler2017.json")->required();
+    hp->add_option("--youngs-modulus", o.youngs_modulus, "the flap's E [Pa] (fin-fit flap)")->required();
+    hp->add_option("--h", o.h, "cell width around the flap [m]")->capture_default_str();
+    hp->add_option("--t-end", o.t_end, "simulated time [s]")->capture_default_str();
+    hp->add_option("--ramp-time", o.ramp_time, "inflow ramp [s]")->capture_default_str();
+    hp->add_option("--cfl", o.cfl, "CFL number of the time step")->capture_default_str();
+    hp->add_option("--outlet-length", o.outlet_length, "channel length [m]")->capture_default_str();
+    hp->add_option("--flag-nx", o.mesh.nx, "Q9 elements along the flap")->capture_default_str();
+    hp->add_option("--out-dir", out_dir, "directory that receives <name>/summary.json")->capture_default_str();
+    hp->add_option("--name", name, "case name")->capture_default_str();
+  }
+  int run() {
+    o.progress = [](const std::string& line) { std::cerr << "fin-fsi hessenthaler_plane: " << line << "\n"; };
+    finverse::Summary summary = fv::run_hessenthaler_plane_fsi(o);
+    const auto path = std::filesystem::path(out_dir) / name / "summary.json";
+    std::filesystem::create_directories(path.parent_path());
+    summary.write(path);
+    for (const auto& m : summary.metrics())
+      std::cerr << "  " << m.name << " = " << m.value << " " << m.units << "\n";
+    std::cerr << "fin-fsi hessenthaler_plane: wrote " << path.string() << "\n";
+    return summary.pass() ? 0 : 1;
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -328,10 +364,13 @@ int main(int argc, char** argv) {
   pitching_plate.add(app);
   FinCommand fin;
   fin.add(app);
+  HessenthalerPlaneCommand hessenthaler_plane;
+  hessenthaler_plane.add(app);
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     if (turek_hron.th->parsed()) return turek_hron.run();
     if (pitching_plate.pp->parsed()) return pitching_plate.run();
     if (fin.fin->parsed()) return fin.run();
+    if (hessenthaler_plane.hp->parsed()) return hessenthaler_plane.run();
     return 2;
   });
 }

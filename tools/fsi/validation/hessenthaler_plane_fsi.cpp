@@ -1,0 +1,216 @@
+// The plane version of the Hessenthaler (2017) Phase I flow; see hessenthaler_plane_fsi.hpp.
+#include "fsi/validation/hessenthaler_plane_fsi.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cfd/validation/cylinder_channel.hpp"
+#include "cfd/validation/turek_hron_cfd.hpp"
+#include "core/error.hpp"
+#include "fem/coupled_structure.hpp"
+#include "fem/static_solver.hpp"
+#include "fem/validation/hessenthaler_flap.hpp"
+#include "fsi/acceleration_factory.hpp"
+#include "fsi/implicit_coupling.hpp"
+#include "fsi/validation/flag_flow_body.hpp"
+#include "fsi/validation/flow_structure_step.hpp"
+
+namespace finverse::fsi::validation {
+
+namespace {
+
+double number(const nlohmann::json& j, const char* pointer, const std::filesystem::path& path) {
+  const nlohmann::json::json_pointer p(pointer);
+  if (!j.contains(p) || !j[p].is_number()) throw Error(path.string() + ": expected a number at " + pointer);
+  return j[p].get<double>();
+}
+
+}  // namespace
+
+Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  if (!(o.youngs_modulus > 0)) throw Error("hessenthaler_plane: --youngs-modulus must be positive");
+  if (!(o.h > 0) || !(o.t_end > 0) || !(o.cfl > 0)) throw Error("hessenthaler_plane: h, t_end and cfl must be positive");
+  const fem::validation::HessenthalerFlap flap = fem::validation::read_hessenthaler_flap(o.reference);
+  std::ifstream in(o.reference);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const double mm = 1e-3;
+  const double d_in = number(j, "/geometry/inlet_pipes/diameter_mm", o.reference) * mm;
+  const double offset = std::abs(number(j, "/geometry/inlet_pipes/centre_offsets_mm/0", o.reference)) * mm;
+  const double H = number(j, "/geometry/outlet_pipe_diameter_mm", o.reference) * mm;
+  const double u_upper = number(j, "/phase_I_steady_inflow/peak_velocity_m_s/upper", o.reference);
+  const double u_lower = number(j, "/phase_I_steady_inflow/peak_velocity_m_s/lower", o.reference);
+  const double rho = number(j, "/fluid/density", o.reference), mu = number(j, "/fluid/dynamic_viscosity", o.reference);
+  const double yc = 0.5 * H, g0 = 9.81;
+
+  // Structure: the strip behind a small nose, clamped straight where the nose meets its faces.
+  fem::validation::TurekHronFlagSpec spec;
+  spec.radius = 1.2 * mm;
+  // The nose's image points must stay among the cell centres: its upstream side 4 cells off the inlet.
+  spec.xc = std::max(2 * mm, spec.radius + 4 * o.h);
+  spec.yc = yc;
+  spec.thickness = flap.thickness;
+  const double clamp = spec.xc + std::sqrt(spec.radius * spec.radius - 0.25 * spec.thickness * spec.thickness);
+  spec.x_tip = clamp + flap.length;
+  spec.youngs_modulus = o.youngs_modulus;
+  spec.poisson_ratio = flap.poisson_ratio;
+  spec.density = flap.solid_density;
+  spec.gravity = -(flap.fluid_density - flap.solid_density) / flap.solid_density * g0;  // upward net
+  spec.mesh = o.mesh;
+  spec.straight_clamp = true;
+
+  // The plane-strain strip's static buoyancy deflection, no flow.
+  double static_tip = 0;
+  {
+    fem::validation::TurekHronFlagSpec s = spec;
+    s.gravity_as_load = true;
+    const fem::validation::TurekHronFlag f = fem::validation::build_turek_hron_flag(s);
+    fem::StaticOptions so;
+    so.steps = 8;
+    fem::StaticSolver solver(f.model, so);
+    fem::NodalState state = f.model.reference_state();
+    solver.solve(state, 0.0, 1.0);
+    static_tip = state.position[static_cast<std::size_t>(f.point_a)].y() -
+                 f.model.reference_positions()[static_cast<std::size_t>(f.point_a)].y();
+  }
+
+  const fem::validation::TurekHronFlag flag = fem::validation::build_turek_hron_flag(spec);
+  const auto& X0 = flag.model.reference_positions();
+  const int n_wet = static_cast<int>(flag.wet_nodes.size());
+  Eigen::Matrix2Xd wet_reference(2, n_wet);
+  for (int k = 0; k < n_wet; ++k)
+    wet_reference.col(k) = X0[static_cast<std::size_t>(flag.wet_nodes[static_cast<std::size_t>(k)])].head<2>();
+
+  // Flow.
+  cfd::TurekHronGeometry g;
+  g.length = o.outlet_length;
+  g.height = H;
+  g.xc = spec.xc;
+  g.yc = yc;
+  g.radius = spec.radius;
+  g.flag_thickness = spec.thickness;
+  g.flag_length = spec.x_tip - spec.xc - spec.radius;
+  const cfd::StretchedGrid grid = cfd::channel_grid({.length = g.length,
+                                                     .height = H,
+                                                     .box_x0 = 0,
+                                                     .box_x1 = std::min(spec.x_tip + 0.02, 0.8 * g.length),
+                                                     .box_y0 = 0,
+                                                     .box_y1 = H,
+                                                     .h = o.h,
+                                                     .ratio = o.stretch_ratio});
+  const double u_max = std::max(u_upper, u_lower);
+  const double dt = o.cfl * o.h / u_max;
+  cfd::FlowOptions flow_options = cfd::channel_benchmark_options(mu / rho, o.cfl, o.h, u_max);
+  flow_options.dt = dt;
+  cfd::FlowBoundary b;
+  b[cfd::Side::XLo].type = cfd::FlowBcType::Inlet;
+  b[cfd::Side::XLo].profile = cfd::InletProfile::Function;
+  b[cfd::Side::XLo].ramp_time = o.ramp_time;
+  const double lo_c = yc - offset, hi_c = yc + offset, half = 0.5 * d_in;
+  b[cfd::Side::XLo].function = [=](double, double y, double, double) -> std::array<double, 3> {
+    const auto slot = [&](double centre, double peak) {
+      const double s = (y - centre) / half;
+      return std::abs(s) < 1 ? peak * (1 - s * s) : 0.0;
+    };
+    return {slot(hi_c, u_upper) + slot(lo_c, u_lower), 0, 0};
+  };
+  b[cfd::Side::XHi].type = cfd::FlowBcType::ConvectiveOutlet;
+  cfd::FlowSolver flow;
+  flow.setup(grid, b, flow_options);
+  const FlagFlowBody body(g, 256, wet_reference);
+  const Eigen::Matrix2Xd zero = Eigen::Matrix2Xd::Zero(2, n_wet);
+  flow.immerse_deforming(body.state(wet_reference, zero, zero));
+  flow.initialise({});
+
+  fem::CoupledStructureOptions so;
+  so.dynamics.time_step = dt;
+  so.dynamics.spectral_radius = 0.8;
+  so.dim = 2;
+  fem::CoupledStructure structure(flag.model, so, flag.wet_nodes);
+  structure.save();
+  FlowStructureStep step(flow, structure, body, rho, dt);
+  CouplingOptions co;
+  co.convergence.relative_tolerance = o.tolerance;
+  co.convergence.absolute_tolerance = o.absolute_tolerance;
+  co.max_iterations = o.max_iterations;
+  co.divergence_iterations = 0;
+  co.accept_at_cap = true;
+  const InterfaceLayout layout = step.layout();
+  ImplicitCoupling coupling(layout, Eigen::VectorXd::Zero(layout.size()), make_acceleration("iqn-ils", layout, 0.1),
+                            co);
+
+  const auto steps = static_cast<long>(std::ceil(o.t_end / dt - 1e-9));
+  std::vector<double> time, tip;
+  long iterations = 0, at_cap = 0;
+  nlohmann::json history = nlohmann::json::array();
+  for (long n = 1; n <= steps; ++n) {
+    StepStatistics st;
+    try {
+      st = coupling.advance(step, dt);
+    } catch (const std::exception& e) {
+      throw Error("hessenthaler_plane: step " + std::to_string(n) + ": " + e.what());
+    }
+    iterations += st.iterations;
+    at_cap += st.converged ? 0 : 1;
+    const std::size_t a = static_cast<std::size_t>(flag.point_a);
+    const double uy = structure.state().configuration.position[a].y() - X0[a].y();
+    time.push_back(n * dt);
+    tip.push_back(uy);
+    if (n % 50 == 0 || n == steps) {
+      history.push_back({n * dt, uy});
+      if (o.progress) {
+        char line[160];
+        std::snprintf(line, sizeof line, "step %ld/%ld t %.4f s: tip %.3f mm, %d it", n, steps, n * dt, uy * 1e3,
+                      st.iterations);
+        o.progress(line);
+      }
+    }
+  }
+
+  // The last fifth of the run: mean and range of the tip.
+  const double t0 = 0.8 * o.t_end;
+  double sum = 0, lo = 1e300, hi = -1e300;
+  int count = 0;
+  for (std::size_t k = 0; k < time.size(); ++k)
+    if (time[k] >= t0) sum += tip[k], lo = std::min(lo, tip[k]), hi = std::max(hi, tip[k]), ++count;
+  const double mean = sum / std::max(count, 1);
+
+  Summary s("validation", "loop_hessenthaler_phase_I_plane",
+            "PLANE VERSION of the Hessenthaler 2017 Phase I flow (2-D section: the flap spans the depth and "
+            "separates the two jets; not the 3-D experiment): tip deflection against the measured 16.41 mm");
+  s.absolute("phase_I_plane_tip_mean_last_fifth", mean, flap.tip_deflection_phase_I, 1e-3,
+             "Hessenthaler et al. 2017 Phase I measured steady tip (3-D experiment; this is a plane model)", "m");
+  s.info("phase_I_plane_tip_min_last_fifth", lo, "m");
+  s.info("phase_I_plane_tip_max_last_fifth", hi, "m");
+  s.info("phase_I_plane_tip_final", tip.back(), "m");
+  s.info("phase_I_plane_residual", mean - flap.tip_deflection_phase_I, "m");
+  s.info("plane_strain_static_tip_no_flow", static_tip, "m");
+  s.info("coupling_iterations_mean", static_cast<double>(iterations) / static_cast<double>(steps));
+  s.info("steps_at_cap", static_cast<double>(at_cap));
+  s.info("flow_cells", static_cast<double>(grid.cells()));
+  s.info("wall_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(), "s");
+  s.parameters() = {{"reference", o.reference.string()},
+                    {"youngs_modulus_Pa", o.youngs_modulus},
+                    {"poisson_ratio", flap.poisson_ratio},
+                    {"h_m", o.h},
+                    {"dt_s", dt},
+                    {"t_end_s", o.t_end},
+                    {"ramp_time_s", o.ramp_time},
+                    {"cfl", o.cfl},
+                    {"outlet_length_m", o.outlet_length},
+                    {"channel_height_m", H},
+                    {"slots", {{"width_m", d_in}, {"centres_m", {lo_c, hi_c}}, {"peaks_m_s", {u_lower, u_upper}}}},
+                    {"nose_radius_m", spec.radius},
+                    {"clamp_x_m", clamp},
+                    {"flag_mesh", {o.mesh.nx, o.mesh.ny, o.mesh.grading}},
+                    {"buoyancy_body_force_N_m3", (flap.fluid_density - flap.solid_density) * g0},
+                    {"tip_history_t_s_uy_m", history}};
+  return s;
+}
+
+}  // namespace finverse::fsi::validation
