@@ -1,6 +1,7 @@
 // fin-calibrate: cameras.yml for a lab's own rig (issue 35 item 2; DESIGN.md section 3, "Cameras").
 //
 //   fin-calibrate checkerboard --view side=rec/side --view back=rec/back.avi --board-file board.json --out cameras.yml
+//   fin-calibrate checkerboard --charuco 4X4_50 --board 9x6 --square-mm 5 --view ... --out cameras.yml   (ChArUco)
 //   fin-calibrate dlt --coefficients rig_DLTcoefs.csv --views side,back --image-size 1024x1024 --unit mm --out cameras.yml
 //   fin-calibrate anipose --calibration calibration.toml --unit mm --out cameras.yml
 //   fin-calibrate simulate --cameras rig.yml --out-dir rec      (validation: a rendered board recording)
@@ -29,6 +30,7 @@
 #include "vision/anipose_import.hpp"
 #include "vision/calibration.hpp"
 #include "vision/camera.hpp"
+#include "vision/charuco_board.hpp"
 #include "vision/digitised_template.hpp"
 #include "vision/dlt_import.hpp"
 #include "vision/validation/calibration_scores.hpp"
@@ -85,6 +87,10 @@ int main(int argc, char** argv) {
   cb->add_option("--board-file", board_file, "board description JSON (board, square_mm, world_frame, board pose)")->check(CLI::ExistingFile);
   cb->add_option("--board", board_text, "inner corners COLSxROWS (without --board-file)")->capture_default_str();
   cb->add_option("--square-mm", square_mm, "square side in mm (without --board-file)");
+  std::string charuco;
+  double marker_fraction = 0.75;
+  cb->add_option("--charuco", charuco, "a ChArUco board of this ArUco dictionary, e.g. 4X4_50 (without --board-file; --board: its inner corners)");
+  cb->add_option("--marker-fraction", marker_fraction, "ChArUco: marker side / square side")->capture_default_str();
   cb->add_option("--world-frame", world_frame, "frame whose board defines the world (-1: the one most cameras see)")->capture_default_str();
   cb->add_option("--every", every, "use every N-th frame")->capture_default_str();
   cb->add_flag("--fit-k3", fit_k3, "also fit the 6th-order radial coefficient k3 (wide lenses)");
@@ -120,6 +126,8 @@ int main(int argc, char** argv) {
   sim->add_option("--cameras", rig, "cameras.yml of the rig (e.g. fin-synth's)")->required()->check(CLI::ExistingFile);
   sim->add_option("--out-dir", out_dir, "writes <view>/frame_NNNN.png and board.json")->required();
   sim->add_option("--board", board_text, "inner corners COLSxROWS")->capture_default_str();
+  sim->add_option("--charuco", charuco, "render a ChArUco board of this ArUco dictionary (e.g. 4X4_50)");
+  sim->add_option("--marker-fraction", marker_fraction, "ChArUco: marker side / square side")->capture_default_str();
   sim->add_option("--board-fraction", board_fraction, "board width / the narrowest view's width at the rig's focus")->capture_default_str();
   sim->add_option("--poses", rec.poses, "board poses (frames)")->capture_default_str();
   sim->add_option("--supersample", rec.supersample, "anti-aliasing rays per pixel per axis")->capture_default_str();
@@ -185,6 +193,8 @@ int main(int argc, char** argv) {
         opt = read_board_file(board_file);
       } else {
         opt.board = parse_board(board_text, 1e-3 * square_mm, "--board");
+        opt.board.charuco = charuco, opt.board.marker_fraction = marker_fraction;
+        if (!charuco.empty()) check_charuco(opt.board);
       }
       if (cb->count("--world-frame")) opt.world_frame = world_frame;
       opt.fix_k3 = !fit_k3;
@@ -236,6 +246,8 @@ int main(int argc, char** argv) {
       const auto cameras = read_cameras(rig);
       CalibrationOptions opt;
       opt.board = parse_board(board_text, 1.0, "--board");
+      opt.board.charuco = charuco, opt.board.marker_fraction = marker_fraction;
+      if (!charuco.empty()) check_charuco(opt.board);
       opt.board.square_m = board_square_for_rig(cameras, opt.board, board_fraction);
       const auto poses = checkerboard_poses(cameras, opt.board, rec);
       opt.world_frame = 0;  // the first pose is the world board: its pose is the truth's

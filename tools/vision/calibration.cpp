@@ -20,6 +20,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "vision/charuco_board.hpp"
 #include "vision/video_clip.hpp"
 
 namespace finverse::vision {
@@ -76,12 +77,13 @@ struct RigView {
   const Camera* camera;
   cv::Matx33d R;
   cv::Vec3d t;
+  std::vector<cv::Point3f> object;  // the board corners it found
   const std::vector<cv::Point2f>* corners;
 };
 
 // Gauss-Newton on the board's pose in the root camera's frame (R_b, t_b: board -> root camera)
 // over the reprojection errors of its corners in every view; returns their RMS (px).
-double refine_board_pose(const std::vector<RigView>& views, const std::vector<cv::Point3f>& object, cv::Matx33d& R_b, cv::Vec3d& t_b) {
+double refine_board_pose(const std::vector<RigView>& views, cv::Matx33d& R_b, cv::Vec3d& t_b) {
   auto residuals = [&](const cv::Vec3d& rv, const cv::Vec3d& tv) {
     cv::Matx33d R;
     cv::Rodrigues(rv, R);
@@ -91,7 +93,7 @@ double refine_board_pose(const std::vector<RigView>& views, const std::vector<cv
       cv::Rodrigues(v.R * R, rvec);
       const cv::Vec3d tvec = v.R * tv + v.t;
       std::vector<cv::Point2f> p;
-      cv::projectPoints(object, rvec, tvec, cv::Mat(v.camera->K), cv::Mat(v.camera->dist), p);
+      cv::projectPoints(v.object, rvec, tvec, cv::Mat(v.camera->K), cv::Mat(v.camera->dist), p);
       for (std::size_t i = 0; i < p.size(); ++i) r.push_back(p[i].x - (*v.corners)[i].x), r.push_back(p[i].y - (*v.corners)[i].y);
     }
     return r;
@@ -174,20 +176,30 @@ BoardObservations detect_checkerboard(const CameraRecording& rec, const Checkerb
                   std::to_string(img.rows) + ", expected " + std::to_string(obs.image_size.width) + "x" +
                   std::to_string(obs.image_size.height) + " like the first frame");
     std::vector<cv::Point2f> c;
-    const bool ok = cv::findChessboardCorners(
-        img, pattern, c, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_FAST_CHECK);
+    std::vector<int> ids;  // empty: every corner, in order
+    const bool charuco = !board.charuco.empty();
+    bool ok = false;
+    if (charuco) {
+      detect_charuco_corners(img, board, c, ids);
+      ok = !c.empty();
+    } else {
+      ok = cv::findChessboardCorners(img, pattern, c, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_FAST_CHECK);
+    }
     if (ok) {
       // Sub-pixel window: under half the smallest corner spacing, so it never reaches a neighbour.
+      std::map<int, std::size_t> at;
+      for (std::size_t k = 0; k < c.size(); ++k) at[ids.empty() ? static_cast<int>(k) : ids[k]] = k;
       double spacing = 1e9;
-      for (int j = 0; j < board.rows; ++j)
-        for (int i = 0; i + 1 < board.cols; ++i)
-          spacing = std::min<double>(spacing, cv::norm(c[j * board.cols + i + 1] - c[j * board.cols + i]));
-      for (int j = 0; j + 1 < board.rows; ++j)
-        for (int i = 0; i < board.cols; ++i)
-          spacing = std::min<double>(spacing, cv::norm(c[(j + 1) * board.cols + i] - c[j * board.cols + i]));
-      const int half = std::clamp(static_cast<int>(0.4 * spacing), 2, 12);
+      for (const auto& [id, k] : at)
+        for (const int next : {id % board.cols + 1 < board.cols ? id + 1 : -1, id + board.cols})
+          if (const auto it = at.find(next); next >= 0 && it != at.end()) spacing = std::min<double>(spacing, cv::norm(c[it->second] - c[k]));
+      // On a ChArUco board the markers start (1 - marker_fraction) / 2 of a square from a corner.
+      const double reach = charuco ? 0.45 * (1 - board.marker_fraction) : 0.4;
+      const int half = std::clamp(static_cast<int>(reach * spacing), 2, 12);
       cv::cornerSubPix(img, c, cv::Size(half, half), cv::Size(-1, -1),
                        cv::TermCriteria(cv::TermCriteria::EPS | cv::TermCriteria::COUNT, 100, 1e-4));
+    }
+    if (ok && !charuco) {
       // findChessboardCorners may list the grid in any of its symmetries. The board frame is
       // OpenCV's (z into the board, seen from its printed side): x then y turn clockwise in the
       // image, so a mirrored listing has its rows reversed; and the square before corner (0, 0) is
@@ -205,6 +217,7 @@ BoardObservations detect_checkerboard(const CameraRecording& rec, const Checkerb
       if (grey(c[0] - 0.5f * dx - 0.5f * dy) > grey(c[0] + 0.5f * dx - 0.5f * dy)) std::reverse(c.begin(), c.end());
     }
     obs.corners.push_back(ok ? c : std::vector<cv::Point2f>{});
+    obs.ids.push_back(ok ? ids : std::vector<int>{});
   }
   return obs;
 }
@@ -213,6 +226,7 @@ void write_board_file(const fs::path& json, const CalibrationOptions& o) {
   nlohmann::json j;
   j["board"] = std::to_string(o.board.cols) + "x" + std::to_string(o.board.rows);
   j["square_mm"] = 1000 * o.board.square_m;
+  if (!o.board.charuco.empty()) j["charuco"] = o.board.charuco, j["marker_fraction"] = o.board.marker_fraction;
   j["world_frame"] = o.world_frame;
   j["board_rvec"] = {o.board_rvec[0], o.board_rvec[1], o.board_rvec[2]};
   j["board_tvec_mm"] = {1000 * o.board_tvec[0], 1000 * o.board_tvec[1], 1000 * o.board_tvec[2]};
@@ -227,6 +241,13 @@ CalibrationOptions read_board_file(const fs::path& json) {
   try {
     const auto j = nlohmann::json::parse(in);
     o.board = parse_board(j.at("board").get<std::string>(), 1e-3 * j.at("square_mm").get<double>(), where + ": board");
+    o.board.charuco = j.value("charuco", std::string());
+    o.board.marker_fraction = j.value("marker_fraction", 0.75);
+    if (!o.board.charuco.empty()) try {
+        check_charuco(o.board);
+      } catch (const Error& e) {
+        throw Error(where + ": " + e.what());
+      }
     o.world_frame = j.value("world_frame", -1);
     if (j.contains("board_rvec")) {
       const auto r = j.at("board_rvec").get<std::vector<double>>();
@@ -266,6 +287,19 @@ RigCalibration calibrate_rig(const std::vector<BoardObservations>& observations,
   std::vector<std::vector<cv::Vec3d>> board_rvec(n), board_tvec(n);  // per camera, per frame
   std::size_t frames = 0;
   for (const auto& o : observations) frames = std::max(frames, o.corners.size());
+  // Indices of the corners camera c found in frame k (all of them when ids are not given).
+  auto ids_of = [&](std::size_t c, std::size_t k) {
+    const auto& o = observations[c];
+    std::vector<int> ids = k < o.ids.size() ? o.ids[k] : std::vector<int>{};
+    if (ids.empty())
+      for (int i = 0; i < static_cast<int>(o.corners[k].size()); ++i) ids.push_back(i);
+    return ids;
+  };
+  auto object_of = [&](std::size_t c, std::size_t k) {
+    std::vector<cv::Point3f> out;
+    for (int i : ids_of(c, k)) out.push_back(object.at(static_cast<std::size_t>(i)));
+    return out;
+  };
 
   for (std::size_t c = 0; c < n; ++c) {
     const auto& o = observations[c];
@@ -273,7 +307,7 @@ RigCalibration calibrate_rig(const std::vector<BoardObservations>& observations,
     std::vector<std::vector<cv::Point2f>> img;
     std::vector<std::size_t> frame_of;
     for (std::size_t k = 0; k < o.corners.size(); ++k)
-      if (!o.corners[k].empty()) obj.push_back(object), img.push_back(o.corners[k]), frame_of.push_back(k);
+      if (!o.corners[k].empty()) obj.push_back(object_of(c, k)), img.push_back(o.corners[k]), frame_of.push_back(k);
     if (img.size() < 3)
       throw Error(o.source + ": checkerboard " + std::to_string(options.board.cols) + "x" + std::to_string(options.board.rows) +
                   " found in " + std::to_string(img.size()) + " frames, expected at least 3 (view " + o.view + ")");
@@ -370,9 +404,21 @@ RigCalibration calibrate_rig(const std::vector<BoardObservations>& observations,
     std::vector<std::vector<cv::Point2f>> img_i, img_j;
     for (std::size_t a = 0; a < shared_frames.size(); ++a) {
       const std::size_t k = shared_frames[a];
-      if (agree(a, centre))
-        obj.push_back(object), img_i.push_back(observations[bi].corners[k]), img_j.push_back(observations[bj].corners[k]);
-      else
+      if (agree(a, centre)) {
+        // The corners both cameras found (a ChArUco board may be seen in part).
+        const auto ids_i = ids_of(bi, k), ids_j = ids_of(bj, k);
+        std::vector<cv::Point3f> o;
+        std::vector<cv::Point2f> pi, pj;
+        for (std::size_t x = 0, y = 0; x < ids_i.size() && y < ids_j.size();) {
+          if (ids_i[x] < ids_j[y]) ++x;
+          else if (ids_j[y] < ids_i[x]) ++y;
+          else {
+            o.push_back(object[static_cast<std::size_t>(ids_i[x])]);
+            pi.push_back(observations[bi].corners[k][x++]), pj.push_back(observations[bj].corners[k][y++]);
+          }
+        }
+        if (o.size() >= 6) obj.push_back(o), img_i.push_back(pi), img_j.push_back(pj);
+      } else
         log::warn(observations[bj].view + ": frame " + std::to_string(k) + " left out of the link to " + observations[bi].view +
                   ": its board pose disagrees with the other shared frames");
     }
@@ -403,11 +449,12 @@ RigCalibration calibrate_rig(const std::vector<BoardObservations>& observations,
   std::vector<RigView> world_views;
   for (std::size_t c = 0; c < n; ++c)
     if (seen(c, static_cast<std::size_t>(w)))
-      world_views.push_back({&rig.cameras[c], R_wc[c], t_wc[c], &observations[c].corners[static_cast<std::size_t>(w)]});
+      world_views.push_back({&rig.cameras[c], R_wc[c], t_wc[c], object_of(c, static_cast<std::size_t>(w)),
+                             &observations[c].corners[static_cast<std::size_t>(w)]});
   cv::Matx33d R_b;
   cv::Vec3d t_b = board_tvec[root][w];
   cv::Rodrigues(board_rvec[root][w], R_b);
-  const double world_rms = refine_board_pose(world_views, object, R_b, t_b);
+  const double world_rms = refine_board_pose(world_views, R_b, t_b);
   log::info("world board (frame " + std::to_string(w) + ") seen by " + std::to_string(world_views.size()) +
             " camera(s), RMS " + std::to_string(world_rms) + " px");
   cv::Matx33d R_bw;

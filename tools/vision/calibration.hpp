@@ -24,6 +24,8 @@ namespace finverse::vision {
 struct CheckerboardSpec {
   int cols = 9, rows = 6;
   double square_m = 0.0015;
+  std::string charuco;           // ArUco dictionary of a ChArUco board (charuco_board.hpp); empty: plain
+  double marker_fraction = 0.75;  // ChArUco: marker side / square side
   std::vector<cv::Point3f> corners() const;
 };
 
@@ -47,6 +49,9 @@ struct BoardObservations {
   std::string view, source;
   cv::Size image_size;
   std::vector<std::vector<cv::Point2f>> corners;  // per frame
+  // Per frame, the index (CheckerboardSpec::corners()) of each corner found; empty: all of them
+  // in order (a plain checkerboard is found whole; a ChArUco board may be seen in part).
+  std::vector<std::vector<int>> ids;
   int found() const;
 };
 

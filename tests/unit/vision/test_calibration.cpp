@@ -5,11 +5,13 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <opencv2/calib3d.hpp>
 
 #include "core/error.hpp"
 #include "vision/anipose_import.hpp"
 #include "vision/calibration.hpp"
 #include "vision/camera.hpp"
+#include "vision/charuco_board.hpp"
 #include "vision/dlt_import.hpp"
 #include "vision/validation/checkerboard_recording.hpp"
 
@@ -161,4 +163,39 @@ TEST(CheckerboardCalibration, BadRecordingsNameTheirSource) {
     EXPECT_NE(std::string(e.what()).find("rec/side: checkerboard 9x6 found in 0 frames"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parse_board("6x6", 0.001, "--board"), Error);
+}
+
+TEST(CharucoBoard, CornersAreFoundAndNumberedLikeTheBoard) {
+  // One rendered view of a ChArUco board: its corners, identified by the markers, land where the
+  // board's corners of the same index project (a wrong numbering or frame would be squares off).
+  const auto rig = default_rig({"side"}, 0.01, 400, 400);
+  CheckerboardSpec board = parse_board("9x6", 1.0, "--board");
+  board.charuco = "4X4_50";
+  check_charuco(board);
+  board.square_m = board_square_for_rig(rig, board, 0.6);
+  RecordingOptions rec;
+  rec.poses = 1;
+  rec.supersample = 2;
+  const auto pose = checkerboard_poses(rig, board, rec)[0];
+  CameraRecording r;
+  r.view = "side";
+  r.source = "memory/side";
+  r.frames = {render_checkerboard(rig[0], camera_sample_rays(rig[0], rec.supersample), board, pose, rec, 3)};
+  const auto obs = detect_checkerboard(r, board);
+  ASSERT_EQ(obs.found(), 1);
+  const auto& corners = obs.corners[0];
+  const auto& ids = obs.ids[0];
+  ASSERT_GE(2 * ids.size(), static_cast<std::size_t>(board.cols * board.rows));
+  cv::Matx33d R;
+  cv::Rodrigues(pose.rvec, R);
+  const auto object = board.corners();
+  double worst = 0;
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const cv::Point3f& o = object[static_cast<std::size_t>(ids[k])];
+    const auto p = rig[0].project(R * cv::Vec3d(o.x, o.y, o.z) + pose.tvec);
+    worst = std::max(worst, std::hypot(p.x - corners[k].x, p.y - corners[k].y));
+  }
+  EXPECT_LT(worst, 0.5) << ids.size() << " corners";  // measured 0.24 px (25 px squares)
+  board.charuco = "9X9_1";
+  EXPECT_THROW(check_charuco(board), Error);
 }

@@ -10,6 +10,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "core/error.hpp"
+#include "vision/charuco_board.hpp"
 
 namespace finverse::vision {
 
@@ -142,6 +143,10 @@ cv::Mat render_checkerboard(const Camera& cam, const cv::Mat& sample_rays, const
   const double nt = n.dot(t), sq = board.square_m;
   constexpr double kBlack = 40, kWhite = 215, kBackground = 100, kBack = 150;
   cv::Mat img(cam.height, cam.width, CV_8U);
+  // A ChArUco board: its printed image, sampled at the board coordinates (square (i, j) at
+  // pixels (i + 1, j + 1) * pps: the corner numbering of charuco_board.hpp).
+  constexpr int pps = 64;
+  const cv::Mat printed = board.charuco.empty() ? cv::Mat() : charuco_image(board, pps);
   std::mt19937_64 rng(rng_seed);
   std::normal_distribution<double> noise(0.0, options.noise_sigma);
   for (int v = 0; v < cam.height; ++v)
@@ -162,7 +167,13 @@ cv::Mat render_checkerboard(const Camera& cam, const cv::Mat& sample_rays, const
             } else if (back) {
             } else if (bx >= -1 && bx < board.cols && by >= -1 && by < board.rows) {
               const long i = static_cast<long>(std::floor(bx)) + 1, j = static_cast<long>(std::floor(by)) + 1;
-              grey = (i + j) % 2 == 0 ? kBlack : kWhite;
+              if (printed.empty()) {
+                grey = (i + j) % 2 == 0 ? kBlack : kWhite;
+              } else {
+                const int px = std::clamp(static_cast<int>((bx + 1) * pps), 0, printed.cols - 1);
+                const int py = std::clamp(static_cast<int>((by + 1) * pps), 0, printed.rows - 1);
+                grey = printed.at<unsigned char>(py, px) < 128 ? kBlack : kWhite;
+              }
             } else if (bx >= -2 && bx < board.cols + 1 && by >= -2 && by < board.rows + 1) {
               grey = kWhite;
             }
