@@ -3,7 +3,7 @@
 //   fin-loop residual --mesh mesh.h5 --reconstruction motion.h5 --prediction fsi.h5
 //       --out residual.h5 [--summary residual.json] [--period T]
 //   fin-loop trace --mesh mesh.h5 --motion motion.h5 --loads loads.h5 --materials materials.json
-//       --fit materials.h5 --out loop.h5 [--summary loop.json] [--candidates effects.json]
+//       [--fit materials.h5] --out loop.h5 [--summary loop.json] [--candidates effects.json]
 //       [--parameters E_membrane,nu] [--frequency f]
 // Its own executable rather than a mode of fin-fit: it reads a prediction (fsi.h5 or a fin-fem
 // response) that fin-fit never sees, writes its own stage files (residual.h5, loop.h5), and
@@ -46,7 +46,8 @@ int main(int argc, char** argv) {
   tr->add_option("--motion", motion, "motion.h5: the reconstruction; its root nodes drive the model")->required();
   tr->add_option("--loads", loads, "loads.h5: the measured hydrodynamic loads");
   tr->add_option("--materials", materials, "materials JSON of the fit (densities, parameters not fitted)")->required();
-  tr->add_option("--fit", fit, "materials.h5 of fin-fit (best values and bounds)")->required();
+  tr->add_option("--fit", fit, "materials.h5 of fin-fit (best values and bounds); none: the default fin "
+                               "parameters at the --materials values (a twin's start)");
   tr->add_option("--out", out, "loop.h5 (finverse/loop)")->required();
   tr->add_option("--summary", summary, "also write this JSON digest");
   tr->add_option("--candidates", candidates, "JSON array of effect specs (default: every effect, group all)");
@@ -54,7 +55,13 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   tr->add_option("--frequency", frequency, "beat frequency [Hz] (0: 1 / motion.h5 T)")->capture_default_str();
   tr->add_option("--period", period, "period for the held-out cycles [s] (0: motion.h5 T)")->capture_default_str();
-  tr->add_option("--substeps", to.substeps, "time steps per frame interval")->capture_default_str();
+  std::string analysis = "quasi_static", root_motion;
+  tr->add_option("--analysis", analysis, "model runs: quasi_static (fin-fem run's default) or dynamic")
+      ->check(CLI::IsMember({"quasi_static", "dynamic"}))
+      ->capture_default_str();
+  tr->add_option("--root-motion", root_motion, "motion.h5 whose root nodes drive the model (default: --motion)");
+  tr->add_option("--substeps", to.substeps, "dynamic: time steps per frame interval")->capture_default_str();
+  tr->add_option("--spectral-radius", to.spectral_radius, "dynamic: generalized-alpha rho_inf")->capture_default_str();
   tr->add_option("--ramp", to.ramp, "s of ramp from rest before the first frame (0: ten frame intervals)")
       ->capture_default_str();
   tr->add_option("--root-rotation", root_rotation, "root rotations: fit, per_ray or zero")->capture_default_str();
@@ -83,9 +90,11 @@ int main(int argc, char** argv) {
     to.mesh = mesh;
     to.motion = motion;
     to.materials = materials;
-    to.fit = fit;
+    if (!fit.empty()) to.fit = fit;
     to.out = out;
     if (!loads.empty()) to.loads = loads;
+    if (!root_motion.empty()) to.root_motion = root_motion;
+    to.analysis = finverse::fem::parse_analysis(analysis);
     if (!candidates.empty()) to.candidates = candidates;
     if (!summary.empty()) to.summary = summary;
     if (frequency > 0) to.frequency = frequency;

@@ -17,8 +17,8 @@ EffectModelFactory::EffectModelFactory(std::shared_ptr<const fit::FinModelFactor
     : base_(std::move(base)), specs_(std::move(effects)), layout_(std::move(layout)) {
   names_ = base_->parameter_names();
   base_count_ = static_cast<int>(names_.size());
-  std::vector<double> defaults(base_->default_parameters().data(),
-                               base_->default_parameters().data() + base_count_);
+  const Eigen::VectorXd base_defaults = base_->default_parameters();
+  std::vector<double> defaults(base_defaults.data(), base_defaults.data() + base_count_);
   for (const auto& s : specs_)
     for (const auto& q : effect_parameters(s)) {
       names_.push_back(q.name);

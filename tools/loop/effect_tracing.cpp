@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <sstream>
 
 #include "fit/residual_function.hpp"
 #include "fit/uncertainty.hpp"
@@ -92,6 +93,9 @@ HeldOutSplit held_out_split(const std::vector<double>& times, double period) {
 }
 
 TraceResult trace_effects(const TracedModel& model, const TraceOptions& options) {
+  auto say = [&](const std::string& line) {
+    if (options.progress) options.progress(line);
+  };
   const int nf = model.frame_count();
   Split split;
   std::set<int> held(options.held_out_frames.begin(), options.held_out_frames.end());
@@ -129,6 +133,13 @@ TraceResult trace_effects(const TracedModel& model, const TraceOptions& options)
     }
   }
   ModelState current = state_of(model, all, split, out.space.size());
+  {
+    std::ostringstream s;
+    s << (options.refit_base ? "base refitted" : "base Jacobian") << ": training |r|^2 " << current.rss
+      << ", held-out RMS " << current.held_out_rms << " m, trailing edge RMS " << current.trailing_edge_rms << " m ("
+      << out.evaluations << " model runs)";
+    say(s.str());
+  }
 
   std::vector<std::string> remaining = model.candidates();
   while (true) {
@@ -157,6 +168,10 @@ TraceResult trace_effects(const TracedModel& model, const TraceOptions& options)
         s.col(static_cast<Eigen::Index>(j)) = (rc - r) / dirs[j].step;
       }
       step.scores.push_back({c, score_test(r, basis, out.space.size(), s)});
+      std::ostringstream line;
+      line << "step " << out.steps.size() + 1 << ": " << c << " score " << step.scores.back().score.statistic
+           << " (q " << dirs.size() << ", p " << step.scores.back().score.p_value << ")";
+      say(line.str());
     }
     std::stable_sort(step.scores.begin(), step.scores.end(), [](const auto& a, const auto& b) {
       return a.score.statistic > b.score.statistic;
@@ -194,6 +209,13 @@ TraceResult trace_effects(const TracedModel& model, const TraceOptions& options)
     }
     for (const auto& q : more) step.effect_parameter_names.push_back(q.name);
     step.accepted = step.after.bic < step.before.bic && step.after.held_out_rms < step.before.held_out_rms;
+    {
+      std::ostringstream line;
+      line << "step " << out.steps.size() + 1 << ": " << best.name << " refitted: BIC " << step.before.bic << " -> "
+           << step.after.bic << ", held-out RMS " << step.before.held_out_rms << " -> " << step.after.held_out_rms
+           << " m: " << (step.accepted ? "added" : "rejected");
+      say(line.str());
+    }
     out.evaluations += step.evaluations;
     const bool accepted = step.accepted;
     out.steps.push_back(std::move(step));

@@ -8,6 +8,7 @@
 // interval (fit/uncertainty.hpp), the trailing-edge RMS, BIC and held-out error before and after.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,7 @@ struct TraceOptions {
   double alpha = 0.01;               // family-wise level of the score test (Bonferroni over candidates)
   int max_effects = 3;
   fit::LmOptions lm;                 // refits; lm.fd_step also for the base Jacobian
+  std::function<void(const std::string&)> progress;  // one line per stage (base refit, score, refit)
 };
 
 struct CandidateScore {

@@ -109,7 +109,7 @@ Eigen::VectorXd FinTracedModel::full_parameters(const std::vector<std::string>& 
   return full;
 }
 
-std::shared_ptr<const fit::DynamicObjective> FinTracedModel::objective(const std::vector<std::string>& effects) const {
+std::shared_ptr<const ModelPrediction> FinTracedModel::objective(const std::vector<std::string>& effects) const {
   std::string key;
   for (const auto& e : effects) key += e + "|";
   {
@@ -120,7 +120,7 @@ std::shared_ptr<const fit::DynamicObjective> FinTracedModel::objective(const std
   std::vector<nlohmann::json> specs;
   for (const auto& e : effects) specs.push_back(specs_.at(e));
   auto factory = std::make_shared<EffectModelFactory>(setup_.base, specs, setup_.layout);
-  auto obj = std::make_shared<const fit::DynamicObjective>(factory, setup_.target, setup_.dynamic);
+  auto obj = std::make_shared<const ModelPrediction>(factory, setup_.target, setup_.run);
   const std::lock_guard lock(mutex_);
   if (te_rows_.empty() && rows_per_frame_ == 0) {
     const auto& nodes = obj->compared_nodes();

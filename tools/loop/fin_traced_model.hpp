@@ -1,7 +1,7 @@
 // The fin as a traced model (traced_model.hpp; issue 34): the structural FEM of the fitted fin
 // (fit/fin_parameters.hpp: materials.h5's best values, the measured loads, the reconstruction's
-// root motion, as fin-fem run) compared with the reconstruction at every frame by the fit's
-// dynamic objective (eq. (1), fit/dynamic_objective.hpp), with any candidate effect of
+// root motion, as fin-fem run) compared with the reconstruction at every frame
+// (model_prediction.hpp), with any candidate effect of
 // tools/fem/effects switched on (effect_model_factory.hpp). The refitted base parameters are a
 // chosen subset of materials.h5's; the others stay at their best values.
 //
@@ -21,8 +21,9 @@
 #include <nlohmann/json.hpp>
 
 #include "fem/effects/structural_effect.hpp"
-#include "fit/dynamic_objective.hpp"
+#include "fem/structural_run.hpp"
 #include "fit/fin_parameters.hpp"
+#include "loop/model_prediction.hpp"
 #include "loop/traced_model.hpp"
 
 namespace finverse::loop {
@@ -34,7 +35,7 @@ struct FinTraceSetup {
   std::vector<nlohmann::json> candidates;             // make_effect() specs
   fem::FinLayout layout;                              // timing set
   fit::TargetMotion target;                           // the reconstruction's compared frames
-  fit::DynamicObjectiveOptions dynamic;
+  fem::RunOptions run;                                // quasi-static or dynamic, start_time set
   std::vector<int> trailing_edge_nodes;
   double relative_step = 0.01;
 };
@@ -64,7 +65,7 @@ class FinTracedModel : public TracedModel {
   std::vector<fem::RunFrame> run(const std::vector<std::string>& effects, const Eigen::VectorXd& physical) const;
 
  private:
-  std::shared_ptr<const fit::DynamicObjective> objective(const std::vector<std::string>& effects) const;
+  std::shared_ptr<const ModelPrediction> objective(const std::vector<std::string>& effects) const;
   Eigen::VectorXd full_parameters(const std::vector<std::string>& effects, const Eigen::VectorXd& physical) const;
   bool has_phase(const std::string& candidate) const;
 
@@ -74,7 +75,7 @@ class FinTracedModel : public TracedModel {
   std::map<std::string, std::vector<fem::EffectParameter>> params_;
   std::vector<int> refit_index_;  // position of each refit parameter in the base vector
   mutable std::mutex mutex_;
-  mutable std::map<std::string, std::shared_ptr<const fit::DynamicObjective>> objectives_;
+  mutable std::map<std::string, std::shared_ptr<const ModelPrediction>> objectives_;
   // Trailing-edge rows of the residual per frame block and the node weights to unweight them.
   mutable std::vector<std::pair<long, double>> te_rows_;
   mutable long rows_per_frame_ = 0;

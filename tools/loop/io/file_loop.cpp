@@ -100,53 +100,64 @@ ResidualAnalysis run_residual_from_files(const FileResidualOptions& o, const nlo
 
 TraceRecord run_trace_from_files(const FileTraceOptions& o, const nlohmann::json& config) {
   const auto mesh = stage::read<stage::Mesh>(o.mesh);
-  auto motion = stage::read<stage::Motion>(o.motion);
-  const auto fitted = stage::read<stage::Materials>(o.fit);
+  auto motion = stage::read<stage::Motion>(o.root_motion ? *o.root_motion : o.motion);
+  const auto reconstruction = stage::read<stage::Motion>(o.motion);
   std::optional<stage::Loads> loads;
   if (o.loads) loads = stage::read<stage::Loads>(*o.loads);
   check_made_from(o.motion, o.mesh);
-  if (o.loads) check_made_from(*o.loads, o.mesh), check_made_from(*o.loads, o.motion);
-  const auto reconstruction = motion;
+  if (o.loads) check_made_from(*o.loads, o.mesh);
   if (loads && !loads->time.data.empty() &&
       fem::io::needs_periodic_extension(motion, loads->time.data.front(), loads->time.data.back()))
     motion = fem::io::periodic_extension(motion, loads->time.data.front(), loads->time.data.back());
 
-  // The base: materials.h5's parameters at their best values; the refitted subset.
-  const std::size_t np = fitted.names.size();
+  // The base: materials.h5's parameters at their best values (without --fit: the fit's default
+  // fin parameters at the materials file's values, a twin's start); the refitted subset.
+  std::vector<fit::Parameter> all;
+  std::vector<double> best_values;
+  std::string fit_source = "default fin parameters";
+  if (o.fit) {
+    const auto fitted = stage::read<stage::Materials>(*o.fit);
+    fit_source = o.fit->string();
+    for (std::size_t i = 0; i < fitted.names.size(); ++i) {
+      fit::Parameter p;
+      p.name = fitted.names[i];
+      p.unit = fitted.units[i];
+      p.lower = fitted.lower.data[i];
+      p.upper = fitted.upper.data[i];
+      p.scale = fit::parse_scale(fitted.scale[i], fit_source);
+      all.push_back(p);
+      best_values.push_back(fitted.best.data[i]);
+    }
+  } else {
+    all = fit::default_fin_parameters(mesh);
+  }
+  std::vector<std::string> all_names;
+  for (const auto& p : all) all_names.push_back(p.name);
   std::vector<fit::Parameter> refit;
-  Eigen::VectorXd best(static_cast<Eigen::Index>(np));
-  for (std::size_t i = 0; i < np; ++i) best(static_cast<Eigen::Index>(i)) = fitted.best.data[i];
-  const auto wanted = o.parameters.empty() ? fitted.names : o.parameters;
-  for (const auto& name : wanted) {
-    const auto it = std::find(fitted.names.begin(), fitted.names.end(), name);
-    if (it == fitted.names.end())
-      throw Error("--parameters: '" + name + "' is not in " + o.fit.string() + " /parameters/names");
-    const auto i = static_cast<std::size_t>(it - fitted.names.begin());
-    fit::Parameter p;
-    p.name = name;
-    p.unit = fitted.units[i];
-    p.lower = fitted.lower.data[i];
-    p.upper = fitted.upper.data[i];
-    p.scale = fit::parse_scale(fitted.scale[i], o.fit.string());
-    refit.push_back(p);
+  for (const auto& name : o.parameters.empty() ? all_names : o.parameters) {
+    const auto it = std::find(all_names.begin(), all_names.end(), name);
+    if (it == all_names.end()) throw Error("--parameters: '" + name + "' is not a parameter of " + fit_source);
+    refit.push_back(all[static_cast<std::size_t>(it - all_names.begin())]);
   }
 
   fit::FinDrive drive;
   drive.loads = loads;
   if (o.loads) drive.loads_source = o.loads->string();
   drive.root_motion = motion;
-  drive.motion_source = o.motion.string();
+  drive.motion_source = (o.root_motion ? *o.root_motion : o.motion).string();
   drive.ramp = o.ramp;
   drive.root_rotation = o.root_rotation;
   const auto base_spec = fem::io::read_material_spec(o.materials);
-  auto base = std::make_shared<fit::FinModelFactory>(mesh, base_spec, fitted.names, drive, o.mesh.string());
+  auto base = std::make_shared<fit::FinModelFactory>(mesh, base_spec, all_names, drive, o.mesh.string());
+  Eigen::VectorXd best = base->default_parameters();
+  for (std::size_t i = 0; i < best_values.size(); ++i) best(static_cast<Eigen::Index>(i)) = best_values[i];
 
   FinTraceSetup setup;
   setup.base = base;
   setup.best = best;
-  setup.refit = fit::ParameterSpace(refit, o.fit.string());
+  setup.refit = fit::ParameterSpace(refit, fit_source);
   setup.layout = fem::io::make_fin_layout(mesh, o.mesh.string());
-  const std::optional<double> period = o.period ? o.period : motion.period;
+  const std::optional<double> period = o.period ? o.period : reconstruction.period;
   setup.layout.beat_frequency = o.frequency ? *o.frequency : period ? 1.0 / *period : 0.0;
   setup.layout.start_time = base->start_time();
   setup.layout.ramp = base->ramp();
@@ -168,8 +179,12 @@ TraceRecord run_trace_from_files(const FileTraceOptions& o, const nlohmann::json
   for (const auto& s : setup.candidates) fem::make_effect(s);  // bad specs: before any run
   setup.target = fit::target_from_motion(reconstruction, static_cast<int>(mesh.points.dim(0)), o.motion.string(),
                                          o.mesh.string());
-  setup.dynamic.substeps = o.substeps;
-  setup.dynamic.start_time = base->start_time();
+  setup.run.analysis = o.analysis;
+  setup.run.substeps = o.substeps;
+  setup.run.start_time = base->start_time();
+  setup.run.dynamic_options.spectral_radius = o.spectral_radius;
+  setup.run.dynamic_options.rayleigh_mass = base->damping().mass;
+  setup.run.dynamic_options.rayleigh_stiffness = base->damping().stiffness;
   setup.trailing_edge_nodes = ray_tip_nodes(mesh);
   setup.relative_step = o.relative_step;
   const FinTracedModel model(setup);
@@ -188,6 +203,7 @@ TraceRecord run_trace_from_files(const FileTraceOptions& o, const nlohmann::json
   to.alpha = o.alpha;
   to.max_effects = o.max_effects;
   to.lm = o.lm;
+  to.progress = [](const std::string& line) { log::info("fin-loop trace: " + line); };
   std::ostringstream what;
   what << "fin-loop trace: " << rec.candidates.size() << " candidates, " << setup.refit.size()
        << " refitted parameters, " << setup.target.frame_count() << " frames (" << rec.split.held_out.size()
@@ -195,7 +211,9 @@ TraceRecord run_trace_from_files(const FileTraceOptions& o, const nlohmann::json
   log::info(what.str());
   rec.result = trace_effects(model, to);
 
-  Provenance provenance{"fin-loop", config, {o.mesh, o.motion, o.materials, o.fit}};
+  Provenance provenance{"fin-loop", config, {o.mesh, o.motion, o.materials}};
+  if (o.fit) provenance.inputs.push_back(*o.fit);
+  if (o.root_motion) provenance.inputs.push_back(*o.root_motion);
   if (o.loads) provenance.inputs.push_back(*o.loads);
   if (o.candidates) provenance.inputs.push_back(*o.candidates);
   write_loop(o.out, rec, provenance);

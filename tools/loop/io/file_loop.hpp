@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fem/root_motion.hpp"
+#include "fem/structural_run.hpp"
 #include "fit/levenberg_marquardt.hpp"
 #include "loop/io/loop_files.hpp"
 
@@ -32,12 +33,19 @@ Eigen::VectorXd mesh_node_weights(const stage::Mesh& mesh);
 ResidualAnalysis run_residual_from_files(const FileResidualOptions& options, const nlohmann::json& config);
 
 struct FileTraceOptions {
-  std::filesystem::path mesh, motion, materials, fit, out;
+  std::filesystem::path mesh, motion, materials, out;
+  // materials.h5 of fin-fit; none: the default fin parameters at the materials file's values.
+  std::optional<std::filesystem::path> fit;
   std::optional<std::filesystem::path> loads, candidates, summary;
+  // The root drive's motion (default: --motion): a twin's target carries its own deformed rays,
+  // whose tangents would otherwise turn the drive's fitted root rotation.
+  std::optional<std::filesystem::path> root_motion;
   std::vector<std::string> parameters;  // refitted subset of the fit's; empty: all
   std::optional<double> frequency;      // beat frequency for periodic effects; else 1 / motion.h5 T
   std::optional<double> period;         // for the held-out split; else motion.h5 T, else 1 / frequency
-  int substeps = 4;
+  fem::Analysis analysis = fem::Analysis::quasi_static;  // of the model runs (fin-fem run's default)
+  int substeps = 4;                                       // dynamic
+  double spectral_radius = 0.8;                           // dynamic
   double ramp = 0;
   fem::RootRotation root_rotation = fem::RootRotation::fit;
   int max_effects = 3;
