@@ -15,6 +15,8 @@
 // node positions over time in the finverse/motion schema plus a ParaView series; exit 0 or 2.
 //   fin-fem run --mesh mesh.h5 --materials materials.json --loads loads.h5 --motion motion.h5
 //       --analysis quasi_static --out response.h5 [--pvd response.pvd] [--effects effects.json]
+//   fin-fem run --mesh mesh.h5 --materials M.json --root-drive drive.json --analysis dynamic
+//       --periods 1 --frames-per-period 40 --out response.h5     (in vacuo, the analytic drive)
 // (--loads also takes nodal_loads.h5: a structural load case without flow fields)
 //   fin-fem effects [--check effects.json]   the candidate effects (tools/fem/effects) / check a list
 #include <chrono>
@@ -148,7 +150,7 @@ int main(int argc, char** argv) {
 
   namespace fio = finverse::fem::io;
   fio::FileRunOptions file_run;
-  std::string mesh_path, materials_path, loads_path, motion_path, out_path, pvd_path, effects_path;
+  std::string mesh_path, materials_path, loads_path, motion_path, out_path, pvd_path, effects_path, drive_path;
   std::string analysis = "quasi_static", root_rotation = "fit";
   std::vector<double> gravity{0, 0, 0};
   auto* rn = app.add_subcommand("run", "structural run from stage files (mesh, materials, loads, motion)");
@@ -158,6 +160,10 @@ int main(int argc, char** argv) {
   rn->add_option("--motion", motion_path, "motion.h5 (finverse/motion): root-node motion over time");
   rn->add_option("--out", out_path, "response file, finverse/motion schema")->required();
   rn->add_option("--pvd", pvd_path, "ParaView series of the shell surface (default: none)");
+  rn->add_option("--root-drive", drive_path, "analytic root drive JSON (fem/io/root_drive_file.hpp, frequency_hz) instead of --motion");
+  rn->add_option("--periods", file_run.periods, "--root-drive without loads: periods after the drive's ramp")->capture_default_str();
+  rn->add_option("--frames-per-period", file_run.frames_per_period, "--root-drive without loads: output frames per period")
+      ->capture_default_str();
   rn->add_option("--effects", effects_path, "candidate effects to add to the model: JSON list (tools/fem/effects)");
   rn->add_option("--analysis", analysis, "static, quasi_static (paper eq. 2) or dynamic")->capture_default_str();
   rn->add_option("--root-rotation", root_rotation, "root rotations: fit (root nodes + the rays' tangents at the root) or zero")
@@ -206,6 +212,7 @@ int main(int argc, char** argv) {
       if (!motion_path.empty()) file_run.motion = motion_path;
       if (!pvd_path.empty()) file_run.pvd = pvd_path;
       if (!effects_path.empty()) file_run.effects = effects_path;
+      if (!drive_path.empty()) file_run.root_drive = drive_path;
       file_run.run.analysis = finverse::fem::parse_analysis(analysis);
       file_run.root_rotation = finverse::fem::parse_root_rotation(root_rotation);
       file_run.gravity = {gravity[0], gravity[1], gravity[2]};

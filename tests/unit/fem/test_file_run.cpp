@@ -275,3 +275,29 @@ TEST_F(FileRun, EffectsChangeTheResponseAndAreRecorded) {
   fs::remove(o_.out);
   expect_failure<InvalidInput>("effects.json: effect distal_softening: rate = 9, expected -2 .. 5");
 }
+
+TEST_F(FileRun, AnalyticRootDriveMovesTheRootWithoutMotionFile) {
+  mesh_.chord = chord;
+  stage::write(dir_ / "mesh.h5", mesh_, Provenance{"test", {}, {}});
+  write_text("drive.json", R"({"heave_over_chord": 0.05, "pitch_center_deg": 2, "pitch_edge_deg": 4,
+                               "frequency_hz": 10, "ramp_periods": 0.5})");
+  o_.loads.reset();
+  o_.root_drive = dir_ / "drive.json";
+  o_.periods = 0.5;
+  o_.frames_per_period = 4;
+  o_.run.analysis = Analysis::quasi_static;
+  EXPECT_EQ(io::run_from_files(o_, {}).frames, 3);
+  const auto r = stage::read<stage::Motion>(o_.out);
+  ASSERT_TRUE(r.period.has_value());
+  EXPECT_NEAR(*r.period, 0.1, 1e-15);
+  // Frames from the first whole period after the ramp: t = 0.1, 0.125, 0.15; the root heaves
+  // y = h0 sin(2 pi f t) (no pitch displacement at a node turning about itself).
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double t = 0.1 + 0.025 * static_cast<double>(k);
+    EXPECT_NEAR(r.time(k), t, 1e-12);
+    EXPECT_NEAR(r.points(k, node(0, 1), 1), 0.05 * chord * std::sin(2 * std::numbers::pi * 10 * t), 1e-12);
+  }
+  fs::rename(o_.out, dir_ / "motion_copy.h5");  // a motion as well as the drive: refused
+  o_.motion = dir_ / "motion_copy.h5";
+  expect_failure<InvalidInput>("give --motion or --root-drive, not both");
+}

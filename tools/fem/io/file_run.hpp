@@ -5,6 +5,7 @@
 // the two is required; with both, the load times must lie within the motion's, or the motion be
 // periodic (motion.h5 T): it is then repeated to cover them, periodic_motion.hpp). Effects
 // (fin_layout.hpp): rest shapes before the model is built, the others after loads and motion.
+// Instead of motion.h5, an analytic root drive (drive.json) may move the root.
 #pragma once
 
 #include <array>
@@ -25,6 +26,13 @@ struct FileRunOptions {
   // Candidate effects (fem/effects, a JSON list): applied to the model, recorded in the output's
   // "effects" attribute. Periodic effects take the loads' or motion's period as the beat.
   std::optional<std::filesystem::path> effects;
+  // The analytic root drive (root_drive_file.hpp; frequency_hz required) instead of motion.h5: the
+  // fin starts at rest at t = 0 and the drive's own smooth start; without loads the output times
+  // are `periods` periods after the drive's ramp (rounded up to whole periods), frames_per_period
+  // per period. A structural run in vacuo, or under periodic loads.
+  std::optional<std::filesystem::path> root_drive;
+  double periods = 1;
+  int frames_per_period = 40;
   RunOptions run;
   RootRotation root_rotation = RootRotation::fit;
   double ramp = 0;  // s before the first output time; 0: ten output intervals
