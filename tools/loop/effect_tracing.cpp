@@ -160,14 +160,22 @@ TraceResult trace_effects(const TracedModel& model, const TraceOptions& options)
       Eigen::MatrixXd s(r.size(), static_cast<Eigen::Index>(dirs.size()));
       auto with = effects;
       with.push_back(c);
-      for (std::size_t j = 0; j < dirs.size(); ++j) {
-        Eigen::VectorXd p(out.parameters.size() + dirs[j].parameters.size());
-        p << out.parameters, dirs[j].parameters;
-        const Eigen::VectorXd rc = pick_frames(model.residuals(with, p), split.training, split.rows_per_frame);
-        ++step.evaluations;
-        s.col(static_cast<Eigen::Index>(j)) = (rc - r) / dirs[j].step;
+      std::string failure;
+      try {
+        for (std::size_t j = 0; j < dirs.size(); ++j) {
+          Eigen::VectorXd p(out.parameters.size() + dirs[j].parameters.size());
+          p << out.parameters, dirs[j].parameters;
+          ++step.evaluations;
+          const Eigen::VectorXd rc = pick_frames(model.residuals(with, p), split.training, split.rows_per_frame);
+          s.col(static_cast<Eigen::Index>(j)) = (rc - r) / dirs[j].step;
+        }
+      } catch (const std::exception& e) {
+        // A model that fails with the candidate on is reported, and the candidate not ranked.
+        failure = e.what();
+        s.setZero();
       }
-      step.scores.push_back({c, score_test(r, basis, out.space.size(), s)});
+      step.scores.push_back({c, score_test(r, basis, out.space.size(), s), failure});
+      if (!failure.empty()) say("step " + std::to_string(out.steps.size() + 1) + ": " + c + " failed: " + failure);
       std::ostringstream line;
       line << "step " << out.steps.size() + 1 << ": " << c << " score " << step.scores.back().score.statistic
            << " (q " << dirs.size() << ", p " << step.scores.back().score.p_value << ")";

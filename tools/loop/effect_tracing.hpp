@@ -42,6 +42,7 @@ struct TraceOptions {
 struct CandidateScore {
   std::string name;
   ScoreResult score;
+  std::string failure;  // the model run that failed for this candidate (score then 0); empty: none
 };
 
 struct ModelState {

@@ -69,6 +69,10 @@ nlohmann::json residual_summary_json(const ResidualAnalysis& a) {
     h["period_s"] = a.harmonics->period;
     h["whole_period"] = a.harmonics->whole_period;
     h["condition"] = a.harmonics->condition;
+    // Amplitudes from a fit over part of a period or an ill-conditioned one are not to be read.
+    bool trusted = a.harmonics->whole_period;
+    for (const auto& f : a.flags) trusted &= f.find("ill-conditioned") == std::string::npos;
+    h["trusted"] = trusted;
     Eigen::VectorXd mean_norm(a.field.node_count());
     for (int i = 0; i < a.field.node_count(); ++i) mean_norm(i) = a.harmonics->mean.segment<3>(3 * i).norm();
     h["cycle_mean_max_m"] = mean_norm.maxCoeff();

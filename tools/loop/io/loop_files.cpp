@@ -264,7 +264,8 @@ nlohmann::json trace_summary_json(const TraceRecord& rec) {
                          {"score", c.score.statistic},
                          {"dof", c.score.degrees_of_freedom},
                          {"p_value", c.score.p_value},
-                         {"projected_fraction", c.score.projected_fraction}});
+                         {"projected_fraction", c.score.projected_fraction},
+                         {"failure", c.failure}});
     sj["ranking"] = ranking;
     sj["tried"] = st.tried;
     sj["accepted"] = st.accepted;
