@@ -186,6 +186,8 @@ int main(int argc, char** argv) {
   app.add_option("--body-depth", body_options.max_depth, "body: largest dorsal-ventral depth (chords)")->capture_default_str();
   app.add_option("--body-width", body_options.max_width, "body: largest lateral width (chords)")->capture_default_str();
   app.add_option("--body-level", body_options.level, "body: grey level when lit (0..1)")->capture_default_str();
+  app.add_option("--body-head-motion", body_options.head_motion, "body: the snout's lateral excursion over the peduncle's (0..1)")
+      ->capture_default_str();
   app.add_option("--background-level", ren.background, "backlight at the image centre (fraction of full scale)")->capture_default_str();
   app.add_option("--vignetting", ren.vignetting, "fraction the backlight falls to the image corners")->capture_default_str();
   app.add_option("--vignetting-power", ren.vignetting_power, "falloff exponent of the vignetting in the radius")->capture_default_str();
@@ -218,7 +220,7 @@ int main(int argc, char** argv) {
   return cli::run(app, standard, argc, argv, [&] {
     if (footage == "realistic") apply_footage_preset(app, body, ren, debris, jpeg_quality);
     if (jpeg_quality < 0 || jpeg_quality > 100) throw Error("--jpeg-quality: expected 1..100 (0: no compression)");
-    for (const char* flag : {"--body-length", "--body-depth", "--body-width", "--body-level"})
+    for (const char* flag : {"--body-length", "--body-depth", "--body-width", "--body-level", "--body-head-motion"})
       if (!body && app.count(flag) > 0) throw Error(std::string(flag) + ": only with --body (or --footage realistic)");
     for (const char* flag : {"--field-chords", "--field-centre"})
       if (!cameras_in.empty() && app.count(flag) > 0) throw Error(std::string(flag) + ": only for the default rig, not with --cameras");

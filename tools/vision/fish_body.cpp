@@ -25,6 +25,7 @@ FishBody::FishBody(const FinSurface& fin, const FishBodyOptions& options) : fin_
   if (!(o_.max_depth > 0) || !(o_.max_width > 0)) throw Error("--body-depth/--body-width: expected > 0 chords");
   if (!(o_.level >= 0 && o_.level <= 1)) throw Error("--body-level: expected a grey level in [0, 1]");
   if (o_.stations < 4 || o_.sides < 8) throw Error("fish body: at least 4 stations and 8 sides");
+  if (!(o_.head_motion >= 0 && o_.head_motion <= 1)) throw Error("--body-head-motion: expected a fraction in [0, 1]");
   double x0 = 0, z0 = 0, zmin = 1e300, zmax = -1e300;
   for (std::size_t i = 0; i < fin.size(); ++i)
     if (fin.s[i] == 0) {
@@ -43,6 +44,9 @@ FishBody::FishBody(const FinSurface& fin, const FishBodyOptions& options) : fin_
   const int ns = o_.stations, nr = o_.sides;
   const std::size_t nb = 2 + static_cast<std::size_t>(ns) * nr;
   rest_ = NdArray<double>({nb, 3});
+  auto share = [&](double u) { return o_.head_motion + (1 - o_.head_motion) * u * u; };
+  envelope_.assign(nb, share(0));
+  envelope_[nb - 1] = 1;
   rest_(0, 0) = x0 - o_.length * c, rest_(0, 1) = 0, rest_(0, 2) = z0;  // snout
   for (int i = 1; i <= ns; ++i) {
     const double u = static_cast<double>(i) / ns;
@@ -54,6 +58,7 @@ FishBody::FishBody(const FinSurface& fin, const FishBodyOptions& options) : fin_
       rest_(v, 0) = x0 - (1 - u) * o_.length * c;
       rest_(v, 1) = half_width * std::cos(a);
       rest_(v, 2) = z0 + half_depth * std::sin(a);
+      envelope_[v] = share(u);
     }
   }
   rest_(nb - 1, 0) = x0, rest_(nb - 1, 1) = 0, rest_(nb - 1, 2) = z0;  // centre of the peduncle's end
@@ -73,9 +78,13 @@ NdArray<double> FishBody::place(const NdArray<double>& pos) const {
   double d[3] = {0, 0, 0};
   for (std::size_t i : root_)
     for (int k = 0; k < 3; ++k) d[k] += pos(i, k) - fin_.rest(i, k);
+  for (auto& dk : d) dk /= static_cast<double>(root_.size());
   NdArray<double> out = rest_;
-  for (std::size_t v = 0; v < out.dim(0); ++v)
-    for (int k = 0; k < 3; ++k) out(v, k) += d[k] / static_cast<double>(root_.size());
+  for (std::size_t v = 0; v < out.dim(0); ++v) {
+    out(v, 0) += d[0];
+    out(v, 1) += envelope_[v] * d[1];
+    out(v, 2) += envelope_[v] * d[2];
+  }
   return out;
 }
 

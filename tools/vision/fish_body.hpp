@@ -3,9 +3,11 @@
 // the fin from it (fin_separation.hpp). The body is a tapered solid of elliptic cross-section on
 // the x axis, from the snout at x = -L to the peduncle at the fin's root (x = 0), deepest (z) and
 // widest (y) at 40 % of its length from the snout, narrowing to the peduncle, whose depth is a
-// little more than the fin's root segment so the fin's root sits inside it. It moves rigidly with
-// the fin's root (the mean of the root vertices), which is what a swimming fish's peduncle does
-// to first order; it is drawn opaque with the fin's lighting (light at the camera).
+// little more than the fin's root segment so the fin's root sits inside it. It follows the fin's
+// root (the mean of the root vertices): fore-aft rigidly, across (y, z) with an envelope that falls
+// from 1 at the peduncle to head_motion at the snout, quadratic in the distance from the snout (a
+// swimming fish's lateral excursion grows towards its tail; the head moves little). The bend is
+// in phase along the body (a standing, not a travelling wave). Drawn opaque, lit as the fin is.
 #pragma once
 
 #include <limits>
@@ -25,6 +27,7 @@ struct FishBodyOptions {
   double peduncle_depth = 1.15;  // depth at the peduncle over the fin's root segment
   double peduncle_width = 0.12;  // width at the peduncle, in chords
   double level = 0.2;            // grey level of the lit body (the fin's membrane: 0.55)
+  double head_motion = 0.1;      // the snout's lateral excursion over the peduncle's
   int stations = 48;             // cross-sections from snout to peduncle
   int sides = 32;                // vertices around a cross-section
 };
@@ -53,6 +56,7 @@ class FishBody {
   NdArray<double> rest_;              // [nb,3] at the fin's rest pose
   NdArray<std::int32_t> triangles_;   // [nt,3]
   std::vector<std::size_t> root_;     // the fin's root vertices (s = 0)
+  std::vector<double> envelope_;      // per body vertex: its share of the root's y and z motion
 };
 
 }  // namespace finverse::vision

@@ -62,11 +62,19 @@ TEST(FishBody, DrawnUpstreamOfTheRootAndMovesWithIt) {
   EXPECT_LT(level_at(b, side, {-0.5 * c, 0, 0}), 0.25);
   // Downstream of the root (mid-fin) the side view is unchanged: the body hides nothing there.
   EXPECT_FLOAT_EQ(level_at(b, side, {0.5 * c, 0, 0}), level_at(a, side, {0.5 * c, 0, 0}));
-  // The fin's root heaved by 0.3 c along z: every body vertex moves by exactly that.
+  // The fin's root moved by 0.3 c along y and 0.1 c along x: the peduncle's end (the last vertex)
+  // follows it exactly, the snout (the first) a tenth across and fully along, each vertex between.
   auto moved = rest;
-  for (std::size_t i = 0; i < moved.dim(0); ++i) moved(i, 2) += 0.3 * c;
+  for (std::size_t i = 0; i < moved.dim(0); ++i) moved(i, 1) += 0.3 * c, moved(i, 0) += 0.1 * c;
   const auto p0 = body.place(rest), p1 = body.place(moved);
-  for (std::size_t v = 0; v < p0.dim(0); v += 97) EXPECT_NEAR(p1(v, 2) - p0(v, 2), 0.3 * c, 1e-12);
+  const std::size_t last = p0.dim(0) - 1;
+  EXPECT_NEAR(p1(last, 1) - p0(last, 1), 0.3 * c, 1e-12);
+  EXPECT_NEAR(p1(0, 1) - p0(0, 1), 0.03 * c, 1e-12);
+  for (std::size_t v = 0; v <= last; v += 97) {
+    EXPECT_NEAR(p1(v, 0) - p0(v, 0), 0.1 * c, 1e-12);
+    EXPECT_GE(p1(v, 1) - p0(v, 1), 0.03 * c - 1e-12);
+    EXPECT_LE(p1(v, 1) - p0(v, 1), 0.3 * c + 1e-12);
+  }
   // From behind, the fin is in front of the body: the body only darkens the image, and some pixels
   // show the translucent fin over it (lighter than the bare body, darker than fin over background).
   const auto& back = s.cams[1];
