@@ -94,6 +94,12 @@ int main(int argc, char** argv) {
   cb->add_option("--world-frame", world_frame, "frame whose board defines the world (-1: the one most cameras see)")->capture_default_str();
   cb->add_option("--every", every, "use every N-th frame")->capture_default_str();
   cb->add_flag("--fit-k3", fit_k3, "also fit the 6th-order radial coefficient k3 (wide lenses)");
+  bool fit_tangential = false, bundle = true;
+  cb->add_flag("--fit-tangential", fit_tangential, "also fit the tangential distortion p1, p2 (decentred lenses)");
+  cb->add_flag("--bundle-adjust,!--no-bundle-adjust", bundle, "refine every camera and board pose at once over all frames")
+      ->capture_default_str();
+  bool bundle_intrinsics = false;
+  cb->add_flag("--bundle-intrinsics", bundle_intrinsics, "the bundle adjustment also refines every camera's intrinsics");
   cb->add_option("--max-reprojection-px", max_rms, "refuse (exit 1) a calibration with a camera's RMS above this")->capture_default_str();
   cb->add_option("--out", out, "cameras.yml to write")->required();
   cb->add_option("--report", report, "report.json: RMS and frames per camera (default: beside --out)");
@@ -198,6 +204,9 @@ int main(int argc, char** argv) {
       }
       if (cb->count("--world-frame")) opt.world_frame = world_frame;
       opt.fix_k3 = !fit_k3;
+      opt.fit_tangential = fit_tangential;
+      opt.bundle_adjust = bundle;
+      opt.bundle_intrinsics = bundle_intrinsics;
       std::vector<BoardObservations> obs;
       for (const auto& v : views) {
         const auto eq = v.find('=');

@@ -21,6 +21,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "vision/charuco_board.hpp"
+#include "vision/rig_bundle_adjustment.hpp"
 #include "vision/video_clip.hpp"
 
 namespace finverse::vision {
@@ -443,6 +444,41 @@ RigCalibration calibrate_rig(const std::vector<BoardObservations>& observations,
     log::info(observations[bj].view + " chained to " + observations[bi].view + " over " +
               std::to_string(best) + " shared frames, RMS " + std::to_string(rms) + " px");
   }
+  if (options.bundle_adjust) {
+    // Start: the chained cameras, each frame's board where the first camera that saw it put it.
+    RigState st;
+    st.cameras = rig.cameras;
+    st.board_r.assign(frames, cv::Vec3d(0, 0, 0));
+    st.board_t.assign(frames, cv::Vec3d(0, 0, 0));
+    std::vector<RigObservation> obs;
+    for (std::size_t c = 0; c < n; ++c) cv::Rodrigues(R_wc[c], st.cameras[c].rvec), st.cameras[c].tvec = t_wc[c];
+    for (std::size_t k = 0; k < frames; ++k) {
+      bool placed_board = false;
+      for (std::size_t c = 0; c < n; ++c) {
+        if (!seen(c, k)) continue;
+        if (!placed_board) {
+          cv::Matx33d R_bc;
+          cv::Rodrigues(board_rvec[c][k], R_bc);
+          cv::Rodrigues(R_wc[c].t() * R_bc, st.board_r[k]);
+          st.board_t[k] = R_wc[c].t() * (board_tvec[c][k] - t_wc[c]);
+          placed_board = true;
+        }
+        obs.push_back({c, k, object_of(c, k), &observations[c].corners[k]});
+      }
+    }
+    BundleOptions bo;
+    bo.root = root, bo.fix_k3 = options.fix_k3, bo.fit_tangential = options.fit_tangential, bo.intrinsics = options.bundle_intrinsics;
+    const auto rms = bundle_adjust_rig(st, obs, bo);
+    for (std::size_t c = 0; c < n; ++c) {
+      rig.cameras[c].K = st.cameras[c].K, rig.cameras[c].dist = st.cameras[c].dist;
+      cv::Rodrigues(st.cameras[c].rvec, R_wc[c]);
+      t_wc[c] = st.cameras[c].tvec;
+      rig.reports[c].rig_rms_px = rms[c];
+      log::info(observations[c].view + ": RMS " + std::to_string(rms[c]) + " px after the rig's bundle adjustment");
+    }
+    board_rvec[root][w] = st.board_r[w], board_tvec[root][w] = st.board_t[w];  // the world board, in the root's frame
+  }
+
   // World: the world board's pose in the root camera's frame, fitted to its corners in every
   // camera that found it (one view alone leaves its tilt uncertain, and that error rotates the
   // whole rig), composed with the given board -> world pose.

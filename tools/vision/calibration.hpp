@@ -4,7 +4,8 @@
 // each other through the frames they share (stereoCalibrate with the intrinsics fixed, along a
 // spanning tree of the camera pairs with most shared frames), and the world frame placed by one
 // frame's board (its pose in the world given by the user: the board laid in the flume's axes),
-// whose pose is fitted to its corners in every camera that sees it.
+// whose pose is fitted to its corners in every camera that sees it. Between the two, a bundle
+// adjustment refines every camera and board pose over all frames (rig_bundle_adjustment.hpp).
 #pragma once
 
 #include <filesystem>
@@ -65,13 +66,16 @@ struct CalibrationOptions {
   int world_frame = -1;     // frame whose board defines the world; -1: the first seen by most cameras
   cv::Vec3d board_rvec{0, 0, 0}, board_tvec{0, 0, 0};  // that board's pose: board -> world
   int min_shared_frames = 3;  // to chain two cameras
+  bool bundle_adjust = true;  // then refine the whole rig at once (rig_bundle_adjustment.hpp)
+  bool bundle_intrinsics = false;  // ... its intrinsics too
 };
 
 struct CameraCalibrationReport {
   std::string view;
   int frames_found = 0;
   double intrinsic_rms_px = 0;  // calibrateCamera's RMS corner reprojection error
-  double rig_rms_px = 0;        // RMS over its frames after chaining (stereoCalibrate pair), 0 for the root
+  double rig_rms_px = 0;        // RMS over its frames in the rig: after the bundle adjustment, or of
+                                // its stereoCalibrate link (0 for the root) without it
   std::string chained_from;     // the camera it was chained to ("" for the one that sees the world board)
   int shared_frames = 0;
 };
