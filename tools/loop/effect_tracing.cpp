@@ -196,9 +196,20 @@ TraceResult trace_effects(const TracedModel& model, const TraceOptions& options)
     const fit::ParameterSpace space = extended(out.space, more);
     auto with = effects;
     with.push_back(best.name);
-    Eigen::VectorXd p0(space.size());
-    p0 << out.parameters, model.effect_start(best.name, best.score.step);
     TrainingResidual f(model, with, space.size(), split.training, split.rows_per_frame);
+    // The one-step estimate is linear; where the model is not, halve it (up to three times)
+    // until it beats the current fit, so the refit never starts worse than without the effect.
+    Eigen::VectorXd p0(space.size());
+    for (int halving = 0; halving <= 3; ++halving) {
+      p0 << out.parameters, model.effect_start(best.name, best.score.step * std::ldexp(1.0, -halving));
+      double rss = INFINITY;
+      try {
+        rss = f.residuals(p0).squaredNorm();
+      } catch (const std::exception&) {
+      }
+      ++step.evaluations;
+      if (rss < current.rss) break;
+    }
     const auto lm = fit::levenberg_marquardt(space, f, space.to_scaled(p0), options_lm);
     step.evaluations += lm.evaluations;
     const Eigen::VectorXd p = space.to_physical(lm.z);
