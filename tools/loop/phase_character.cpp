@@ -60,14 +60,15 @@ RootSignal root_signal(const SampledMotion& reconstruction, const FinRegions& re
   return s;
 }
 
-PhaseCharacter phase_character(const Eigen::VectorXd& coefficient, const RootSignal& root, double collinear) {
+PhaseCharacter phase_character(const Eigen::VectorXd& coefficient, const RootSignal& root, double collinear,
+                               double weak) {
   PhaseCharacter p;
   p.rho_displacement = pearson(coefficient, root.displacement);
   p.rho_velocity = pearson(coefficient, root.velocity);
   p.rho_acceleration = pearson(coefficient, root.acceleration);
   p.rho_displacement_acceleration = pearson(root.displacement, root.acceleration);
   const double d = std::abs(p.rho_displacement), v = std::abs(p.rho_velocity), a = std::abs(p.rho_acceleration);
-  if (d == 0 && v == 0 && a == 0) p.character = "none";
+  if (d < weak && v < weak && a < weak) p.character = "none";
   else if (v >= d && v >= a) p.character = "damping-like";
   else if (std::abs(p.rho_displacement_acceleration) > collinear) p.character = "stiffness- or inertia-like";
   else p.character = d >= a ? "stiffness-like" : "inertia-like";

@@ -32,10 +32,13 @@ RootSignal root_signal(const SampledMotion& reconstruction, const FinRegions& re
 struct PhaseCharacter {
   double rho_displacement = 0, rho_velocity = 0, rho_acceleration = 0;
   double rho_displacement_acceleration = 0;  // collinearity of the references
-  std::string character;  // "stiffness-like" | "damping-like" | "inertia-like" | "stiffness- or inertia-like" | "none"
+  // "stiffness-like" | "damping-like" | "inertia-like" | "stiffness- or inertia-like" | "none"
+  // (every |rho| below `weak`: the mode does not follow the root motion)
+  std::string character;
 };
 
-// Ambiguity threshold: |rho(d, a)| above this gives "stiffness- or inertia-like".
-PhaseCharacter phase_character(const Eigen::VectorXd& coefficient, const RootSignal& root, double collinear = 0.9);
+// Ambiguity threshold: |rho(d, a)| above `collinear` gives "stiffness- or inertia-like".
+PhaseCharacter phase_character(const Eigen::VectorXd& coefficient, const RootSignal& root, double collinear = 0.9,
+                               double weak = 0.5);
 
 }  // namespace finverse::loop

@@ -141,6 +141,10 @@ TEST(ResidualModes, PlaceEnergyAndPhaseOfPlantedModes) {
   // not told apart; the label says so.
   const auto p1 = phase_character(modes.coefficient.col(1), root);
   EXPECT_EQ(p1.character, "stiffness- or inertia-like");
+  // A third harmonic is orthogonal to the root's first over a period: it follows no root signal.
+  Eigen::VectorXd third(24);
+  for (int k = 0; k < 24; ++k) third(k) = std::cos(3 * 2 * kPi * k / 24.0);
+  EXPECT_EQ(phase_character(third, root).character, "none");
 
   // Harmonic 1 of the residual: amplitude 0.02 at the distal nodes, phase 0 (cos).
   const auto h = fit_harmonics(field.times, field.values, 1.0, 3);
