@@ -308,6 +308,9 @@ int main(int argc, char** argv) {
     log::info("tracking: " + std::to_string(r.seconds_per_frame) + " s per frame set after the first (" + std::to_string(r.first_seconds) +
               " s, cold start); " + std::to_string(cameras.size()) + " views, " + std::to_string(cli::threads_in_use()) +
               " threads; worst silhouette IoU " + std::to_string(r.worst_iou));
+    if (r.keypoint_frames)
+      log::info("keypoints: the fitted ray ends lie " + std::to_string(r.keypoint_rms_px) + " px (RMS) from the 2-D keypoints over " +
+                std::to_string(r.keypoint_frames) + " frames");
 
     Provenance prov{"fin-track", config, {cameras_file}};
     if (!tmpl.file.empty()) prov.inputs.push_back(tmpl.file);

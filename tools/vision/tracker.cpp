@@ -351,12 +351,15 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
       kin.view_valid(i, v) = fit.valid[v];
       if (fit.valid[v]) r.worst_iou = std::min(r.worst_iou, fit.iou[v]);
     }
+    if (std::isfinite(fit.keypoint_rms_px))  // summed as squares here, the root taken at the end
+      r.keypoint_rms_px += fit.keypoint_rms_px * fit.keypoint_rms_px, ++r.keypoint_frames;
     char status[96];
     std::snprintf(status, sizeof status, "frame %ld, %d LM iterations, worst IoU so far %.4f", frames[i],
                   fit.iterations, r.worst_iou);
     progress.update(i + 1, status);
   }
   progress.finish();
+  if (r.keypoint_frames) r.keypoint_rms_px = std::sqrt(r.keypoint_rms_px / static_cast<double>(r.keypoint_frames));
   for (std::size_t v = 0; v < nview; ++v) {
     if (lost[v] > 0)
       log::warn("view '" + cameras[v].name + "': in " + std::to_string(lost[v]) +

@@ -88,6 +88,8 @@ struct TrackResult {
   double first_seconds = 0;      // ... the first frame's (cold start)
   double seconds_per_frame = 0;  // steady state: the mean after the first frame
   double worst_iou = 1;          // fit against the segmentation, every valid view and frame
+  double keypoint_rms_px = 0;    // 2-D keypoints: RMS of the fitted ray ends against them, all frames
+  std::size_t keypoint_frames = 0;  // frames with 2-D keypoints
   FitVerdict verdict;            // per-frame flags (also in kinematics) and the run's failure, if any
   // With a truth, per view the worst over the frames of
   std::vector<double> fit_truth_iou;        // the fitted against the true surface, area-coverage
