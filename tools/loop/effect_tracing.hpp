@@ -6,6 +6,8 @@
 // frames falls; repeat until a candidate fails that rule, none is significant, or none is left.
 // Each step records every candidate's score, the one tried, its fitted magnitude with a 95 %
 // interval (fit/uncertainty.hpp), the trailing-edge RMS, BIC and held-out error before and after.
+// J is the refit's own Jacobian in this residual's space (prediction - reconstruction per frame):
+// materials.h5 keeps only J's singular values, and of fin-fit's eq. (2) increments, not of it.
 #pragma once
 
 #include <functional>
