@@ -219,6 +219,18 @@ int main(int argc, char** argv) {
 
   return cli::run(app, standard, argc, argv, [&] {
     if (footage == "realistic") apply_footage_preset(app, body, ren, debris, jpeg_quality);
+    // The flags' echo shows their defaults where the preset set them: this is what is rendered.
+    nlohmann::json appearance = {{"body", body},           {"background_level", ren.background},
+                                 {"vignetting", ren.vignetting}, {"vignetting_power", ren.vignetting_power},
+                                 {"background_gradient", ren.background_gradient}, {"gain", ren.gain},
+                                 {"noise_sigma", ren.noise_sigma}, {"debris", debris.count},
+                                 {"debris_radius_px", debris.max_radius_px}, {"debris_drift_px_per_s", debris.drift_px_per_s},
+                                 {"jpeg_quality", jpeg_quality}, {"video", video}};
+    if (body)
+      appearance["body_options"] = {{"length", body_options.length}, {"max_depth", body_options.max_depth},
+                                    {"max_width", body_options.max_width}, {"level", body_options.level},
+                                    {"head_motion", body_options.head_motion}};
+    log::info("appearance: " + appearance.dump());
     if (jpeg_quality < 0 || jpeg_quality > 100) throw Error("--jpeg-quality: expected 1..100 (0: no compression)");
     for (const char* flag : {"--body-length", "--body-depth", "--body-width", "--body-level", "--body-head-motion"})
       if (!body && app.count(flag) > 0) throw Error(std::string(flag) + ": only with --body (or --footage realistic)");
@@ -362,6 +374,7 @@ int main(int argc, char** argv) {
     mesh::write_template(out_dir / "template.json", fin);
     Provenance prov{"fin-synth", cli::effective_config(app), {}};
     prov.config["motion_source"] = source.parameters();
+    prov.config["appearance"] = appearance;
     if (!tmpl.file.empty()) prov.inputs.push_back(tmpl.file);
     if (!cameras_in.empty()) prov.inputs.push_back(cameras_in);
     for (const auto& p : {fsi_file, fsi_mesh, materials_file, drive_file})
