@@ -155,12 +155,11 @@ TEST(FinSynth, RealisticFootageDeterministicAndBadFlagsExit2) {
     const int rc = std::system(cmd.c_str());
     return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
   };
+  // Same flags, other thread counts: the same frames (the clean default's are tested in test_renderer).
   ASSERT_EQ(run("a", "--footage realistic --threads 2"), 0);
   ASSERT_EQ(run("b", "--footage realistic --threads 1"), 0);
-  ASSERT_EQ(run("c", ""), 0);
   const char* f = "frames/side/000001.png";
   EXPECT_TRUE(slurp(dir / "a" / f) == slurp(dir / "b" / f));
-  EXPECT_FALSE(slurp(dir / "a" / f) == slurp(dir / "c" / f));
   for (const char* bad : {"--jpeg-quality 101", "--body-length 2", "--footage realistic --gain -1",
                           "--footage realistic --debris -3", "--field-chords 0"}) {
     EXPECT_EQ(run("bad", bad), 2) << bad;
