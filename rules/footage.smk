@@ -1,18 +1,12 @@
-# Realistic virtual footage (issue 35, item 8) and the validation of fin-track on it, scored against
-# fin-synth's truth (tools/scripts/footage_scores.py; docs/studies/realistic_footage.md):
-#
+# Realistic virtual footage (issue 35, item 8) and fin-track scored on it against fin-synth's truth
+# (tools/scripts/footage_scores.py; docs/studies/realistic_footage.md):
 #   snakemake -c2 results/validation/footage_3view/summary.json        three views, 3-D fit
 #   snakemake -c2 results/validation/footage_2d/summary.json           one view, fin-track midline
 #   snakemake -c2 results/validation/footage_single_view/summary.json  one view to the 3-D fit: exit 1
-#
-# The footage: fin-synth with config footage.synth_flags (the realistic preset: the fish's body and
-# peduncle, vignetting, a background gradient, saturation, debris, JPEG 75) on the issue's sensor
-# model (noise 2 levels, 3 blur sub-frames over 15 % of the frame interval). The 2-D case frames
-# the whole fish (the field of view widened to 6 chords around x = -1.5 c) and records 3 beats,
-# so the tail-beat frequency has whole beats to rest on.
-# COARSE variants (smaller images, fewer frames; under a minute each) are not registered, so the
-# tiny case's validation set (CI) does not run them: run one by name with
-#   snakemake -c2 --configfile config/cases/tiny.yaml results/validation/footage_2d/summary.json
+# The footage: fin-synth with config footage.synth_flags (the realistic preset) on the issue's
+# sensor model; the 2-D case frames the whole fish and records 3 beats, so the tail-beat frequency
+# rests on whole beats. COARSE variants (under a minute each) are not registered, so CI's tiny
+# case does not run them; run one by name with --configfile config/cases/tiny.yaml.
 
 _FFIN = config["fin"]
 _FTEMPLATE = f"--chord {_FFIN['chord_m']} --height-over-chord {_FFIN['height_over_chord']} --rays {_FFIN['rays']}"

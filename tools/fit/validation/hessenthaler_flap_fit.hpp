@@ -1,19 +1,11 @@
-// Issue 34, validation 2 (i): the modulus of the Hessenthaler et al. (2017) silicone flap from its
-// measured buoyancy-only tip deflection (29.50 mm), with fin-fit's machinery: the one unknown E
-// (log10, as every modulus of the fit) found by the Levenberg-Marquardt polish of fit_driver
-// (fit/levenberg_marquardt.hpp) on the residual predicted - measured tip deflection of the
-// nonlinear flap model (fem/validation/hessenthaler_flap.hpp). No GA: one unknown, and the tip
-// deflection falls monotonically with E, so the polish alone finds the single root.
-// The 95 % interval comes from the measurement resolution: the tip position is read off MRI
-// images of voxel size d, a uniform quantisation error of standard deviation d / sqrt(12); through
-// the polish Jacobian (linearised, as fit/uncertainty.hpp) and, as a check of that linearisation,
-// by refitting to the measured deflection -+ 1.96 of that deviation.
-// Also: a mesh study (the fitted E on each mesh), the shear modulus mu = E / 2 (1 + nu) against the
-// neo-Hookean 61 kPa others calibrated, and the model check that the uniaxial test's 96.9 kPa
-// gives ~21.7 mm. Phase I (the flow case, 16.41 mm) is the coupled FSI's part and is reported as
-// missing here until a run supplies it; what is given is the structure-alone residual against it,
-// the uniform load a flow would have to add, and the no-flow centreline at the fitted E.
-// Numbers and the list of what Phase I needs: docs/studies/hessenthaler_flap.md.
+// Issue 34, validation 2 (i): the Hessenthaler et al. (2017) silicone flap's modulus from its
+// measured buoyancy-only tip deflection (29.50 mm). One unknown E (log10, as every fit modulus)
+// found by the Levenberg-Marquardt polish of fit_driver on predicted - measured tip deflection of
+// the nonlinear flap model (fem/validation/hessenthaler_flap.hpp): no GA, since the deflection
+// falls monotonically with E. The 95 % interval comes from the MRI voxel d (uniform quantisation,
+// sd d / sqrt(12)), linearised and checked by refitting at the interval's ends. Also: a mesh
+// study, mu = E / 2 (1 + nu) against others' 61 kPa, the uniaxial 96.9 kPa check, and the
+// structure-alone residual against Phase I (16.41 mm). Numbers: docs/studies/hessenthaler_flap.md.
 #pragma once
 
 #include <filesystem>
