@@ -15,12 +15,12 @@ line for a missing or malformed input or runs that differ in their parameters.
 """
 import argparse
 import json
-import os
-import socket
 import sys
 
 import h5py
 import numpy as np
+
+from summary import write_summary
 
 
 def fail(message):
@@ -104,26 +104,15 @@ def main():
         fsi_ct, fsi_peak, _ = thrust(a.fsi, "--fsi")
         metrics.append(info("FSI mean C_T (fsi.h5)", fsi_ct, "", "the case's fsi stage, reported"))
         metrics.append(info("FSI C_T peak (fsi.h5)", fsi_peak, "", "the case's fsi stage, reported"))
-    passed = all(m["pass"] for m in metrics if m["pass"] is not None)
-    summary = {
-        "schema": "finverse/summary",
-        "schema_version": 1,
-        "kind": "validation",
-        "name": a.name,
-        "description": "the case's mean C_T, C_T peak and fitted moduli within "
-                       f"{100 * a.tolerance:.3g} % of the same pipeline on a finer near-fin grid",
-        "pass": passed,
-        "metrics": metrics,
-        "parameters": {"loads": a.loads, "materials": a.materials, "fine_loads": a.fine_loads,
-                       "fine_materials": a.fine_materials, "grid": grid, "fine_grid": grid_f},
-        "timing": {"wall_s": None, "threads": 1},
-        "provenance": {"producer": "case_grid_compare.py finverse", "host": socket.gethostname()},
-    }
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    with open(a.out + ".tmp", "w") as f:
-        json.dump(summary, f, indent=2)
-        f.write("\n")
-    os.replace(a.out + ".tmp", a.out)
+    summary = write_summary(
+        a.out, "validation", a.name,
+        "the case's mean C_T, C_T peak and fitted moduli within "
+        f"{100 * a.tolerance:.3g} % of the same pipeline on a finer near-fin grid",
+        metrics,
+        {"loads": a.loads, "materials": a.materials, "fine_loads": a.fine_loads,
+         "fine_materials": a.fine_materials, "grid": grid, "fine_grid": grid_f},
+        "case_grid_compare.py finverse")
+    passed = summary["pass"]
     return 0 if passed else 1
 
 

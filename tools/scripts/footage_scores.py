@@ -21,12 +21,13 @@ import argparse
 import json
 import os
 import re
-import socket
 import sys
 
 import h5py
 import numpy as np
 import yaml
+
+from summary import write_summary
 
 
 def fail(message):
@@ -58,16 +59,7 @@ def info(name, value, units="", source=""):
 
 
 def write(out, name, description, metrics, parameters):
-    passed = all(m["pass"] for m in metrics if m["pass"] is not None)
-    summary = {"schema": "finverse/summary", "schema_version": 1, "kind": "validation", "name": name,
-               "description": description, "pass": passed, "metrics": metrics, "parameters": parameters,
-               "timing": {"wall_s": None, "threads": 1},
-               "provenance": {"producer": "footage_scores.py finverse", "host": socket.gethostname()}}
-    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
-    with open(out + ".tmp", "w") as f:
-        json.dump(summary, f, indent=2)
-        f.write("\n")
-    os.replace(out + ".tmp", out)
+    passed = write_summary(out, "validation", name, description, metrics, parameters, "footage_scores.py finverse")["pass"]
     for m in metrics:
         if m["pass"] is not None:
             print(f"{name}: {m['name']} = {m['value']} ({'pass' if m['pass'] else 'MISSED'})", file=sys.stderr)

@@ -15,11 +15,11 @@ Exit 2 with one line when a benchmark file is missing or malformed.
 """
 import argparse
 import csv
-import json
 import os
-import socket
 import subprocess
 import sys
+
+from summary import write_summary
 
 
 def fail(message):
@@ -86,27 +86,15 @@ def main():
     metrics.append(info("total_wall_s", total, "s"))
     metrics.append(info("slowest_stage_wall_fraction", slowest_m["s"] / total if total > 0 else float("nan"), ""))
 
-    summary = {
-        "schema": "finverse/summary",
-        "schema_version": 1,
-        "kind": "bench",
-        "name": "pipeline",
-        "description": f"wall time per pipeline stage on case {a.case}, {a.threads} threads; slowest stage: {slowest}"
-                       " (cpu_s and max_rss_MB are Snakemake's samples, see tools/scripts/pipeline_bench.py)",
-        "pass": True,
-        "metrics": [{**m, "value": None if m["value"] != m["value"] else m["value"]} for m in metrics],
-        "parameters": {"case": a.case, "threads": a.threads, "stages": [s[0] for s in stages],
-                       "slowest_stage": slowest, "benchmark_files": {s[0]: s[1] for s in stages},
-                       "benchmark_rows": {s[0]: s[3] for s in stages}},
-        "timing": {"wall_s": total, "threads": a.threads},
-        "provenance": {"producer": f"pipeline_bench.py finverse (git {git_describe()})", "host": socket.gethostname()},
-    }
-    tmp = a.out + ".tmp"
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    with open(tmp, "w") as f:
-        json.dump(summary, f, indent=2)
-        f.write("\n")
-    os.replace(tmp, a.out)
+    write_summary(
+        a.out, "bench", "pipeline",
+        f"wall time per pipeline stage on case {a.case}, {a.threads} threads; slowest stage: {slowest}"
+        " (cpu_s and max_rss_MB are Snakemake's samples, see tools/scripts/pipeline_bench.py)",
+        [{**m, "value": None if m["value"] != m["value"] else m["value"]} for m in metrics],
+        {"case": a.case, "threads": a.threads, "stages": [s[0] for s in stages],
+         "slowest_stage": slowest, "benchmark_files": {s[0]: s[1] for s in stages},
+         "benchmark_rows": {s[0]: s[3] for s in stages}},
+        f"pipeline_bench.py finverse (git {git_describe()})", wall_s=total, threads=a.threads, passed=True)
     print(f"slowest stage: {slowest} ({slowest_m['s']:.1f} s of {total:.1f} s)", file=sys.stderr)
 
 

@@ -6,11 +6,13 @@ results/bench/*.json) as a table, one row per metric.
     tools/scripts/summary.py --failed results/validation/*/summary.json   only failing metrics
 
 Exit status: 0 when every graded metric passes, 1 when one fails (0 with --no-fail), 2 when a
-file is not a finverse summary. The format is defined once, in tools/core/summary.hpp.
+file is not a finverse summary. The format is defined once, in tools/core/summary.hpp; the Python
+scripts that produce summaries write them through write_summary() below.
 """
 import argparse
 import json
-import math
+import os
+import socket
 import sys
 
 REQUIRED = ("schema", "schema_version", "kind", "name", "metrics", "timing")
@@ -33,6 +35,24 @@ def load(path):
             print(f"summary.py: error: {path}: metric {m.get('name')} lacks {absent}", file=sys.stderr)
             sys.exit(2)
     return s
+
+
+def write_summary(out, kind, name, description, metrics, parameters, producer, wall_s=None, threads=1,
+                  passed=None):
+    """Writes a finverse/summary file (tools/core/summary.hpp's layout, indent 2, a final newline)
+    to `out` through a temporary and a rename. passed None: every graded metric passes."""
+    if passed is None:
+        passed = all(m["pass"] for m in metrics if m["pass"] is not None)
+    summary = {"schema": "finverse/summary", "schema_version": 1, "kind": kind, "name": name,
+               "description": description, "pass": passed, "metrics": metrics, "parameters": parameters,
+               "timing": {"wall_s": wall_s, "threads": threads},
+               "provenance": {"producer": producer, "host": socket.gethostname()}}
+    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
+    with open(out + ".tmp", "w") as f:
+        json.dump(summary, f, indent=2)
+        f.write("\n")
+    os.replace(out + ".tmp", out)
+    return summary
 
 
 def fmt(x, digits=5):

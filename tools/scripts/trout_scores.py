@@ -11,9 +11,9 @@ either way), 2 with one line for a missing or malformed report or a score of the
 """
 import argparse
 import json
-import os
-import socket
 import sys
+
+from summary import write_summary
 
 # Issue 33's Scores table, in its order: fin-report's score names (tools/report/fin_report.cpp).
 TABLE = [
@@ -76,27 +76,14 @@ def main():
             metrics.append({"name": s["name"], "value": s["value"], "units": s.get("units", ""), "kind": "info",
                             "reference": None, "source": s.get("note", ""), "error": None, "tolerance": None,
                             "pass": None})
-    graded = [m for m in metrics if m["pass"] is not None]
-    passed = all(m["pass"] for m in graded)
-    summary = {
-        "schema": "finverse/summary",
-        "schema_version": 1,
-        "kind": "validation",
-        "name": "trout",
-        "description": f"the virtual trout's scores (issue 33) on case {report.get('case')}: "
-                       f"{sum(m['pass'] is True for m in metrics)} met, {sum(m['pass'] is False for m in metrics)} "
-                       f"missed, {sum(m['pass'] is None and m['kind'] != 'info' for m in metrics)} not available",
-        "pass": passed,
-        "metrics": metrics,
-        "parameters": {"case": report.get("case"), "report": a.report, "inputs": report.get("inputs")},
-        "timing": {"wall_s": None, "threads": 1},
-        "provenance": {"producer": "trout_scores.py finverse", "host": socket.gethostname()},
-    }
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    with open(a.out + ".tmp", "w") as f:
-        json.dump(summary, f, indent=2)
-        f.write("\n")
-    os.replace(a.out + ".tmp", a.out)
+    summary = write_summary(
+        a.out, "validation", "trout",
+        f"the virtual trout's scores (issue 33) on case {report.get('case')}: "
+        f"{sum(m['pass'] is True for m in metrics)} met, {sum(m['pass'] is False for m in metrics)} "
+        f"missed, {sum(m['pass'] is None and m['kind'] != 'info' for m in metrics)} not available",
+        metrics, {"case": report.get("case"), "report": a.report, "inputs": report.get("inputs")},
+        "trout_scores.py finverse")
+    passed = summary["pass"]
     return 0 if passed else 1
 
 
