@@ -27,13 +27,12 @@
 #include "core/stage_identity.hpp"
 #include "fem/io/material_spec.hpp"
 #include "fem/io/root_drive_file.hpp"
+#include "fsi/fin_fsi_flags.hpp"
 #include "fsi/fin_fsi_run.hpp"
 #include "core/summary.hpp"
 #include "core/summary_print.hpp"
-#include "fsi/validation/hessenthaler_plane_fsi.hpp"
-#include "fsi/validation/pitching_plate_fsi.hpp"
+#include "fsi/validation/case_flags.hpp"
 #include "fsi/validation/seed_table1.hpp"
-#include "fsi/validation/turek_hron_fsi.hpp"
 #ifdef FINVERSE_FSI_HAS_FIT
 #include "fit/fin_parameters.hpp"
 #endif
@@ -53,53 +52,10 @@ struct TurekHronCommand {
 
   void add(CLI::App& app) {
     th = app.add_subcommand("turek_hron", "Turek-Hron FSI1 (steady), FSI2, FSI3 (periodic)");
-    th->add_option("--case", o.case_name, "FSI1, FSI2 or FSI3")->capture_default_str();
     th->add_option("--reference", reference, "turek_hron.json")->required();
-    th->add_option("--acceleration", o.acceleration, "aitken, iqn-ils or constant")->capture_default_str();
-    th->add_option("--omega", o.omega, "omega0 (aitken, iqn-ils) or omega (constant)")->capture_default_str();
-    th->add_option("--tolerance", o.tolerance, "relative interface displacement residual")->capture_default_str();
-    th->add_option("--absolute-tolerance", o.absolute_tolerance, "... or interface displacement change [m]")
-        ->capture_default_str();
-    th->add_option("--max-iterations", o.max_iterations, "coupling iterations per step")->capture_default_str();
-    th->add_option("--cells-per-diameter", o.cells_per_diameter, "flow grid: D / h in the box")->capture_default_str();
-    th->add_option("--core-cells-per-diameter", o.core_cells_per_diameter, "finer core around the body: D / h_core")
-        ->capture_default_str();
-    th->add_option("--core-wake", o.core_wake, "the core ends this many D behind the tip")->capture_default_str();
-    th->add_option("--wake-box", o.wake_box, "uniform box behind the tip [D]")->capture_default_str();
-    th->add_option("--stretch-ratio", o.stretch_ratio, "largest neighbouring cell-width ratio outside the box")
-        ->capture_default_str();
-    th->add_option("--wall-stretch-ratio", o.wall_stretch_ratio, "the same towards the channel walls; 0: --stretch-ratio")
-        ->capture_default_str();
-    th->add_option("--channel-length", o.channel_length, "channel length [m] (< 2.5: tests only)")
-        ->capture_default_str();
-    th->add_option("--ramp-time", o.ramp_time, "inflow ramp time [s]")->capture_default_str();
-    th->add_option("--circle-vertices", o.circle_vertices, "cylinder polygon resolution")->capture_default_str();
-    th->add_option("--nx", o.mesh.nx, "Q9 elements along the flag")->capture_default_str();
-    th->add_option("--ny", o.mesh.ny, "Q9 elements across the flag")->capture_default_str();
-    th->add_option("--dt", o.dt, "time step [s]; 0: cfl h / U_max")->capture_default_str();
-    th->add_option("--cfl", o.cfl, "CFL number for the default dt")->capture_default_str();
-    th->add_option("--t-end", o.t_end, "simulated time [s]; 0: the case's default")->capture_default_str();
-    th->add_option("--spectral-radius", o.spectral_radius, "structure's generalized-alpha rho_inf")
-        ->capture_default_str();
-    th->add_option("--substeps", o.structure_substeps, "structure sub-steps per step")->capture_default_str();
-    th->add_option("--output-every", o.output_every, "fsi.h5 frame every k steps")->capture_default_str();
+    fv::add_turek_hron_flags(*th, o);
     th->add_option("--out", out, "fsi.h5 to write (optional)");
     th->add_option("--summary", summary_path, "summary.json to write")->required();
-    th->add_option("--divergence-iterations", o.divergence_iterations,
-                   "residual growing this many iterations in a row: diverged (0: off)")
-        ->capture_default_str();
-    th->add_option("--checkpoint", o.checkpoint, "checkpoint file (replaced atomically) for --restart");
-    th->add_option("--checkpoint-every", o.checkpoint_every, "checkpoint every N steps (0: after the last only)")
-        ->capture_default_str();
-    th->add_option("--restart", o.restart, "continue from this checkpoint (same options; t_end may grow)")
-        ->check(CLI::ExistingFile);
-    th->add_flag("--restart-new-coupling", o.restart_new_coupling,
-                 "the restart may change acceleration, omega, tolerances and caps (drops the carried history)");
-    th->add_option("--paraview", o.paraview_dir, "ParaView series (structure.pvd, flow.pvd) into this directory");
-    th->add_option("--paraview-every", o.paraview_every, "ParaView frame every k-th fsi.h5 frame")
-        ->capture_default_str();
-    th->add_flag("--hold-flag-rigid", o.hold_flag_rigid,
-                 "benchmark: from --restart on, the flow alone with the flag frozen (wall time per step)");
     th->add_flag("--strict", strict, "stop at the iteration cap (default: accept the best iterate)");
     th->add_flag("--iterations", iterations, "a progress line per coupling iteration too");
   }
@@ -133,33 +89,7 @@ struct PitchingPlateCommand {
 
   void add(CLI::App& app) {
     pp = app.add_subcommand("pitching_plate", "flexible plate pitching in a stream (W/L 0.54, 12 deg, f = 1)");
-    pp->add_option("--K", o.stiffness, "bending stiffnesses D / (rho_f U^2 L^3), comma-separated")
-        ->delimiter(',')
-        ->capture_default_str();
-    pp->add_flag("--rigid", o.rigid, "also run the rigid plate (prescribed pitching)");
-    pp->add_option("--re", o.re, "Reynolds number U L / nu")->capture_default_str();
-    pp->add_option("--mass-ratio", o.mass_ratio, "rho_s h / (rho_f L)")->capture_default_str();
-    pp->add_option("--nx", o.nx, "shell cells along the chord")->capture_default_str();
-    pp->add_option("--nz", o.nz, "shell cells along the span (even)")->capture_default_str();
-    pp->add_option("--cells-per-chord", o.cells_per_chord, "flow grid: L / h around the plate")->capture_default_str();
-    pp->add_option("--thickness-cells", o.thickness_cells, "closed thin body thickness [h]")->capture_default_str();
-    pp->add_option("--stretch-ratio", o.stretch_ratio, "cell-width ratio outside the uniform box")
-        ->capture_default_str();
-    pp->add_option("--downstream", o.downstream, "domain length behind the trailing edge [L]")->capture_default_str();
-    pp->add_option("--half-height", o.half_height, "domain half height (y) [L]")->capture_default_str();
-    pp->add_option("--half-width", o.half_width, "domain half width (z) [L]")->capture_default_str();
-    pp->add_option("--steps-per-period", o.steps_per_period, "time steps per pitching period")->capture_default_str();
-    pp->add_option("--periods", o.periods, "periods to run (the last one is measured)")->capture_default_str();
-    pp->add_option("--ramp-periods", o.ramp_periods, "periods of the smooth start")->capture_default_str();
-    pp->add_option("--acceleration", o.acceleration, "aitken, iqn-ils or constant")->capture_default_str();
-    pp->add_option("--omega", o.omega, "omega0 (aitken, iqn-ils) or omega (constant)")->capture_default_str();
-    pp->add_option("--tolerance", o.tolerance, "relative interface displacement residual")->capture_default_str();
-    pp->add_option("--absolute-tolerance", o.absolute_tolerance, "... or interface displacement change [L]")
-        ->capture_default_str();
-    pp->add_option("--max-iterations", o.max_iterations, "coupling iterations per step (then the best iterate)")
-        ->capture_default_str();
-    pp->add_option("--structure-tolerance", o.structure_tolerance, "shell Newton residual tolerance")
-        ->capture_default_str();
+    fv::add_pitching_plate_flags(*pp, o);
     pp->add_option("--summary", summary_path, "summary.json to write")->required();
   }
 
@@ -175,7 +105,6 @@ struct PitchingPlateCommand {
     return s.pass() ? 0 : 1;
   }
 };
-
 
 // fin-fsi fin: the fin's coupled run from mesh.h5, its materials and a root drive (analytic or
 // the tracked root motion) to fsi.h5 (tools/fsi/fin_fsi_run.hpp).
@@ -204,29 +133,7 @@ struct FinCommand {
     o.flow.output_interval = 0;
     for (const auto& n : finverse::cfd::io::fin_flow_flags(o.flow))
       fin->add_option(n.flag, *n.value, n.help)->capture_default_str();
-    fin->add_option("--thickness-cells", o.thickness_cells, "closed thin body thickness [cells]")->capture_default_str();
-    fin->add_option("--ramp-periods", o.ramp_periods, "--motion: periods of the root's ramp from rest before its first frame")
-        ->capture_default_str();
-    fin->add_option("--ramp-time", o.ramp_time, "--motion: the ramp in seconds instead (0: --ramp-periods)")
-        ->capture_default_str();
-    fin->add_option("--acceleration", o.acceleration, "iqn-ils, aitken or constant")->capture_default_str();
-    fin->add_option("--omega", o.omega, "omega0 (aitken, iqn-ils) or omega (constant)")->capture_default_str();
-    fin->add_option("--tolerance", o.tolerance, "relative interface displacement residual")->capture_default_str();
-    fin->add_option("--absolute-tolerance", o.absolute_tolerance, "... or interface displacement change [c]")
-        ->capture_default_str();
-    fin->add_option("--max-iterations", o.max_iterations, "coupling iterations per step")->capture_default_str();
-    fin->add_flag("--strict", o.strict, "stop at the iteration cap (default: accept the best iterate, counted)");
-    fin->add_option("--spectral-radius", o.spectral_radius, "structure's generalized-alpha rho_inf")->capture_default_str();
-    fin->add_option("--structure-tolerance", o.structure_tolerance, "structure Newton residual tolerance")
-        ->capture_default_str();
-    fin->add_option("--structure-max-iterations", o.structure_max_iterations, "structure Newton iterations per sub-step")
-        ->capture_default_str();
-    fin->add_option("--substeps", o.substeps, "structure sub-steps per coupling step")->capture_default_str();
-    fin->add_option("--rayleigh-mass", o.rayleigh_mass, "structure damping a_M [1/s]; < 0: the materials file's")
-        ->capture_default_str();
-    fin->add_option("--rayleigh-stiffness", o.rayleigh_stiffness,
-                    "structure damping a_K [s] (damps the membrane's fast modes); < 0: the materials file's")
-        ->capture_default_str();
+    finverse::fsi::add_fin_fsi_flags(*fin, o);
   }
 
   // The base materials JSON of a materials.h5: --base-materials, else the "materials" entry of
@@ -328,14 +235,7 @@ struct HessenthalerPlaneCommand {
 
   void add(CLI::App& app) {
     hp = app.add_subcommand("hessenthaler_plane", "Hessenthaler 2017 Phase I flow, plane version (issue 34)");
-    hp->add_option("--reference", o.reference, "hessenthaler2017.json")->required();
-    hp->add_option("--youngs-modulus", o.youngs_modulus, "the flap's E [Pa] (fin-fit flap)")->required();
-    hp->add_option("--h", o.h, "cell width around the flap [m]")->capture_default_str();
-    hp->add_option("--t-end", o.t_end, "simulated time [s]")->capture_default_str();
-    hp->add_option("--ramp-time", o.ramp_time, "inflow ramp [s]")->capture_default_str();
-    hp->add_option("--cfl", o.cfl, "CFL number of the time step")->capture_default_str();
-    hp->add_option("--outlet-length", o.outlet_length, "channel length [m]")->capture_default_str();
-    hp->add_option("--flag-nx", o.mesh.nx, "Q9 elements along the flap")->capture_default_str();
+    fv::add_hessenthaler_plane_flags(*hp, o);
     hp->add_option("--out-dir", out_dir, "directory that receives <name>/summary.json")->capture_default_str();
     hp->add_option("--name", name, "case name")->capture_default_str();
   }
