@@ -1,14 +1,18 @@
 // fin-loop: closing the loop (issue 34, DESIGN.md section 5.6). Exit 0 on success, 2 on bad input
-// (one line; nothing written).
+// (one line; nothing written); flap: 1 when a graded metric of its summary misses.
 //   fin-loop residual --mesh mesh.h5 --reconstruction motion.h5 --prediction fsi.h5
 //       --out residual.h5 [--summary residual.json] [--period T]
 //   fin-loop trace --mesh mesh.h5 --motion motion.h5 --loads loads.h5 --materials materials.json
 //       [--fit materials.h5] --out loop.h5 [--summary loop.json] [--candidates effects.json]
 //       [--parameters E_membrane,nu] [--frequency f]
+//   fin-loop flap --reference hessenthaler2017.json --fit fit/summary.json [--plane plane/summary.json]
+//       --out-dir DIR [--name N]   (issue 34 validation 2 (iii): the Hessenthaler flap's tips)
 // Its own executable rather than a mode of fin-fit: it reads a prediction (fsi.h5 or a fin-fem
 // response) that fin-fit never sees, writes its own stage files (residual.h5, loop.h5), and
 // links the candidate effects and the residual analysis that the fit itself does not need; the
-// refit it runs is fin-fit's Levenberg-Marquardt, called as a library.
+// refit it runs is fin-fit's Levenberg-Marquardt, called as a library. `flap` is the same tracer
+// on measured scalar data (loop/flap_loop.hpp), so it lives here rather than in fin-fit.
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -16,6 +20,8 @@
 #include <CLI/CLI.hpp>
 
 #include "core/cli.hpp"
+#include "core/summary.hpp"
+#include "loop/flap_loop.hpp"
 #include "loop/io/file_loop.hpp"
 
 int main(int argc, char** argv) {
@@ -74,7 +80,29 @@ int main(int argc, char** argv) {
   bool no_base_refit = false;
   tr->add_flag("--no-base-refit", no_base_refit, "rank at the fit's values without first refitting the base");
 
+  finverse::loop::FlapLoopOptions fo;
+  std::string plane, out_dir = "results/validation";
+  auto* fl = app.add_subcommand("flap", "the tracer on the Hessenthaler (2017) flap's measured tips (issue 34)");
+  fl->add_option("--reference", fo.reference, "hessenthaler2017.json")->required();
+  fl->add_option("--fit", fo.fit_summary, "fin-fit flap's summary.json (E; its metrics are carried)")->required();
+  fl->add_option("--plane", plane, "fin-fsi hessenthaler_plane's summary.json: its mean flow load as Phase I's");
+  fl->add_option("--along", fo.mesh.along, "shell cells along the flap")->capture_default_str();
+  fl->add_option("--across", fo.mesh.across, "shell cells across the flap")->capture_default_str();
+  fl->add_option("--alpha", fo.alpha, "family-wise level of the score test")->capture_default_str();
+  fl->add_option("--out-dir", out_dir, "directory that receives <name>/summary.json")->capture_default_str();
+  fl->add_option("--name", fo.name, "case name")->capture_default_str();
+
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
+    if (*fl) {
+      if (!plane.empty()) fo.plane_summary = plane;
+      fo.progress = [](const std::string& line) { std::cerr << "fin-loop flap: " << line << "\n"; };
+      const finverse::Summary summary = finverse::loop::run_flap_loop(fo);
+      const auto path = std::filesystem::path(out_dir) / fo.name / "summary.json";
+      std::filesystem::create_directories(path.parent_path());
+      summary.write(path);
+      std::cerr << "fin-loop flap: wrote " << path.string() << "\n";
+      return summary.pass() ? 0 : 1;
+    }
     if (*rs) {
       ro.mesh = mesh;
       ro.reconstruction = recon;

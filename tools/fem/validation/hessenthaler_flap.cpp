@@ -2,7 +2,9 @@
 // beam or shell-strip model, load-controlled static Newton (see hessenthaler_flap.hpp).
 #include "fem/validation/hessenthaler_flap.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <fstream>
 #include <vector>
 
@@ -11,6 +13,7 @@
 #include "fem/errors.hpp"
 #include "fem/model.hpp"
 #include "fem/static_solver.hpp"
+#include "fem/corotational_shell.hpp"
 #include "fem/validation/shell_meshes.hpp"
 
 namespace finverse::fem::validation {
@@ -79,40 +82,88 @@ FlapDeflection flap_buoyancy_deflection(const HessenthalerFlap& flap, double E, 
 
 FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const FlapMesh& mesh, double q,
                                int load_steps, SolverBackend backend) {
+  return flap_deflection(flap, E, mesh, FlapLoad{q, {}, {}}, FlapShape{}, load_steps, backend);
+}
+
+FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const FlapMesh& mesh, const FlapLoad& load,
+                               const FlapShape& shape, int load_steps, SolverBackend backend) {
   if (!(E > 0) || !std::isfinite(E)) throw InvalidInput("flap: Young's modulus must be positive and finite");
-  if (!std::isfinite(q)) throw InvalidInput("flap: the load per length must be finite");
+  if (!std::isfinite(load.uniform)) throw InvalidInput("flap: the load per length must be finite");
+  for (const auto* profile : {&load.transverse, &load.along})
+    for (double v : *profile)
+      if (!std::isfinite(v)) throw InvalidInput("flap: the load profile must be finite");
   if (mesh.along < 1 || (mesh.model == FlapModel::shell && mesh.across < 1))
     throw InvalidInput("flap: the mesh needs at least one cell along and across");
-  const double L = flap.length;
+  if (!std::isfinite(shape.rest_curvature) || !std::isfinite(shape.rest_cupping) || !(shape.distal_softening < 1))
+    throw InvalidInput("flap: the rest curvatures must be finite and the distal softening below 1");
+  if (mesh.model == FlapModel::beam && shape.rest_cupping != 0)
+    throw InvalidInput("flap: a cupped rest shape needs the shell model");
+  const double L = flap.length, b = flap.width;
+  // Station s along the flap -> rest position on the arc of curvature k (a straight line for k = 0),
+  // offset c along the arc's normal (the cupping).
+  const double k = shape.rest_curvature;
+  const auto rest = [&](double s, double y, double c) {
+    const double x = std::abs(k * s) < 1e-12 ? s : std::sin(k * s) / k;
+    const double z = std::abs(k * s) < 1e-12 ? 0.5 * k * s * s : (1 - std::cos(k * s)) / k;
+    return Vec3(x - c * std::sin(k * s), y, z + c * std::cos(k * s));
+  };
+  const auto profile_at = [&](const std::vector<double>& p, double s) {
+    if (p.empty()) return 0.0;
+    const int n = static_cast<int>(p.size());
+    return p[static_cast<std::size_t>(std::clamp(static_cast<int>(std::floor(s / L * n)), 0, n - 1))];
+  };
+  // Load per length [N/m] at station s along z and x.
+  const auto qz = [&](double s) { return load.uniform + profile_at(load.transverse, s); };
+  const auto qx = [&](double s) { return profile_at(load.along, s); };
   // The flap along +x, its width along y, its thickness (and the buoyancy) along +z.
   Model model;
-  const Material material{"silicone", E, flap.poisson_ratio, flap.solid_density};
-  std::vector<std::pair<int, double>> tip;  // node, weight of the tip centre
+  const int stiff = model.add_material({"silicone", E, flap.poisson_ratio, flap.solid_density});
+  const int soft = model.add_material({"silicone_distal", E * (1 - shape.distal_softening), flap.poisson_ratio,
+                                       flap.solid_density});
+  const auto material_at = [&](double s) { return s > 0.5 * L && shape.distal_softening != 0 ? soft : stiff; };
+  std::vector<std::pair<int, double>> tip, root;  // node, weight of the tip / clamp row's centre
   std::vector<std::vector<std::pair<int, double>>> stations(mesh.along + 1);  // the same per station
+  const double ds = L / mesh.along;
   if (mesh.model == FlapModel::beam) {
-    const int mat = model.add_material(material);
-    for (int i = 0; i <= mesh.along; ++i) model.add_node(Vec3(L * i / mesh.along, 0, 0));
+    for (int i = 0; i <= mesh.along; ++i) model.add_node(rest(ds * i, 0, 0));
     for (int i = 0; i < mesh.along; ++i)
-      model.add_beam(i, i + 1, mat, TaperedRectangle::uniform(flap.width, flap.thickness), Vec3(0, 1, 0));
+      model.add_beam(i, i + 1, material_at(ds * (i + 0.5)),
+                     TaperedRectangle::uniform(b, flap.thickness), Vec3(0, 1, 0));
     model.fix_node(0);
     // Lumped: half of each element's load at either end (O(h^2) in the tip deflection).
-    for (int i = 1; i <= mesh.along; ++i)
-      model.add_nodal_load(i, 2, q * L / mesh.along * (i == mesh.along ? 0.5 : 1.0));
+    for (int i = 1; i <= mesh.along; ++i) {
+      const double w = ds * (i == mesh.along ? 0.5 : 1.0), s = ds * i;
+      model.add_nodal_load(i, 2, qz(s) * w);
+      if (qx(s) != 0) model.add_nodal_load(i, 0, qx(s) * w);
+    }
     tip.push_back({mesh.along, 1.0});
+    root.push_back({0, 1.0});
     for (int i = 0; i <= mesh.along; ++i) stations[i].push_back({i, 1.0});
   } else {
-    const TriangleMesh tm = rectangle_mesh(L, flap.width, mesh.along, mesh.across);
-    const std::vector<int> id = add_shell_mesh(model, tm, material, flap.thickness);
-    const double cell = (L / mesh.along) * (flap.width / mesh.across), p = q / flap.width;
+    const TriangleMesh tm = rectangle_mesh(L, b, mesh.along, mesh.across);
+    std::vector<int> id;
+    for (const Vec3& X : tm.nodes) {
+      const double y = X.y() - 0.5 * b;
+      id.push_back(model.add_node(rest(X.x(), X.y(), 0.5 * shape.rest_cupping * y * y)));
+    }
+    const auto& X = model.reference_positions();
+    for (const auto& t : tm.triangles) {
+      const double centroid = (tm.nodes[t[0]].x() + tm.nodes[t[1]].x() + tm.nodes[t[2]].x()) / 3;
+      const auto& m = model.materials()[static_cast<std::size_t>(material_at(centroid))];
+      model.add_element(std::make_unique<CorotationalShell>(id[t[0]], id[t[1]], id[t[2]], X[id[t[0]]], X[id[t[1]]],
+                                                            X[id[t[2]]], m, flap.thickness));
+    }
     for (int j = 0; j <= mesh.across; ++j) {
       const double wj = (j == 0 || j == mesh.across) ? 0.5 : 1.0;
       model.fix_node(id[tm.node(0, j)]);
       for (int i = 0; i <= mesh.along; ++i) stations[i].push_back({id[tm.node(i, j)], wj / mesh.across});
       for (int i = 1; i <= mesh.along; ++i) {
-        const double wi = i == mesh.along ? 0.5 : 1.0;
-        model.add_nodal_load(id[tm.node(i, j)], 2, p * cell * wi * wj);
+        const double w = ds * (i == mesh.along ? 0.5 : 1.0) * wj / mesh.across, s = ds * i;
+        model.add_nodal_load(id[tm.node(i, j)], 2, qz(s) * w);
+        if (qx(s) != 0) model.add_nodal_load(id[tm.node(i, j)], 0, qx(s) * w);
       }
       tip.push_back({id[tm.node(mesh.along, j)], wj / mesh.across});
+      root.push_back({id[tm.node(0, j)], wj / mesh.across});
     }
   }
   StaticOptions so;
@@ -120,15 +171,12 @@ FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const Fla
   so.backend = backend;
   StaticSolver solver(model, so);
   NodalState state = model.reference_state();
-  const NodalState reference = state;
   const StaticResult r = solver.solve(state, 0.0, 1.0);
   FlapDeflection d;
   d.newton_iterations = r.total_iterations;
-  for (const auto& [node, w] : tip) {
-    const Vec3 u = state.position[node] - reference.position[node];
-    d.tip += w * u.z();
-    d.tip_axial += w * u.x();
-  }
+  for (const auto& [node, w] : tip) d.tip += w * state.position[node].z(), d.tip_axial += w * state.position[node].x();
+  for (const auto& [node, w] : root) d.tip -= w * state.position[node].z();
+  d.tip_axial -= L;
   for (const auto& station : stations) {
     std::array<double, 2> xz{0, 0};
     for (const auto& [node, w] : station) xz[0] += w * state.position[node].x(), xz[1] += w * state.position[node].z();

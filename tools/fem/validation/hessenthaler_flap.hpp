@@ -58,6 +58,29 @@ struct FlapDeflection {
   int newton_iterations = 0;
 };
 
+// A flap that differs from the straight, flat, uniform strip: the candidate effects of fin-loop
+// flap. Rest curvature: the clamp-to-tip line an arc bent towards +z (the buoyancy); cupping: a
+// shallow arc across the width (shell only); distal softening a: E (1 - a) beyond half the length.
+struct FlapShape {
+  double rest_curvature = 0;    // [1/m]
+  double rest_cupping = 0;      // [1/m]
+  double distal_softening = 0;  // [-], below 1
+};
+
+// Dead loads per unit length [N/m]: `uniform` along +z, plus profiles piecewise constant on equal
+// stations from the clamp to the tip, along +z (transverse) and along +x (the clamp's axis).
+struct FlapLoad {
+  double uniform = 0;
+  std::vector<double> transverse, along;
+};
+
+// Static deflection under `load` of the flap `shape` (tip: the tip row's mean z minus the clamp
+// row's, so a curved rest shape's offset counts; tip_axial: tip x minus the length). Throws
+// NotConverged when Newton fails, InvalidInput for a shape the model cannot carry.
+FlapDeflection flap_deflection(const HessenthalerFlap& flap, double youngs_modulus, const FlapMesh& mesh,
+                               const FlapLoad& load, const FlapShape& shape, int load_steps = 8,
+                               SolverBackend backend = SolverBackend::cholmod);
+
 // Static deflection under a uniform dead load of `load_per_length` [N/m] along +z (the buoyancy's
 // direction) for Young's modulus E [Pa] (Poisson ratio flap.poisson_ratio), ramped in load_steps
 // Newton steps. Throws NotConverged when Newton fails.

@@ -145,6 +145,15 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
                             co);
 
   const auto steps = static_cast<long>(std::ceil(o.t_end / dt - 1e-9));
+  // The flow's load on the flap per step, summed over the wet nodes of each of load_bins equal
+  // stations along the flap (by reference x from the clamp; the end face's nodes in the first
+  // and last): the time mean of the last fifth is the "measured" flow load of fin-loop flap.
+  const int bins = std::max(o.load_bins, 1);
+  std::vector<int> bin_of(static_cast<std::size_t>(n_wet));
+  for (int k = 0; k < n_wet; ++k)
+    bin_of[static_cast<std::size_t>(k)] =
+        std::clamp(static_cast<int>(std::floor((wet_reference(0, k) - clamp) / flap.length * bins)), 0, bins - 1);
+  std::vector<Eigen::Matrix2Xd> binned_loads;
   std::vector<double> time, tip;
   long iterations = 0, at_cap = 0;
   nlohmann::json history = nlohmann::json::array();
@@ -167,6 +176,9 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
     const double uy = structure.state().configuration.position[a].y() - X0[a].y();
     time.push_back(n * dt);
     tip.push_back(uy);
+    Eigen::Matrix2Xd per_bin = Eigen::Matrix2Xd::Zero(2, bins);
+    for (int k = 0; k < n_wet; ++k) per_bin.col(bin_of[static_cast<std::size_t>(k)]) += step.wet_loads().col(k);
+    binned_loads.push_back(per_bin);
     if (n % 50 == 0 || n == steps) {
       history.push_back({n * dt, uy});
       if (o.progress) {
@@ -186,6 +198,15 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
   for (std::size_t k = 0; k < time.size(); ++k)
     if (time[k] >= t0) sum += tip[k], lo = std::min(lo, tip[k]), hi = std::max(hi, tip[k]), ++count;
   const double mean = sum / std::max(count, 1);
+  Eigen::Matrix2Xd mean_load = Eigen::Matrix2Xd::Zero(2, bins);
+  for (std::size_t k = 0; k < time.size(); ++k)
+    if (time[k] >= t0) mean_load += binned_loads[k];
+  mean_load /= std::max(count, 1);
+  // Per unit length of the flap and unit depth [N/m^2]: times the 3-D flap's width, a load per length.
+  const double station = flap.length / bins;
+  std::vector<double> along, transverse, edges;
+  for (int b = 0; b <= bins; ++b) edges.push_back(b * station);
+  for (int b = 0; b < bins; ++b) along.push_back(mean_load(0, b) / station), transverse.push_back(mean_load(1, b) / station);
 
   Summary s("validation", "loop_hessenthaler_phase_I_plane",
             "PLANE VERSION of the Hessenthaler 2017 Phase I flow (2-D section: the flap spans the depth and "
@@ -199,6 +220,8 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
   s.info("phase_I_plane_tip_final", tip.back(), "m");
   s.info("phase_I_plane_residual", mean - flap.tip_deflection_phase_I, "m");
   s.info("plane_strain_static_tip_no_flow", static_tip, "m");
+  s.info("phase_I_plane_mean_flow_force_transverse", mean_load.row(1).sum(), "N/m");
+  s.info("phase_I_plane_mean_flow_force_along", mean_load.row(0).sum(), "N/m");
   s.info("coupling_iterations_mean", static_cast<double>(iterations) / static_cast<double>(steps));
   s.info("steps_at_cap", static_cast<double>(at_cap));
   s.info("flow_cells", static_cast<double>(grid.cells()));
@@ -218,7 +241,14 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
                     {"clamp_x_m", clamp},
                     {"flag_mesh", {o.mesh.nx, o.mesh.ny, o.mesh.grading}},
                     {"buoyancy_body_force_N_m3", (flap.fluid_density - flap.solid_density) * g0},
-                    {"tip_history_t_s_uy_m", history}};
+                    {"tip_history_t_s_uy_m", history},
+                    {"mean_flow_load_last_fifth",
+                     {{"note", "flow's load on the flap per unit length and unit depth, time mean over the last fifth, "
+                               "piecewise constant on stations from the clamp (no hydrostatics; buoyancy excluded)"},
+                      {"window_s", {t0, time.back()}},
+                      {"station_edges_m", edges},
+                      {"along_N_m2", along},
+                      {"transverse_N_m2", transverse}}}};
   return s;
 }
 

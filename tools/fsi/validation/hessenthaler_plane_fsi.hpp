@@ -5,7 +5,8 @@
 // a 65 x 2 mm plane-strain Q9 strip (fem/validation/turek_hron_flag.hpp) with the fitted E, nu
 // 0.45 and net buoyancy as a body force, coupled as the Turek-Hron FSI runs (IQN-ILS). Every
 // geometric choice is in the summary's parameters and docs/studies/hessenthaler_flap.md. A failed
-// step ends the run and still writes the summary, graded run_failed = 1.
+// step ends the run and still writes the summary, graded run_failed = 1. The summary also keeps the
+// flow's time-mean load on the flap per station (fin-loop flap's Phase I load, labelled plane).
 #pragma once
 
 #include <filesystem>
@@ -30,6 +31,7 @@ struct HessenthalerPlaneOptions {
   double tolerance = 1e-4;            // relative interface residual
   double absolute_tolerance = 1e-7;   // [m]
   int max_iterations = 20;
+  int load_bins = 13;                 // stations of the recorded mean flow load (5 mm each)
   std::function<void(const std::string&)> progress;
 };
 
