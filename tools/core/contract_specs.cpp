@@ -271,6 +271,14 @@ std::vector<FileSpec> build() {
                        {"parameters/names", str, {"np"}, "", "the final model's refitted parameters (base, then effects)"},
                        {"parameters/values", f64, {"np"}, "", "their values"},
                        {"held_out_frames", i32, {"nh"}, "", "frames no fit used"},
+                       // The report's residual maps and before/after errors (optional: added after
+                       // version 1's first files).
+                       opt(may_be_nan({"steps/node_rms_after", f64, {"ns", "nv"}, "m", "per-node RMS residual over all frames after each step's refit; NaN when none was tried or the node is not compared"})),
+                       opt(may_be_nan({"nodes/rms_before", f64, {"nv"}, "m", "per-node RMS residual over all frames, the refitted base before any effect; NaN where the node is not compared (root)"})),
+                       opt(may_be_nan({"nodes/rms_after", f64, {"nv"}, "m", "the same after the last accepted effect (the base when none)"})),
+                       opt({"errors/trailing_edge", f64, {"3"}, "m", "trailing-edge residual RMS: the fit's values, the refitted base, the final model"}),
+                       opt({"errors/held_out", f64, {"3"}, "m", "held-out RMS error of the same three states"}),
+                       opt({"errors/bic", f64, {"3"}, "1", "training BIC of the same three states"}),
                    },
                    {{"stop_reason", "", "why the tracing stopped", true, true},
                     {"held_out_kind", "", "last_cycle, or interleaved frames when fewer than two periods", true, true},

@@ -66,6 +66,7 @@ ModelState state_of(const TracedModel& model, const Eigen::VectorXd& all, const 
   s.bic = bic(s.rss, s.training_rows, parameters);
   s.held_out_rms = rms_rows(held);
   s.trailing_edge_rms = model.trailing_edge_rms(all);
+  s.node_rms = model.node_rms(all);
   return s;
 }
 
@@ -133,6 +134,7 @@ TraceResult trace_effects(const TracedModel& model, const TraceOptions& options)
     }
   }
   ModelState current = state_of(model, all, split, out.space.size());
+  out.base = current;
   {
     std::ostringstream s;
     s << (options.refit_base ? "base refitted" : "base Jacobian") << ": training |r|^2 " << current.rss
@@ -251,6 +253,7 @@ TraceResult trace_effects(const TracedModel& model, const TraceOptions& options)
     current = out.steps.back().after;
     remaining.erase(std::find(remaining.begin(), remaining.end(), best.name));
   }
+  out.final_state = current;
   return out;
 }
 

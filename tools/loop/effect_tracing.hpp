@@ -52,6 +52,7 @@ struct ModelState {
   double bic = 0;          // training
   double held_out_rms = 0; // RMS of |r| per node-sample on the held-out frames
   double trailing_edge_rms = 0;  // all frames
+  Eigen::VectorXd node_rms;      // per node, all frames [m] (TracedModel::node_rms)
   long training_rows = 0;
   int parameters = 0;
 };
@@ -68,6 +69,8 @@ struct TraceStep {
 
 struct TraceResult {
   ModelState base_initial;              // at base_start, before any refit
+  ModelState base;                      // the refitted base: before the first effect
+  ModelState final_state;               // after the last accepted effect (= base when none)
   std::vector<TraceStep> steps;
   std::vector<std::string> added;
   fit::ParameterSpace space;            // base + added effects

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "loop/effect_model_factory.hpp"
@@ -125,6 +126,8 @@ std::shared_ptr<const ModelPrediction> FinTracedModel::objective(const std::vect
   if (te_rows_.empty() && rows_per_frame_ == 0) {
     const auto& nodes = obj->compared_nodes();
     rows_per_frame_ = 3 * static_cast<long>(nodes.size());
+    mesh_nodes_ = obj->node_weights().size();
+    for (int n : nodes) compared_.emplace_back(n, std::sqrt(obj->node_weights()(n)));
     for (int n : setup_.trailing_edge_nodes) {
       const auto it = std::lower_bound(nodes.begin(), nodes.end(), n);
       if (it == nodes.end() || *it != n) continue;  // a prescribed node: not compared
@@ -154,6 +157,21 @@ double FinTracedModel::trailing_edge_rms(const Eigen::VectorXd& r) const {
       sum += v * v;
     }
   return std::sqrt(sum / (frames * static_cast<double>(te_rows_.size() / 3)));
+}
+
+Eigen::VectorXd FinTracedModel::node_rms(const Eigen::VectorXd& r) const {
+  if (rows_per_frame_ == 0) return TracedModel::node_rms(r);
+  Eigen::VectorXd rms = Eigen::VectorXd::Constant(mesh_nodes_, std::numeric_limits<double>::quiet_NaN());
+  const long frames = static_cast<long>(r.size()) / rows_per_frame_;
+  if (frames == 0) return rms;
+  for (std::size_t j = 0; j < compared_.size(); ++j) {
+    const auto [node, sw] = compared_[j];
+    if (!(sw > 0)) continue;  // weight 0: the residual carries nothing of this node
+    double sum = 0;
+    for (long k = 0; k < frames; ++k) sum += r.segment(k * rows_per_frame_ + 3 * static_cast<long>(j), 3).squaredNorm();
+    rms(node) = std::sqrt(sum / static_cast<double>(frames)) / sw;
+  }
+  return rms;
 }
 
 }  // namespace finverse::loop

@@ -59,6 +59,7 @@ class FinTracedModel : public TracedModel {
   int frame_count() const override { return setup_.target.frame_count(); }
   Eigen::VectorXd residuals(const std::vector<std::string>& effects, const Eigen::VectorXd& physical) const override;
   double trailing_edge_rms(const Eigen::VectorXd& r) const override;
+  Eigen::VectorXd node_rms(const Eigen::VectorXd& r) const override;
 
   const nlohmann::json& spec(const std::string& candidate) const { return specs_.at(candidate); }
   // Node positions predicted by the model (every node, every compared frame) for a residual file.
@@ -79,6 +80,10 @@ class FinTracedModel : public TracedModel {
   // Trailing-edge rows of the residual per frame block and the node weights to unweight them.
   mutable std::vector<std::pair<long, double>> te_rows_;
   mutable long rows_per_frame_ = 0;
+  // Each compared node's mesh index and square-rooted weight (residual rows 3j..3j+2), and the
+  // mesh's node count.
+  mutable std::vector<std::pair<int, double>> compared_;
+  mutable Eigen::Index mesh_nodes_ = 0;
 };
 
 }  // namespace finverse::loop

@@ -22,4 +22,14 @@ double TracedModel::trailing_edge_rms(const Eigen::VectorXd& r) const {
   return r.size() ? std::sqrt(r.squaredNorm() / static_cast<double>(r.size() / 3)) : 0.0;
 }
 
+Eigen::VectorXd TracedModel::node_rms(const Eigen::VectorXd& r) const {
+  const Eigen::Index frames = frame_count();
+  if (frames <= 0 || r.size() == 0) return {};
+  const Eigen::Index rows = r.size() / frames, nodes = rows / 3;
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(nodes);
+  for (Eigen::Index k = 0; k < frames; ++k)
+    for (Eigen::Index n = 0; n < nodes; ++n) sum(n) += r.segment(k * rows + 3 * n, 3).squaredNorm();
+  return (sum / static_cast<double>(frames)).cwiseSqrt();
+}
+
 }  // namespace finverse::loop

@@ -45,6 +45,9 @@ class TracedModel {
   virtual Eigen::VectorXd residuals(const std::vector<std::string>& effects, const Eigen::VectorXd& physical) const = 0;
   // RMS over the trailing edge of a residual vector as residuals() returns it (default: all rows).
   virtual double trailing_edge_rms(const Eigen::VectorXd& r) const;
+  // Per node, the RMS over frames of |residual| [m] (the report's residual maps). Default: one
+  // "node" per 3-row block of a frame. The fin: every mesh node, NaN where none is compared.
+  virtual Eigen::VectorXd node_rms(const Eigen::VectorXd& r) const;
 };
 
 }  // namespace finverse::loop

@@ -102,6 +102,22 @@ TEST(EffectTracing, PlantedCandidateIsAddedFirstWithItsMagnitude) {
   EXPECT_NEAR(result.parameters(1), -0.7, 0.01);
 }
 
+// The report's residual maps: per node (here a 3-row block) before the first effect and after the
+// last accepted one; the planted column spreads over every node, so each node's RMS falls.
+TEST(EffectTracing, RecordsPerNodeRmsBeforeAndAfter) {
+  const LinearModel model("gamma", 0.2, 5);
+  const auto result = trace_effects(model, options());
+  ASSERT_EQ(result.base.node_rms.size(), LinearModel::kRows / 3);
+  ASSERT_EQ(result.final_state.node_rms.size(), LinearModel::kRows / 3);
+  EXPECT_EQ(result.base.node_rms, result.steps.front().before.node_rms);
+  EXPECT_EQ(result.final_state.node_rms, result.steps.front().after.node_rms);
+  EXPECT_LT(result.final_state.node_rms.maxCoeff(), 0.5 * result.base.node_rms.minCoeff());
+  // Mean square over nodes = the per-row-triple mean square over all frames.
+  const Eigen::VectorXd r = model.residuals({"gamma"}, result.parameters);
+  EXPECT_NEAR(result.final_state.node_rms.squaredNorm() / (LinearModel::kRows / 3),
+              r.squaredNorm() / (r.size() / 3.0), 1e-12);
+}
+
 TEST(EffectTracing, ControlWithoutEffectAddsNothing) {
   const LinearModel model("", 0, 9);
   const auto result = trace_effects(model, options());

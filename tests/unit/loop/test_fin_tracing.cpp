@@ -3,6 +3,7 @@
 // +-30 % at 2 Hz (active_stiffening, planted). Starting from the true moduli, the tracer must
 // rank active stiffening first among the candidates, add it with an amplitude near 0.3, and the
 // residual must fall by far more than 5x. Quasi-static runs of 6 frames on 15 nodes: about 1 s.
+#include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -88,6 +89,12 @@ TEST(FinTracing, PlantedActiveStiffeningIsFoundOnAStripTwin) {
   EXPECT_NEAR(first.magnitude(0), 0.3, 0.03);
   EXPECT_LT(first.after.trailing_edge_rms, first.before.trailing_edge_rms / 5);
   EXPECT_NEAR(result.parameters(0), 1e9, 0.05e9);
+  // The report's maps: every mesh node, NaN on the prescribed root, each tip's RMS cut with the rest.
+  ASSERT_EQ(result.base.node_rms.size(), (strip::nx + 1) * (strip::nz + 1));
+  for (int j = 0; j <= strip::nz; ++j) {
+    EXPECT_TRUE(std::isnan(result.base.node_rms(strip::node(0, j))));
+    EXPECT_LT(result.final_state.node_rms(strip::node(strip::nx, j)), result.base.node_rms(strip::node(strip::nx, j)) / 5);
+  }
   for (const auto& c : first.scores) std::printf("  %-20s score %.3e  p %.2e\n", c.name.c_str(), c.score.statistic, c.score.p_value);
   std::printf("  amplitude %.4f [%.4f, %.4f], phase %.4f; trailing edge RMS %.3e -> %.3e m\n", first.magnitude(0),
               first.lower95(0), first.upper95(0), first.magnitude(1), first.before.trailing_edge_rms,

@@ -1,11 +1,13 @@
 // residual.h5, loop.h5 and the inputs of fin-loop (loop_files.hpp).
 #include "loop/io/loop_files.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 
 #include "core/error.hpp"
+#include "loop/io/loop_file.hpp"
 
 namespace finverse::loop::io {
 namespace {
@@ -40,42 +42,6 @@ struct ResidualFile {
     a("T", period);
     a("prediction_kind", prediction_kind);
     a("flags", flags);
-  }
-};
-
-struct LoopFile {
-  static constexpr const char* kSchema = "finverse/loop";
-  stage::Strings candidates, tried, parameter_names, names;
-  NdArray<std::int32_t> accepted, held_out;
-  NdArray<double> score, p_value, projected, magnitude, lower95, upper95;
-  NdArray<double> bic_before, bic_after, held_before, held_after, te_before, te_after, values;
-  std::optional<std::string> stop_reason, held_out_kind;
-  std::optional<double> excursion;
-  template <class V> void fields(V&& v) {
-    v("candidates", candidates);
-    v("steps/tried", tried);
-    v("steps/accepted", accepted);
-    v("steps/score", score);
-    v("steps/p_value", p_value);
-    v("steps/projected_fraction", projected);
-    v("steps/parameter_names", parameter_names);
-    v("steps/magnitude", magnitude);
-    v("steps/lower95", lower95);
-    v("steps/upper95", upper95);
-    v("steps/bic_before", bic_before);
-    v("steps/bic_after", bic_after);
-    v("steps/held_out_before", held_before);
-    v("steps/held_out_after", held_after);
-    v("steps/trailing_edge_before", te_before);
-    v("steps/trailing_edge_after", te_after);
-    v("parameters/names", names);
-    v("parameters/values", values);
-    v("held_out_frames", held_out);
-  }
-  template <class A> void attributes(A&& a) {
-    a("stop_reason", stop_reason);
-    a("held_out_kind", held_out_kind);
-    a("trailing_edge_excursion", excursion);
   }
 };
 
@@ -230,6 +196,33 @@ void write_loop(const std::filesystem::path& path, const TraceRecord& rec, const
       f.te_after.data[s] = st.after.trailing_edge_rms;
     }
   }
+  // Per-node maps: the refitted base, the final model and after each step's refit.
+  const std::size_t nv = static_cast<std::size_t>(r.base.node_rms.size());
+  auto node_array = [](const Eigen::VectorXd& v) {
+    NdArray<double> a;
+    a.shape = {static_cast<std::size_t>(v.size())};
+    a.data.assign(v.data(), v.data() + v.size());
+    return a;
+  };
+  if (nv > 0) {
+    f.node_rms_before = node_array(r.base.node_rms);
+    f.node_rms_after = node_array(r.final_state.node_rms.size() ? r.final_state.node_rms : r.base.node_rms);
+    f.step_node_rms_after = array({ns, nv}, kNaN);
+    for (std::size_t s = 0; s < ns; ++s) {
+      const auto& m = r.steps[s].after.node_rms;
+      if (r.steps[s].tried.empty() || static_cast<std::size_t>(m.size()) != nv) continue;
+      std::copy(m.data(), m.data() + m.size(), f.step_node_rms_after.data.begin() + static_cast<std::ptrdiff_t>(s * nv));
+    }
+  }
+  f.state_trailing_edge = array({3});
+  f.state_held_out = array({3});
+  f.state_bic = array({3});
+  for (const auto& [k, st] : {std::pair{LoopFile::kInitial, &r.base_initial}, std::pair{LoopFile::kBase, &r.base},
+                              std::pair{LoopFile::kFinal, &r.final_state}}) {
+    f.state_trailing_edge.data[k] = st->trailing_edge_rms;
+    f.state_held_out.data[k] = st->held_out_rms;
+    f.state_bic.data[k] = st->bic;
+  }
   f.names = r.space.names();
   f.values.shape = {static_cast<std::size_t>(r.parameters.size())};
   f.values.data.assign(r.parameters.data(), r.parameters.data() + r.parameters.size());
@@ -255,6 +248,8 @@ nlohmann::json trace_summary_json(const TraceRecord& rec) {
                           {"parameters", s.parameters}};
   };
   j["initial"] = state(r.base_initial);
+  j["base"] = state(r.base);
+  j["final"] = state(r.final_state);
   nlohmann::json steps = nlohmann::json::array();
   for (const auto& st : r.steps) {
     nlohmann::json sj;
