@@ -4,7 +4,9 @@
 //
 //   fin-report --case tiny --truth truth.h5 --kinematics kinematics.h5 --mesh mesh.h5
 //              --motion motion.h5 --loads loads.h5 --materials materials.h5
-//              --truth-materials data/cases/trout_fin_materials.json [--fsi fsi.h5] --out-dir report
+//              --truth-materials data/cases/trout_fin_materials.json [--fsi fsi.h5] [--loop loop.h5]
+//              --out-dir report
+// --loop (fin-loop trace's loop.h5, with --mesh) adds the "Closing the loop" section.
 // Every input is optional: a section whose file is not given is marked "not available" with the
 // missing file named. A given file that does not exist or breaks its contract, or files that
 // disagree (loads from another motion, materials for another mesh): one line, exit 2.
@@ -32,7 +34,7 @@ int main(int argc, char** argv) {
   using namespace finverse;
   CLI::App app{"fin-report: scores and figure data of one case"};
   cli::Standard standard(app, "fin-report");
-  std::filesystem::path truth, kinematics, mesh, motion, loads, materials, fsi, truth_materials, out_dir;
+  std::filesystem::path truth, kinematics, mesh, motion, loads, materials, fsi, loop, truth_materials, out_dir;
   report::ReportInputs in;
   app.add_option("--case", in.case_name, "case name (for the report's title)")->required();
   app.add_option("--truth", truth, "truth.h5 (fin-synth)")->check(CLI::ExistingFile);
@@ -42,6 +44,8 @@ int main(int argc, char** argv) {
   app.add_option("--loads", loads, "loads.h5 (fin-cfd)")->check(CLI::ExistingFile);
   app.add_option("--materials", materials, "materials.h5 (fin-fit)")->check(CLI::ExistingFile);
   app.add_option("--fsi", fsi, "fsi.h5 (fin-fsi), when the case has one")->check(CLI::ExistingFile);
+  app.add_option("--loop", loop, "loop.h5 (fin-loop trace): residual maps, decision trail, errors; needs --mesh")
+      ->check(CLI::ExistingFile);
   app.add_option("--truth-materials", truth_materials,
                  "materials file (fin-fem format) of the truth, used when truth.h5 records none")
       ->check(CLI::ExistingFile);
@@ -56,10 +60,13 @@ int main(int argc, char** argv) {
     read_if(loads, in.loads);
     read_if(materials, in.materials);
     read_if(fsi, in.fsi);
+    read_if(loop, in.loop);
+    in.loop_source = loop.string();
+    if (!loop.empty() && mesh.empty()) throw Error("--loop " + loop.string() + ": needs --mesh (the residual maps' planform)");
     // Stages that disagree (issue 33 "Bad input"): each product against the inputs it records.
     const std::vector<std::pair<std::filesystem::path, std::filesystem::path>> made_from{
         {motion, kinematics}, {motion, mesh}, {loads, mesh},      {loads, motion}, {materials, mesh},
-        {materials, motion},  {materials, loads}, {fsi, mesh}, {fsi, materials}};
+        {materials, motion},  {materials, loads}, {fsi, mesh}, {fsi, materials}, {loop, mesh}};
     for (const auto& [product, input] : made_from)
       if (!product.empty() && !input.empty()) check_made_from(product, input);
     if (in.truth && !report::truth_parameters(*in.truth).empty()) {

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "report/fin_profiles.hpp"
+#include "report/loop_section.hpp"
 #include "report/force_statistics.hpp"
 #include "report/modulus_scores.hpp"
 #include "report/motion_distance.hpp"
@@ -229,6 +230,15 @@ Report build_report(const ReportInputs& in) {
   else
     scores.push_back(unavailable(fsi_truth, 0.01, kIssue, in.fsi ? "needs truth.h5 and mesh.h5" : kNeedsFsi));
 
+  // Closing the loop (issue 34): the tracer's residual maps, decision trail and errors.
+  if (in.loop) {
+    const std::string source = in.loop_source.empty() ? "loop.h5" : in.loop_source;
+    if (!in.mesh) throw Error(source + ": the loop section needs mesh.h5 (--mesh) for its residual maps");
+    auto section = loop_section(*in.loop, *in.mesh, source);
+    scores.insert(scores.end(), section.scores.begin(), section.scores.end());
+    fig["loop"] = std::move(section.figure);
+  }
+
   // The reconstruction's own numbers (and the truth's), for reading the graded ones.
   if (loads_ct) {
     scores.push_back(info("mean C_T, reconstruction (loads.h5)", loads_ct->mean, "", "paper: 0.042"));
@@ -255,7 +265,7 @@ Report build_report(const ReportInputs& in) {
 nlohmann::json summary_json(const ReportInputs& in, const Report& r) {
   json counts{{"met", 0}, {"missed", 0}, {"not available", 0}, {"info", 0}};
   for (const auto& s : r.scores) counts[to_string(s.status)] = counts[to_string(s.status)].get<int>() + 1;
-  return {{"schema", "finverse/report"},
+  json j = {{"schema", "finverse/report"},
           {"schema_version", 1},
           {"case", in.case_name},
           {"scores", to_json(r.scores)},
@@ -264,6 +274,8 @@ nlohmann::json summary_json(const ReportInputs& in, const Report& r) {
            {{"truth", in.truth.has_value()}, {"kinematics", in.kinematics.has_value()}, {"mesh", in.mesh.has_value()},
             {"motion", in.motion.has_value()}, {"loads", in.loads.has_value()}, {"materials", in.materials.has_value()},
             {"fsi", in.fsi.has_value()}, {"truth_materials", in.truth_materials_source}}}};
+  if (in.loop) j["inputs"]["loop"] = true;
+  return j;
 }
 
 }  // namespace finverse::report

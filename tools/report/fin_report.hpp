@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/stage_files.hpp"
+#include "loop/io/loop_file.hpp"
 #include "report/score.hpp"
 
 namespace finverse::report {
@@ -27,6 +28,8 @@ struct ReportInputs {
   std::optional<stage::Loads> loads;
   std::optional<stage::Materials> materials;
   std::optional<stage::Fsi> fsi;
+  std::optional<loop::io::LoopFile> loop;         // fin-loop trace: the "Closing the loop" section
+  std::string loop_source;                        // its path, for messages
   std::map<std::string, double> truth_materials;  // parameter name -> value (empty: none)
   std::string truth_materials_source;             // where they come from, for the notes
   double chord = 0;                               // [m]; 0: mesh.h5's chord attribute
@@ -37,11 +40,12 @@ struct Report {
   nlohmann::json figures;  // figure data, one key per figure
 };
 
-// Throws finverse::Error when present files disagree in shape (e.g. fsi.h5 on other nodes).
+// Throws finverse::Error when present files disagree in shape (e.g. fsi.h5 on other nodes, a
+// loop.h5 of another mesh) or loop.h5 comes without mesh.h5.
 Report build_report(const ReportInputs& in);
 
 // summary.json: {"schema": "finverse/report", "case", "scores": [...], "counts": {met, missed,
-// not available}, "inputs": {stage: present}}.
+// not available}, "inputs": {stage: present}} ("loop" among the inputs only when given).
 nlohmann::json summary_json(const ReportInputs& in, const Report& r);
 
 }  // namespace finverse::report

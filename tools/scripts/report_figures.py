@@ -10,6 +10,8 @@ Figures: fig10_pressure_jump.png, fig11_moduli.png, fig12_root_pitch.png,
 fig14_trailing_edge.png, fig15_profiles.png, fig16_forces.png, fig17_wake.png (lambda_2 from the
 last frame of ../loads.flow.pvd or ../fsi.flow.pvd beside the stage files, linked on the page); a
 figure whose data is absent is listed on the page as not available. Exit 2 with one line for a missing or malformed input.
+With loop data (fin-report --loop): a "Closing the loop" section, loop_residual_maps.png (per-node
+RMS residual before and after on one colour scale), the errors before/after and the decision trail.
 """
 import html
 import json
@@ -266,6 +268,90 @@ def fig17(d, out):
     return "fig17_wake.png"
 
 
+def loop_maps(d, out):
+    """Per-node RMS residual on the planform (x, z) before and after, one colour scale; nodes the
+    tracer does not compare (the prescribed root) are grey crosses."""
+    lp = d.get("loop") or {}
+    maps = lp.get("maps")
+    if not maps:
+        return None
+    import matplotlib.tri as mtri
+
+    pts = np.array(lp["points"], dtype=float).reshape(-1, 3) * 1e3
+    tri = np.array(lp["triangles"], dtype=int).reshape(-1, 3)
+    vmax = (lp.get("vmax") or 0.0) * 1e3 or 1.0
+    fig, axes = plt.subplots(1, len(maps), figsize=(4.8 * len(maps), 4.2), squeeze=False)
+    axes = axes[0]
+    for ax, m in zip(axes, maps):
+        v = np.array([np.nan if x is None else x for x in m["rms"]], dtype=float) * 1e3
+        bad = np.isnan(v)
+        if len(tri):
+            t = mtri.Triangulation(pts[:, 0], pts[:, 2], tri)
+            t.set_mask(bad[tri].any(axis=1))
+            h = ax.tripcolor(t, np.nan_to_num(v), shading="gouraud", cmap="magma_r", vmin=0, vmax=vmax)
+        else:
+            h = ax.scatter(pts[~bad, 0], pts[~bad, 2], c=v[~bad], cmap="magma_r", vmin=0, vmax=vmax, s=12)
+        if bad.any():
+            ax.plot(pts[bad, 0], pts[bad, 2], "x", color="0.5", ms=3, label="not compared")
+            ax.legend(fontsize=7, loc="lower right")
+        ax.set_aspect("equal")
+        ax.set_title(f"{m['label']}\nmax {np.nanmax(v) if (~bad).any() else 0:.3g} mm", fontsize=9)
+        ax.set_xlabel("x [mm]")
+        ax.set_ylabel("z [mm]")
+    fig.colorbar(h, ax=axes, label="RMS residual over the frames [mm]")
+    save(fig, os.path.join(out, "loop_residual_maps.png"), tight=False)
+    return "loop_residual_maps.png"
+
+
+def loop_html(d, maps_png):
+    """The "Closing the loop" section: errors before/after, the residual maps, the decision trail."""
+    lp = d.get("loop")
+    if not lp:
+        return ""
+    esc = html.escape
+    added = ", ".join(lp["added"]) or "none"
+    parts = ["<h2>Closing the loop</h2>",
+             f"<p>fin-loop trace: {len(lp['candidates'])} candidate effects ({esc(', '.join(lp['candidates']))}); "
+             f"added: <b>{esc(added)}</b>; stopped: {esc(lp['stop_reason'])}; held-out frames: "
+             f"{esc(lp['held_out_kind'])}.</p>",
+             "<h3>Error before (refitted base) and after (last accepted effect)</h3>"
+             "<table border='1' cellpadding='4' style='border-collapse:collapse'>"
+             "<tr><th>measure</th><th>before</th><th>after</th><th>before / after</th></tr>"]
+    e = lp["errors"]
+    exc = lp.get("excursion")
+    for label, key, unit in (("trailing-edge residual RMS", "trailing_edge", " m"),
+                             ("held-out RMS error", "held_out", " m")):
+        b, a, f = e[key]
+        rel = ""
+        if key == "trailing_edge" and exc and b is not None and a is not None:
+            rel = f" ({fmt(b / exc)} → {fmt(a / exc)} of its excursion)"
+        parts.append(f"<tr class='loop-error'><td>{label}{rel}</td><td>{fmt(b)}{unit}</td><td>{fmt(a)}{unit}</td>"
+                     f"<td>{fmt(f)}</td></tr>")
+    b, a, c = e["bic"]
+    parts.append(f"<tr class='loop-error'><td>BIC (training frames)</td><td>{fmt(b)}</td><td>{fmt(a)}</td>"
+                 f"<td>change {fmt(c)}</td></tr></table>")
+    parts.append("<h3>Residual maps before and after (one colour scale)</h3>")
+    if maps_png:
+        parts.append(f"<img src='{maps_png}' style='max-width:100%'>")
+    else:
+        parts.append(f"<p><i>not available: {esc(lp.get('maps_missing', 'no per-node residual in loop.h5'))}</i></p>")
+    parts.append("<h3>Decision trail</h3><table border='1' cellpadding='4' style='border-collapse:collapse'>"
+                 "<tr><th>step</th><th>candidates, ranked (score, p)</th><th>tried</th>"
+                 "<th>fitted magnitude [95 % interval]</th><th>trailing-edge RMS before → after [m]</th>"
+                 "<th>BIC before → after</th><th>held-out RMS before → after [m]</th><th>verdict</th></tr>")
+    for row in lp["trail"]:
+        ranking = "<br>".join(f"{esc(r['candidate'])} {fmt(r['score'])} (p {fmt(r['p_value'])})" for r in row["ranking"])
+        mags = "<br>".join(f"{esc(m['name'])} = {fmt(m['value'])} [{fmt(m['lower95'])}, {fmt(m['upper95'])}]"
+                           for m in row["magnitude"])
+        arrow = lambda p: f"{fmt(p[0])} → {fmt(p[1])}"  # noqa: E731
+        colour = COLOURS["met"] if row["accepted"] else "#fff"
+        parts.append(f"<tr class='loop-step' style='background:{colour}'><td>{row['step']}</td><td>{ranking}</td>"
+                     f"<td>{esc(row['tried']) or '—'}</td><td>{mags or '—'}</td><td>{arrow(row['trailing_edge'])}</td>"
+                     f"<td>{arrow(row['bic'])}</td><td>{arrow(row['held_out'])}</td><td>{esc(row['verdict'])}</td></tr>")
+    parts.append("</table>")
+    return "".join(parts)
+
+
 FIGURES = [
     ("Fig. 10: pressure jump at two instants", fig10),
     ("Fig. 11: fitted E, I and EI per ray against the truth (95 % intervals)", fig11),
@@ -282,7 +368,7 @@ def fmt(v):
     return "—" if v is None else f"{v:.4g}"
 
 
-def page(summary, figures, out):
+def page(summary, figures, out, extra=""):
     rows = []
     for s in summary["scores"]:
         rows.append(
@@ -307,7 +393,7 @@ def page(summary, figures, out):
             f"<h1>finverse report: {html.escape(summary['case'])}</h1><p>Scores: {counts}.</p>"
             f"<p>Inputs: {inputs}</p><table border='1' cellpadding='4' style='border-collapse:collapse'>"
             "<tr><th>score</th><th>value</th><th>goal (≤)</th><th>status</th><th>note</th></tr>"
-            + "".join(rows) + "</table>" + "".join(figs) + "</body></html>\n")
+            + "".join(rows) + "</table>" + "".join(figs) + extra + "</body></html>\n")
 
 
 def main():
@@ -326,9 +412,10 @@ def main():
         print(f"report_figures.py: {out}: {e}", file=sys.stderr)
         return 2
     figures = [(title, fn(data, out)) for title, fn in FIGURES]
+    extra = loop_html(data, loop_maps(data, out))
     tmp = os.path.join(out, "index.html.tmp")
     with open(tmp, "w") as f:
-        f.write(page(summary, figures, out))
+        f.write(page(summary, figures, out, extra))
     os.replace(tmp, os.path.join(out, "index.html"))
     return 0
 
