@@ -38,6 +38,15 @@ TEST(HessenthalerPlane, FewCoarseSteps) {
   const double tip = metric(s, "phase_I_plane_tip_final");
   EXPECT_GT(tip, 0.0);
   EXPECT_LT(tip, 1e-3);
+  // The recorded mean flow load (fin-loop flap's Phase I load): one value per station, summing to
+  // the metric's net force.
+  const nlohmann::json j = s.to_json();
+  const auto& load = j.at("parameters").at("mean_flow_load_last_fifth");
+  ASSERT_EQ(load["transverse_N_m2"].size(), static_cast<std::size_t>(o.load_bins));
+  ASSERT_EQ(load["station_edges_m"].size(), static_cast<std::size_t>(o.load_bins + 1));
+  double net = 0;
+  for (const auto& q : load["transverse_N_m2"]) net += q.get<double>() * flap.length / o.load_bins;
+  EXPECT_NEAR(net, metric(s, "phase_I_plane_mean_flow_force_transverse"), 1e-12 + 1e-9 * std::abs(net));
 }
 
 TEST(HessenthalerPlane, MissingModulusIsRefused) {
