@@ -19,6 +19,8 @@
 //       --periods 1 --frames-per-period 40 --out response.h5     (in vacuo, the analytic drive)
 // (--loads also takes nodal_loads.h5: a structural load case without flow fields)
 //   fin-fem effects [--check effects.json]   the candidate effects (tools/fem/effects) / check a list
+//   fin-fem loads --mesh mesh.h5 --root-drive drive.json --periods 2 --frames-per-period 20
+//       --out loads.h5      quasi-steady loads of the drive's rigid motion (fem/io/quasi_steady_loads.hpp)
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -30,6 +32,7 @@
 #include "core/summary.hpp"
 #include "fem/effects/structural_effect.hpp"
 #include "fem/io/file_run.hpp"
+#include "fem/io/quasi_steady_loads.hpp"
 #include "fem/validation/cases.hpp"
 #include "fem/validation/hybrid_plate.hpp"
 #include "fem/validation/shell_cases.hpp"
@@ -184,7 +187,27 @@ int main(int argc, char** argv) {
   auto* ef = app.add_subcommand("effects", "list the candidate effects (names, parameters, ranges) as JSON, or check a list");
   ef->add_option("--check", effects_check, "effects JSON list to check (unknown name or value out of range: exit 2)");
 
+  fio::FileLoadsOptions qs;
+  auto* ld = app.add_subcommand("loads", "quasi-steady loads (resistive + added mass) of the root drive's rigid motion");
+  ld->add_option("--mesh", qs.mesh, "mesh.h5 (finverse/mesh)")->required();
+  ld->add_option("--root-drive", qs.root_drive, "root drive JSON (fem/io/root_drive_file.hpp)")->required();
+  ld->add_option("--out", qs.out, "loads.h5 (finverse/loads, with T)")->required();
+  ld->add_option("--start-periods", qs.start_periods, "first time, in drive periods")->capture_default_str();
+  ld->add_option("--periods", qs.periods, "periods covered")->capture_default_str();
+  ld->add_option("--frames-per-period", qs.frames_per_period, "times per period")->capture_default_str();
+  ld->add_option("--reynolds", qs.reynolds, "Re = U c / nu (sets U)")->capture_default_str();
+  ld->add_option("--density", qs.load.density, "water density [kg m-3]")->capture_default_str();
+  ld->add_option("--drag-coefficient", qs.load.drag_coefficient, "C_D of the plate's normal motion")->capture_default_str();
+  ld->add_option("--added-mass-coefficient", qs.load.added_mass_coefficient, "C_a: added mass C_a rho c per area")
+      ->capture_default_str();
+  ld->add_option("--scale", qs.load.scale, "multiplies the whole load")->capture_default_str();
+
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
+    if (*ld) {
+      const double largest = fio::write_quasi_steady_loads(qs, finverse::cli::effective_config(app));
+      std::cerr << "fin-fem loads: largest nodal force " << largest << " N, wrote " << qs.out.string() << "\n";
+      return 0;
+    }
     if (*ef) {
       if (!effects_check.empty()) {
         const auto list = finverse::fem::read_effects(effects_check);
