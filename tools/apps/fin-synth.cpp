@@ -4,7 +4,9 @@
 //               St = 0.44 on a 1.0 c trailing-edge excursion: f = 4.4 Hz, 500 fps);
 //   fsi         the fin's flow-structure simulation (issue 33): fsi.h5 from fin-fsi fin on the
 //               mesh.h5 it ran on, with the known materials and root drive it was given, which
-//               truth.h5 records (materials/*, root/*, root_drive).
+//               truth.h5 records (materials/*, root/*, root_drive);
+//   fem         a structural response (fin-fem run --root-drive, issue 34's cheap truth): its
+//               motion.h5 (--fem) on its mesh, recorded like the FSI's.
 //
 //   fin-synth --out-dir results/trout_caudal --periods 1 --views side,back,ventral
 //   fin-synth --out-dir results/c --motion-source fsi --fsi truth/fsi.h5 --fsi-mesh truth/mesh.h5
@@ -133,7 +135,7 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   bool vtk = true;
   std::string motion_source = "prescribed";
-  fs::path fsi_file, fsi_mesh, materials_file, drive_file;
+  fs::path fsi_file, fem_file, fsi_mesh, materials_file, drive_file;
   double max_fsi_distance = 0.05;
   std::vector<std::string> views{"side", "back", "ventral"};
   app.add_option("--out-dir", out_dir, "output directory (truth.h5, cameras.yml, frames/)")->required();
@@ -205,10 +207,11 @@ int main(int argc, char** argv) {
   app.add_option("--surface-subdivisions", subdivisions, "truth surface columns per gap between rays (even)")->capture_default_str();
   app.add_option("--vtk", vtk, "also write truth.pvd for ParaView")->capture_default_str();
   app.add_option("--motion-source", motion_source, "what moves the truth fin: prescribed kinematics or the fin FSI")
-      ->check(CLI::IsMember({"prescribed", "fsi"}))
+      ->check(CLI::IsMember({"prescribed", "fsi", "fem"}))
       ->capture_default_str();
   app.add_option("--fsi", fsi_file, "fsi: fsi.h5 of fin-fsi fin (the truth motion)")->check(CLI::ExistingFile);
-  app.add_option("--fsi-mesh", fsi_mesh, "fsi: the mesh.h5 the FSI ran on")->check(CLI::ExistingFile);
+  app.add_option("--fem", fem_file, "fem: fin-fem run's motion.h5 (with T; the truth motion)")->check(CLI::ExistingFile);
+  app.add_option("--fsi-mesh", fsi_mesh, "fsi, fem: the mesh.h5 the FSI (or fin-fem run) ran on")->check(CLI::ExistingFile);
   app.add_option("--materials", materials_file, "fsi: the materials file the FSI ran with (recorded in truth.h5)")
       ->check(CLI::ExistingFile);
   app.add_option("--root-drive", drive_file, "fsi: the root drive file the FSI ran with (recorded in truth.h5)")
@@ -239,18 +242,21 @@ int main(int argc, char** argv) {
     const auto fin = mesh::make_template(tmpl);
     kin.chord_m = fin.chord;
     const auto surface = vision::make_fin_surface(fin, subdivisions);
-    const bool from_fsi = motion_source == "fsi";
+    // fem: a fin-fem response stands where the FSI's fsi.h5 would (same binding, same records).
+    const bool from_fem = motion_source == "fem", from_fsi = motion_source == "fsi" || from_fem;
     const std::vector<std::string> prescribed_only{"--heave-over-chord",    "--pitch-center-deg",    "--pitch-edge-deg",
                                             "--pitch-phase-deg",     "--pitch-phase-w-deg",   "--chordwise-over-chord",
                                             "--chordwise-wavelength", "--chordwise-phase-deg", "--spanwise-over-chord",
                                             "--spanwise-phase-deg",  "--strouhal",            "--excursion-over-chord"};
-    const std::vector<std::string> fsi_only{"--fsi", "--fsi-mesh", "--materials", "--root-drive"};
+    const std::vector<std::string> fsi_only{from_fem ? "--fem" : "--fsi", "--fsi-mesh", "--materials", "--root-drive"};
     for (const auto& flag : from_fsi ? prescribed_only : fsi_only)
       if (app.count(flag) > 0)
-        throw Error(flag + ": only with --motion-source " + (from_fsi ? "prescribed" : "fsi") +
-                    (from_fsi ? " (the FSI's root drive is --root-drive's)" : ""));
+        throw Error(flag + ": only with --motion-source " + (from_fsi ? "prescribed" : "fsi or fem") +
+                    (from_fsi ? " (the truth's root drive is --root-drive's)" : ""));
+    if (app.count(from_fem ? "--fsi" : "--fem") > 0)
+      throw Error(std::string(from_fem ? "--fsi" : "--fem") + ": not with --motion-source " + motion_source);
     for (const auto& flag : fsi_only)
-      if (from_fsi && app.count(flag) == 0) throw Error(flag + ": required with --motion-source fsi");
+      if (from_fsi && app.count(flag) == 0) throw Error(flag + ": required with --motion-source " + motion_source);
 
     // The root kinematics: the prescribed model's own, or the FSI's drive file on the same U/W
     // profiles (the FSI truth's bending is the FSI's, not the model's).
@@ -259,14 +265,15 @@ int main(int argc, char** argv) {
     std::optional<vision::FsiMotion> fsi;
     std::vector<int> ray_ids;
     if (from_fsi) {
-      fsi.emplace(vision::read_fsi_motion(fsi_file, fsi_mesh, surface, max_fsi_distance));
+      fsi.emplace(from_fem ? vision::read_fem_motion(fem_file, fsi_mesh, surface, max_fsi_distance)
+                           : vision::read_fsi_motion(fsi_file, fsi_mesh, surface, max_fsi_distance));
       const auto m = stage::read<stage::Mesh>(fsi_mesh);
       const std::set<int> ids(m.beam_ray.data.begin(), m.beam_ray.data.end());
       ray_ids.assign(ids.begin(), ids.end());
       // The drive's frequency and the FSI's period must agree: the truth's T is the drive's.
       const double f = drive.frequency_hz;
       if (std::abs(fsi->period() * f - 1) > 1e-6)
-        throw Error(fsi_file.string() + ": T = " + std::to_string(fsi->period()) + " s, but " + drive_file.string() +
+        throw Error((from_fem ? fem_file : fsi_file).string() + ": T = " + std::to_string(fsi->period()) + " s, but " + drive_file.string() +
                     " drives at f = " + std::to_string(f) + " Hz (Re " + std::to_string(kin.reynolds) +
                     ", chord " + std::to_string(fin.chord) + " m): not the FSI of this drive");
       log::info("FSI motion: " + fsi->parameters().dump());
@@ -312,7 +319,7 @@ int main(int argc, char** argv) {
       for (const char* key : {"distal", "modulation", "rayleigh", "shell_region"})
         if (j.contains(key)) effects[key] = j[key];
       // The candidate effects the FSI structure ran with (config truth.effects, fin-fsi --effects).
-      if (const auto planted = h5::File::open_read(fsi_file).attr_string(".", "effects"))
+      if (const auto planted = h5::File::open_read(from_fem ? fem_file : fsi_file).attr_string(".", "effects"))
         effects["structural"] = nlohmann::json::parse(*planted);
     }
     truth.effects = effects.dump();
@@ -377,7 +384,7 @@ int main(int argc, char** argv) {
     prov.config["appearance"] = appearance;
     if (!tmpl.file.empty()) prov.inputs.push_back(tmpl.file);
     if (!cameras_in.empty()) prov.inputs.push_back(cameras_in);
-    for (const auto& p : {fsi_file, fsi_mesh, materials_file, drive_file})
+    for (const auto& p : {fsi_file, fem_file, fsi_mesh, materials_file, drive_file})
       if (!p.empty()) prov.inputs.push_back(p);
     if (vtk) {
       std::vector<vtkio::SurfaceFrame> frames(nf);

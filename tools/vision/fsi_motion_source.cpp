@@ -33,7 +33,7 @@ double wrap(double t, double T) {
 
 }  // namespace
 
-FsiMotion::FsiMotion(FsiSamples s, const FinSurface& surface) : label_(s.label), period_(s.period) {
+FsiMotion::FsiMotion(FsiSamples s, const FinSurface& surface) : label_(s.label), source_(s.source), period_(s.period) {
   const auto fail = [&](const std::string& what) { throw Error(label_ + ": " + what); };
   if (!(std::isfinite(period_) && period_ > 0)) fail("period T must be > 0");
   if (s.rest.rank() != 2 || s.rest.dim(1) != 3) fail("mesh points: expected [nv,3]");
@@ -191,7 +191,28 @@ FsiMotion read_fsi_motion(const std::filesystem::path& fsi_path, const std::file
   }
   check_made_from(fsi_path, mesh_path);
   FsiSamples s{std::move(mesh.points), std::move(mesh.triangles), std::move(fsi.time.data), std::move(fsi.points),
-               *fsi.period, both};
+               *fsi.period, both, "fsi"};
+  FsiMotion motion(std::move(s), surface);
+  if (motion.max_outside_distance() > max_distance_over_chord * c)
+    throw Error(both + ": the truth surface lies up to " + std::to_string(motion.max_outside_distance() / c) +
+                " c from the mesh's mid-surface (allowed " + std::to_string(max_distance_over_chord) +
+                " c): not the same fin template");
+  return motion;
+}
+
+FsiMotion read_fem_motion(const std::filesystem::path& motion_path, const std::filesystem::path& mesh_path,
+                          const FinSurface& surface, double max_distance_over_chord) {
+  const std::string both = motion_path.string() + " with " + mesh_path.string();
+  auto mesh = stage::read<stage::Mesh>(mesh_path);
+  auto m = stage::read<stage::Motion>(motion_path);
+  if (!m.period) throw Error(motion_path.string() + ": root attribute T (the period, s) is missing: expected a periodic run");
+  if (m.points.dim(1) != mesh.points.dim(0))
+    throw Error(both + ": /points has " + std::to_string(m.points.dim(1)) + " nodes per frame, " + mesh_path.string() +
+                " has " + std::to_string(mesh.points.dim(0)) + " nodes: not the mesh the run was on");
+  check_made_from(motion_path, mesh_path);
+  const double c = surface.chord > 0 ? surface.chord : mesh.chord.value_or(1.0);
+  FsiSamples s{std::move(mesh.points), std::move(mesh.triangles), std::move(m.time.data), std::move(m.points),
+               *m.period, both, "fem"};
   FsiMotion motion(std::move(s), surface);
   if (motion.max_outside_distance() > max_distance_over_chord * c)
     throw Error(both + ": the truth surface lies up to " + std::to_string(motion.max_outside_distance() / c) +

@@ -29,6 +29,7 @@ struct FsiSamples {
   NdArray<double> points;               // [nt,nv,3] node positions
   double period = 0;                    // s
   std::string label = "fsi";            // names the data in errors (file names)
+  std::string source = "fsi";           // the motion source's name: fsi, or fem (a fin-fem run)
 };
 
 class FsiMotion final : public MotionSource {
@@ -36,7 +37,7 @@ class FsiMotion final : public MotionSource {
   // Binds `surface` (its rest vertices) to the mesh; throws finverse::Error naming s.label for
   // samples that do not fit together or do not cover one period.
   FsiMotion(FsiSamples s, const FinSurface& surface);
-  std::string name() const override { return "fsi"; }
+  std::string name() const override { return source_; }
   double period() const override { return period_; }
   NdArray<double> positions(const FinSurface& surface, double t) const override;
   nlohmann::json parameters() const override;
@@ -55,7 +56,7 @@ class FsiMotion final : public MotionSource {
     std::array<double, 3> weights;  // affine: sum 1, may be < 0 just outside the triangle
     double normal_offset;           // m, along the triangle's unit normal
   };
-  std::string label_;
+  std::string label_, source_;
   double period_;
   std::size_t nv_;
   std::vector<double> phase_;                   // sample phases in [0, T), increasing
@@ -71,5 +72,9 @@ class FsiMotion final : public MotionSource {
 // max_distance_over_chord * c).
 FsiMotion read_fsi_motion(const std::filesystem::path& fsi, const std::filesystem::path& mesh, const FinSurface& surface,
                           double max_distance_over_chord = 0.05);
+// The same over a structural response (fin-fem run's finverse/motion output, with T) on the
+// mesh.h5 it ran on: the cheap truth of issue 34's virtual fish (source "fem").
+FsiMotion read_fem_motion(const std::filesystem::path& motion, const std::filesystem::path& mesh,
+                          const FinSurface& surface, double max_distance_over_chord = 0.05);
 
 }  // namespace finverse::vision

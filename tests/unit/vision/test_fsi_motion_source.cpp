@@ -13,6 +13,8 @@
 #include <map>
 #include <numbers>
 
+#include <nlohmann/json.hpp>
+
 #include "../scratch_dir.hpp"
 #include "core/error.hpp"
 #include "core/stage_files.hpp"
@@ -262,4 +264,40 @@ TEST(FinSynth, FsiSourceRecordsMaterialsAndTheRootDrive) {
   EXPECT_LT(worst, 2e-3 * c);  // the time interpolation between 20 samples per period
   EXPECT_EQ(synth("drive5.json"), 2);
   EXPECT_EQ(synth("drive.json", "--pitch-edge-deg 30"), 2);
+}
+
+// fin-synth --motion-source fem (issue 34's structural truth): fin-fem run's motion.h5 stands
+// where fsi.h5 would; truth.h5 names the source "fem" and records the run's planted effects.
+TEST(FinSynth, FemSourceRecordsTheRunsEffects) {
+  const Fixture f;
+  const test::ScratchDir dir;
+  const double T = 1 / 4.4, c = f.fin.chord;
+  auto m = f.m;
+  stage::write(dir / "mesh.h5", m, Provenance{"test", {}, {}});
+  const auto s = sample(f, T, 20, 1, [&](double x, double y, double z, double t) { return rigid(x, y, z, t, T, c); });
+  stage::Motion r;
+  r.time = NdArray<double>({s.time.size()}, s.time);
+  r.points = s.points;
+  r.period = T;
+  r.effects = R"([{"name":"active_stiffening","amplitude":0.3,"phase":0.0,"group":"all"}])";
+  stage::write(dir / "motion.h5", r, Provenance{"test", {}, {dir / "mesh.h5"}});
+  std::ofstream(dir / "materials.json") << R"({"membrane": {"E": 1.2e7, "nu": 0.4, "density": 1050},
+      "rays": {"E": 3e8, "nu": 0.4, "density": 1100}})";
+  std::ofstream(dir / "drive.json") << R"({"frequency_hz": 4.4})";
+  auto synth = [&](const std::string& source) {
+    const std::string cmd = std::string(FIN_SYNTH_EXE) + " --out-dir " + (dir / "out").string() +
+                            " --motion-source fem " + source + " --fsi-mesh " + (dir / "mesh.h5").string() +
+                            " --materials " + (dir / "materials.json").string() + " --root-drive " +
+                            (dir / "drive.json").string() + " --periods 0.02 --width 32 --height 32 --supersample 1" +
+                            " --vtk false --log-level error --threads 1 2> " + (dir / "err.txt").string();
+    const int rc = std::system(cmd.c_str());
+    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  };
+  ASSERT_EQ(synth("--fem " + (dir / "motion.h5").string()), 0);
+  const auto truth = stage::read<stage::Truth>(dir / "out" / "truth.h5");
+  EXPECT_EQ(truth.motion_source.value_or(""), "fem");
+  const auto effects = nlohmann::json::parse(truth.effects.value_or("{}"));
+  ASSERT_TRUE(effects.contains("structural"));
+  EXPECT_EQ(effects["structural"][0]["name"], "active_stiffening");
+  EXPECT_EQ(synth("--fsi " + (dir / "motion.h5").string()), 2);  // fsi.h5's flag with the fem source
 }
