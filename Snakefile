@@ -39,6 +39,7 @@ include: "rules/trout.smk"
 include: "rules/calibrate.smk"
 include: "rules/footage.smk"
 include: "rules/flap.smk"
+include: "rules/loop.smk"
 
 
 # The default target: the pipeline on the case, and its validation cases when the case asks for

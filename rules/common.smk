@@ -23,7 +23,8 @@ _CMAKE_BUILD = "cmake -S {src} -B {build} -G Ninja && cmake --build {build} -j2"
 EXECUTABLES = {
     name: _CMAKE_BUILD
     for name in ["fin-synth", "fin-track", "fin-mesh", "fin-cfd", "fin-fem", "fin-fit", "fin-fsi", "fin-cfd-bench",
-                 "fin-fem-bench", "fin-fit-bench", "fin-poisson-bench", "fin-report", "fin-fsi-bench", "fin-calibrate"]
+                 "fin-fem-bench", "fin-fit-bench", "fin-poisson-bench", "fin-report", "fin-fsi-bench", "fin-calibrate",
+                 "fin-loop"]
 }
 # Built only where hypre and MPI are installed (tools/apps/cfd.cmake).
 EXECUTABLES["fin-poisson-hypre"] = "{src}/tools/scripts/install-deps.sh --peers (hypre), then " + _CMAKE_BUILD
