@@ -15,6 +15,7 @@
 
 import glob
 import json
+import re
 
 import yaml
 
@@ -58,8 +59,9 @@ def _loop_case(name):
     return effects
 
 
+# Only the datasets of config/loop/ (results/validation/loop_hessenthaler is rules/flap.smk's).
 wildcard_constraints:
-    loop="loop_[A-Za-z0-9_]+",
+    loop="|".join(re.escape(n) for n in _LOOP_CASES) or "no_loop_dataset",
 
 
 rule loop_truth_inputs:
