@@ -1,7 +1,8 @@
 // fin-track: the fin's 3-D motion from synchronized multi-view frames (DESIGN.md sections 1 and
 // 5.5; seed paper section 2.1 step 1 and section 4.1): the flags, the files and the tracker
 // (tools/vision/tracker.hpp: per frame, segment every view and fit the virtual skeleton to all
-// the silhouettes, warm-started from and regularised towards the previous frames' motion).
+// the silhouettes, warm-started from and regularised towards the previous frames' motion); its
+// flags: tools/vision/tracker_flags.hpp; the 2-D mode midline: tools/vision/midline_command.hpp.
 //
 //   fin-track --frames results/c/frames --cameras results/c/cameras.yml --out results/c/kinematics.h5
 //   fin-track midline --frames clip.avi --out midline.h5 --csv tip.csv --overlay check.avi --mm-per-px 0.1
@@ -27,8 +28,9 @@
 #include "vision/camera.hpp"
 #include "vision/frame_files.hpp"
 #include "vision/keypoint_files.hpp"
-#include "vision/single_view.hpp"
+#include "vision/midline_command.hpp"
 #include "vision/tracker.hpp"
+#include "vision/tracker_flags.hpp"
 #include "vision/tracking_summary.hpp"
 #include "vision/view_roles.hpp"
 
@@ -40,7 +42,8 @@ int main(int argc, char** argv) {
   cli::Standard standard(app, "fin-track");
   mesh::TemplateOptions tmpl;
   mesh::add_template_options(app, tmpl);
-  vision::TrackerOptions to;
+  vision::TrackerFlags flags;
+  auto& to = flags.options;
   auto& fo = to.fit;
   std::vector<std::string> frames_spec;
   std::optional<double> fps;
@@ -48,8 +51,7 @@ int main(int argc, char** argv) {
   double perturb_px = 0, viscosity = kWaterKinematicViscosity;
   std::optional<double> period, reynolds, strouhal, excursion_over_chord;
   std::uint64_t seed = 1;
-  std::vector<std::string> ignore_views, also_score, fin_regions;
-  std::string fin_cut = "none", background = "auto";
+  std::vector<std::string> ignore_views, also_score;
   app.add_option("--frames", frames_spec,
                  "a folder of <view>/ image folders (numbered names: 000001.png, frame_0001.png) or <view>.avi|.mp4|.mov, "
                  "or view=path items: side=clip_side.avi,back=frames/back (required)")
@@ -68,69 +70,7 @@ int main(int argc, char** argv) {
   app.add_option("--excursion-over-chord", excursion_over_chord, "periodic record: that excursion A / c (fin-synth's flag)")
       ->needs(re_opt);
   app.add_option("--viscosity", viscosity, "periodic record: kinematic viscosity nu (m^2/s)")->capture_default_str();
-  app.add_option("--surface-subdivisions", to.surface_subdivisions, "template surface columns per gap between rays (even)")
-      ->capture_default_str();
-  app.add_option("--segments", to.segments, "skeleton segments per ray")->capture_default_str();
-  app.add_option("--iterations", fo.iterations, "LM iterations per frame")->capture_default_str();
-  app.add_option("--tolerance", fo.tolerance, "LM: stop when the cost falls by less than this fraction")->capture_default_str();
-  app.add_option("--step-tolerance", fo.step_tolerance, "LM: stop when no parameter moves by more than this (rad, chords)")->capture_default_str();
-  app.add_option("--max-rejections", fo.max_rejections, "LM: stop after this many rejected steps in a row (0: never)")->capture_default_str();
-  app.add_option("--first-iterations", fo.first_iterations, "LM iterations for the first frame")->capture_default_str();
-  app.add_option("--temporal-sigma", fo.temporal_sigma, "temporal prior: rad (translation: chords)")->capture_default_str();
-  app.add_option("--neighbour-sigma", fo.neighbour_sigma, "prior on joint differences of neighbouring rays (rad)")->capture_default_str();
-  app.add_option("--out-of-plane-sigma", fo.out_of_plane_sigma, "prior on twist and in-plane bending (rad)")->capture_default_str();
-  app.add_option("--span-curvature-sigma", fo.span_curvature_sigma,
-                 "prior on the second difference of joint angles across three rays (rad; 0: off)")
-      ->capture_default_str();
-  app.add_option("--contour-stride", fo.silhouette.contour_stride, "use every n-th silhouette contour pixel")->capture_default_str();
-  app.add_option("--prediction-velocity", to.prediction_velocity,
-                 "fraction of the last frame-to-frame change carried into the next frame's prediction (1: constant velocity)")
-      ->capture_default_str();
-  // Defaults of the ray and coverage terms: docs/studies/tracking_fit_defaults.md.
-  app.add_option("--ray-views", fo.ray_views, "views whose ray features are fitted ('auto': the face-on views; 'all': every view)")
-      ->delimiter(',')
-      ->capture_default_str();
-  app.add_option("--ray-weight", fo.rays.weight, "weight of the ray-feature residuals (0: silhouettes only)")->capture_default_str();
-  app.add_option("--coverage-views", fo.coverage_views,
-                 "views fitted with the sub-pixel coverage term ('auto': the edge-on views; 'none': no view)")
-      ->delimiter(',')
-      ->capture_default_str();
-  app.add_option("--coverage-weight", fo.coverage.weight, "weight of a pixel's coverage residual (0: off)")->capture_default_str();
-  app.add_option("--coverage-chamfer-weight", fo.coverage_chamfer_weight,
-                 "factor on the silhouette chamfer weight in the coverage views while the coverage term is on")
-      ->capture_default_str();
-  app.add_option("--coverage-band", fo.coverage.band_px, "coverage term: pixels within this distance of the data outline (px)")
-      ->capture_default_str();
-  app.add_option("--ray-contrast", fo.rays.min_contrast, "ray detection: black-hat threshold (8-bit levels)")->capture_default_str();
-  app.add_option("--min-contrast", to.segmentation.min_contrast, "segmentation: smallest darkening that counts as fin (8-bit levels)")
-      ->capture_default_str();
-  app.add_option("--noise-floor", to.segmentation.noise_floor,
-                 "segmentation: the sensor noise is never taken below this (8-bit levels; compressed video reads 0)")
-      ->capture_default_str();
-  app.add_option("--background", background,
-                 "segmentation background: model (smooth fit per frame), median (the clip's temporal median) or auto (the model, "
-                 "and the temporal 90th percentile for static dark structure touching the border when a view has >= " +
-                     std::to_string(vision::kMedianMinFrames) + " frames)")
-      ->check(CLI::IsMember({"model", "median", "auto"}))
-      ->capture_default_str();
-  app.add_flag("!--keep-border-blobs", to.segmentation.reject_border,
-               "segmentation: do not prefer blobs clear of the image border (default: a blob touching it is the fish only when no other is)");
-  app.add_option("--fin-cut", fin_cut,
-                 "cut the caudal fin from the body: none; peduncle (the narrowest point behind the body); root-plane (at the "
-                 "projected plane x = 0 of the template's root, in the views that see it as a line)")
-      ->check(CLI::IsMember({"none", "peduncle", "root-plane"}))
-      ->capture_default_str();
-  app.add_option("--fin-region", fin_regions, "view=x0,y0,x1,y1: the rectangle (px) of that view that holds the fin (repeatable)");
-  // When the fit cannot be trusted (tools/vision/fit_quality.hpp): exit 1, the record flagged.
-  app.add_option("--min-views", to.quality.min_views, "fit check: views per frame that fix the fin in depth")->capture_default_str();
-  app.add_option("--min-iou", to.quality.min_iou, "fit check: the worst view's silhouette IoU, median over frames, at least")
-      ->capture_default_str();
-  app.add_option("--max-root-drift", to.quality.max_root_drift,
-                 "fit check: the root's largest distance from its first position (chords; 0: not checked)")
-      ->capture_default_str();
-  app.add_option("--max-area-ratio", to.quality.max_area_ratio,
-                 "fit check: the fitted over segmented silhouette area in a view (median over frames) within this factor")
-      ->capture_default_str();
+  vision::add_tracker_flags(app, flags);
   // Keypoints of the ray roots and tips (DeepLabCut per view, Anipose 3-D): tools/vision/keypoint_files.hpp.
   std::vector<std::string> keypoint_specs;
   fs::path keypoints_3d, keypoints_out;
@@ -161,71 +101,13 @@ int main(int argc, char** argv) {
   app.add_option("--bench-mesh-summary", mesh_summary, "fin-mesh --summary file whose mesh_wall_time joins the benchmark")
       ->check(CLI::ExistingFile);
 
-  // The 2-D single-view mode (tools/vision/single_view.hpp): one camera, no calibration.
-  auto* mid = app.add_subcommand("midline", "2-D single-view mode: midline, tail tip and tail-beat frequency, amplitude and "
-                                            "body wavelength of the fish seen by one camera (no calibration)");
-  vision::SingleViewOptions so;
-  std::string mid_frames, mid_region, mid_background = "auto";
-  fs::path mid_out, mid_csv, mid_overlay;
-  std::optional<double> mid_fps, mm_per_px;
-  mid->add_option("--frames", mid_frames, "the camera's video file (AVI, MP4, MOV) or folder of numbered images")->required();
-  mid->add_option("--out", mid_out, "midline.h5: midlines, tips, tail beat (px and mm)")->required();
-  mid->add_option("--csv", mid_csv, "per-frame tail tip and its lateral excursion as CSV");
-  mid->add_option("--overlay", mid_overlay, "MJPG AVI of the frames with the midline and the tip's track drawn over them");
-  mid->add_option("--fps", mid_fps, "frame rate (1/s); default: the video's own, else " + std::to_string(int(so.fps)))
-      ->check(CLI::PositiveNumber);
-  mid->add_option("--mm-per-px", mm_per_px, "image scale (mm per px): results also in mm")->check(CLI::PositiveNumber);
-  mid->add_option("--stations", so.stations, "midline points, head to tail")->capture_default_str()->check(CLI::Range(3, 1000));
-  mid->add_option("--region", mid_region, "x0,y0,x1,y1: the rectangle (px) that holds the fish");
-  mid->add_option("--min-contrast", so.segmentation.min_contrast, "segmentation: smallest darkening that counts as fish (levels)")
-      ->capture_default_str();
-  mid->add_option("--noise-floor", so.segmentation.noise_floor, "segmentation: the sensor noise is never taken below this (levels)")
-      ->capture_default_str();
-  mid->add_option("--background", mid_background, "segmentation background: model, median or auto (as fin-track's)")
-      ->check(CLI::IsMember({"model", "median", "auto"}))
-      ->capture_default_str();
+  // The 2-D single-view mode (tools/vision/midline_command.hpp): one camera, no calibration.
+  vision::MidlineCommand midline;
+  auto* mid = vision::add_midline_command(app, midline);
 
   return cli::run(app, standard, argc, argv, [&] {
     if (*mid) {
-      so.segmentation.background = mid_background == "model"    ? vision::BackgroundModel::model
-                                   : mid_background == "median" ? vision::BackgroundModel::median
-                                                                : vision::BackgroundModel::automatic;
-      so.mm_per_px = mm_per_px;
-      if (!mid_region.empty()) {
-        int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-        char tail = 0;
-        if (std::sscanf(mid_region.c_str(), "%d,%d,%d,%d%c", &x0, &y0, &x1, &y1, &tail) != 4 || x1 <= x0 || y1 <= y0)
-          throw Error("--region: expected x0,y0,x1,y1 with x1 > x0 and y1 > y0 (px), got '" + mid_region + "'");
-        so.region = cv::Rect(x0, y0, x1 - x0, y1 - y0);
-      }
-      vision::Camera one;
-      one.name = "view";
-      const auto files = vision::list_frame_files(std::vector<std::string>{"view=" + mid_frames}, {one}, {}, "--frames");
-      if (mid_fps) so.fps = *mid_fps;
-      else if (files.container_fps) so.fps = *files.container_fps;
-      const auto load = [&](long k) {
-        cv::Mat img = files.load(0, k);
-        if (img.empty()) throw Error(mid_frames + ": no frame " + std::to_string(k));
-        return img;
-      };
-      const auto r = vision::track_single_view(files.frames, load, so, mid_frames);
-      auto config = cli::effective_config(app);
-      config["midline"]["fps"] = std::to_string(so.fps);
-      std::vector<fs::path> inputs;
-      if (fs::is_regular_file(mid_frames)) inputs.push_back(mid_frames);
-      vision::write_single_view_h5(mid_out, r, so, config, inputs);
-      if (!mid_csv.empty()) vision::write_single_view_csv(mid_csv, r, so);
-      if (!mid_overlay.empty()) vision::write_overlay_video(mid_overlay, files.frames, load, r, so.fps);
-      char line[256];
-      std::snprintf(line, sizeof line, "tail beat %.4g Hz, amplitude %.4g px, body wavelength %.4g px over %d beats",
-                    r.beat.frequency_hz, r.beat.amplitude_px, r.beat.wavelength_px, r.beat.beats);
-      log::info(line);
-      if (mm_per_px) {
-        std::snprintf(line, sizeof line, "amplitude %.4g mm, body wavelength %.4g mm", r.beat.amplitude_px * *mm_per_px,
-                      r.beat.wavelength_px * *mm_per_px);
-        log::info(line);
-      }
-      log::info("wrote " + mid_out.string());
+      vision::run_midline_command(midline, app);
       return static_cast<int>(kExitOk);
     }
     if (frames_spec.empty() || cameras_file.empty() || out.empty())
@@ -238,23 +120,7 @@ int main(int argc, char** argv) {
     if (period && !(*period > 0)) throw Error(reynolds ? "--reynolds ...: the period must be > 0" : "--period: expected > 0");
     to.period = period;
     auto cameras = vision::read_cameras(cameras_file);
-    to.segmentation.fin_cut = fin_cut == "peduncle";
-    to.cut_at_root_plane = fin_cut == "root-plane";
-    to.segmentation.background = background == "model"    ? vision::BackgroundModel::model
-                                 : background == "median" ? vision::BackgroundModel::median
-                                                          : vision::BackgroundModel::automatic;
-    for (const auto& item : fin_regions) {
-      const auto eq = item.find('=');
-      int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-      char tail = 0;
-      if (eq == std::string::npos ||
-          std::sscanf(item.c_str() + eq + 1, "%d,%d,%d,%d%c", &x0, &y0, &x1, &y1, &tail) != 4 || x1 <= x0 || y1 <= y0)
-        throw Error("--fin-region: expected view=x0,y0,x1,y1 with x1 > x0 and y1 > y0 (px), got '" + item + "'");
-      const auto name = item.substr(0, eq);
-      if (std::none_of(cameras.begin(), cameras.end(), [&](const auto& c) { return c.name == name; }))
-        throw Error("--fin-region: no view '" + name + "' in " + cameras_file.string());
-      to.fin_regions[name] = cv::Rect(x0, y0, x1 - x0, y1 - y0);
-    }
+    vision::apply_tracker_flags(flags, cameras, cameras_file.string());
     const auto calibrated = cameras;  // scoring projects with the calibration as given, never perturbed
     if (perturb_px > 0) vision::perturb_principal_points(cameras, perturb_px, seed);
     const auto files = vision::list_frame_files(frames_spec, cameras, ignore_views, cameras_file.string());
