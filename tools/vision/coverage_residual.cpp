@@ -209,8 +209,9 @@ CoverageStats add_coverage_residuals(const ViewData& view, const ModelView& m, c
   for (int y = roi.y; y < roi.y + roi.height; ++y) {
     const auto* sd = view.sdf.ptr<float>(y);
     const auto* cd = view.coverage.ptr<float>(y);
+    const auto* body = view.body.empty() ? nullptr : view.body.ptr<std::uint8_t>(y);
     for (int x = roi.x; x < roi.x + roi.width; ++x) {
-      if (std::abs(sd[x]) > o.band_px) continue;
+      if (std::abs(sd[x]) > o.band_px || (body && body[x])) continue;  // off the band, or the opaque body's
       const auto s = cover.at(x, y);
       const double r = s.coverage - cd[x];
       const double w = o.weight * (std::abs(r) <= o.huber ? 1.0 : o.huber / std::abs(r));

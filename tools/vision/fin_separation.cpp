@@ -24,7 +24,7 @@ cv::Mat largest_component(const cv::Mat& mask) {
 
 }  // namespace
 
-FinCut separate_caudal_fin(const cv::Mat& mask, const FinCutOptions& o) {
+FinCut separate_caudal_fin(const cv::Mat& mask, const FinCutOptions& o, const cv::Vec3d* fin_side) {
   FinCut out;
   out.fin = mask.clone();
   std::vector<cv::Point> pts;
@@ -74,7 +74,12 @@ FinCut separate_caudal_fin(const cv::Mat& mask, const FinCutOptions& o) {
   if (ped < 0) return out;
   double area_low = 0, area_high = 0;
   for (int b = 0; b < nb; ++b) (b < ped ? area_low : area_high) += b == ped ? 0 : area[b];
-  const int dir = area_low >= area_high ? 1 : -1;  // towards the tail
+  int dir = area_low >= area_high ? 1 : -1;  // towards the tail
+  if (fin_side) {  // the calibration knows: the tail is the end on the fin's side of the root plane
+    const cv::Vec3d& l = *fin_side;
+    const cv::Point2d a = c + lo * u, b = c + hi * u;
+    dir = l[0] * b.x + l[1] * b.y >= l[0] * a.x + l[1] * a.y ? 1 : -1;
+  }
   // The fin begins where the peduncle ends: the tailmost bin of the waist (within 15 % of its
   // narrowest), where the width starts to grow.
   while (ped + 2 * dir >= 0 && ped + 2 * dir < nb && w[ped + dir] <= 1.15 * w[ped]) ped += dir;

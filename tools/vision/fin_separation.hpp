@@ -29,7 +29,9 @@ struct FinCut {
   cv::Point2d tailward;     // unit vector along the midline towards the tail
 };
 
-FinCut separate_caudal_fin(const cv::Mat& mask, const FinCutOptions& options = {});
+// With `fin_side` (a calibrated view's root_plane_line), the fin is the end of the blob on the
+// line's positive side, not the end with less area (the border may cut the body short).
+FinCut separate_caudal_fin(const cv::Mat& mask, const FinCutOptions& options = {}, const cv::Vec3d* fin_side = nullptr);
 
 // The blob inside `region` (x0, y0, x1, y1 in px, inclusive-exclusive).
 cv::Mat fin_region_mask(const cv::Mat& mask, const cv::Rect& region);

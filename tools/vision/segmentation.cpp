@@ -123,14 +123,24 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o, con
       s.background = median;
     } else {
       // Static dark structure reaching the border: the median there, the model elsewhere (a fish
-      // holding station stays out of the median's reach unless it touches the border).
+      // holding station stays out of the median's reach unless it touches the border). A static
+      // structure that crosses the fin's root line is the fish's body holding still in the image
+      // with the fin's root: the median only on the body's side of the line (the fin's root
+      // barely moves either and would go into the background with the body).
       const cv::Mat dark_static = (s.background - median) > s.threshold;
       cv::Mat labels, stats, centroids;
       const int n = cv::connectedComponentsWithStats(dark_static, labels, stats, centroids, 8, CV_32S);
+      cv::Mat body_side;
+      if (ctx.cut_at_line || ctx.orient_by_line)
+        body_side = fin_side_mask(cv::Mat(H, W, CV_8U, cv::Scalar(255)), ctx.root_line) == 0;
       for (int l = 1; l < n; ++l) {
         const int x0 = stats.at<int>(l, cv::CC_STAT_LEFT), y0 = stats.at<int>(l, cv::CC_STAT_TOP);
         const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
-        if (x0 == 0 || y0 == 0 || x0 + w == W || y0 + h == H) median.copyTo(s.background, labels == l);
+        if (!(x0 == 0 || y0 == 0 || x0 + w == W || y0 + h == H)) continue;
+        const cv::Mat component = labels == l;
+        const int on_body_side = body_side.empty() ? 0 : cv::countNonZero(component & body_side);
+        const bool crosses = on_body_side > 0 && on_body_side < stats.at<int>(l, cv::CC_STAT_AREA);
+        median.copyTo(s.background, crosses ? cv::Mat(component & body_side) : component);
       }
     }
     s.mask = (s.background - smooth) > s.threshold;
@@ -268,10 +278,11 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o, con
     if (!touches_border) s.mask.setTo(255, labels == l);
   }
   if (o.fin_cut) {
-    auto cut = separate_caudal_fin(s.mask, o.cut);
+    auto cut = separate_caudal_fin(s.mask, o.cut, ctx.orient_by_line ? &ctx.root_line : nullptr);
     s.fin_cut = s.fin_cut || cut.cut;
     s.mask = cut.fin;
   }
+  if (ctx.find_body) s.body = opaque_body(frame, s.background, s.mask, o);
   // The soft segmentation keeps the fin's rim: nothing beyond two pixels of the cleaned mask.
   cv::Mat near;
   cv::dilate(s.mask, near, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));
@@ -312,11 +323,27 @@ std::vector<cv::Point> inner_contour(const cv::Mat& mask) {
   return out;
 }
 
-double mask_iou(const cv::Mat& a, const cv::Mat& b) {
-  if (a.size() != b.size()) throw Error("mask_iou: masks differ in size");
-  const double inter = cv::countNonZero((a != 0) & (b != 0));
-  const double uni = cv::countNonZero((a != 0) | (b != 0));
-  return uni > 0 ? inter / uni : 1.0;
+double mask_iou(const cv::Mat& a, const cv::Mat& b, const cv::Mat& excluded) {
+  if (a.size() != b.size() || (!excluded.empty() && excluded.size() != a.size())) throw Error("mask_iou: masks differ in size");
+  cv::Mat inter = (a != 0) & (b != 0), uni = (a != 0) | (b != 0);
+  if (!excluded.empty()) inter.setTo(0, excluded), uni.setTo(0, excluded);
+  const double i = cv::countNonZero(inter), u = cv::countNonZero(uni);
+  return u > 0 ? i / u : 1.0;
+}
+
+cv::Mat opaque_body(const cv::Mat& frame, const cv::Mat& background, const cv::Mat& mask, const SegmentationOptions& o) {
+  cv::Mat grey, opaque;
+  frame.convertTo(grey, CV_32F);
+  if (o.blur_sigma_px > 0) cv::GaussianBlur(grey, grey, cv::Size(0, 0), o.blur_sigma_px);
+  opaque = (grey < o.opaque_transmission * background) & (mask != 0);
+  // Opening removes what is thinner than the disc: a ray, an edge-on fin, a speck.
+  const int r = std::max(1, o.body_radius_px);
+  cv::morphologyEx(opaque, opaque, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1)));
+  if (cv::countNonZero(opaque) == 0) return {};
+  if (o.body_rim_px > 0)
+    cv::dilate(opaque, opaque,
+               cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * o.body_rim_px + 1, 2 * o.body_rim_px + 1)));
+  return opaque;
 }
 
 cv::Mat temporal_median(const std::vector<cv::Mat>& frames, double quantile) {

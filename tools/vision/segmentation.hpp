@@ -48,6 +48,11 @@ struct SegmentationOptions {
   int track_radius_px = 0;         // a blob must reach this near the previous fish (0: 5 % of the image, >= 8)
   bool fin_cut = false;            // cut the caudal fin from the body at the peduncle
   FinCutOptions cut;
+  // The body behind the fin (find_body): opaque (transmitting less than this fraction of the
+  // background) and thicker than 2 body_radius_px + 1 px; grown by body_rim_px for its blurred rim.
+  double opaque_transmission = 0.45;
+  int body_radius_px = 3;
+  int body_rim_px = 2;
 };
 
 // What the segmentation of one frame may know beyond the frame.
@@ -56,7 +61,9 @@ struct SegmentationContext {
   cv::Mat previous;  // CV_8U the fish's mask in the previous frame (empty: none)
   cv::Rect fin_region;  // the user's rectangle that holds the fin (empty: none)
   bool cut_at_line = false;  // keep only the fin's side of root_line (fin_separation.hpp)
+  bool orient_by_line = false;  // the peduncle cut keeps the end on the fin's side of root_line
   cv::Vec3d root_line{0, 0, 0};
+  bool find_body = false;    // mark the opaque body in the fish's blob (Segmentation::body)
 };
 
 struct Segmentation {
@@ -74,6 +81,12 @@ struct Segmentation {
   bool lost = false;            // no blob near the previous frame's fish: the mask is empty
   int rejected_blobs = 0;       // dark blobs left out (border, unconnected, specks)
   bool fin_cut = false;         // the body was cut off at the peduncle
+  // With SegmentationContext::find_body, CV_8U: the body seen behind or beside the fin (empty:
+  // none found). A backlit fin is translucent and its rays thin, the body opaque and thick: the
+  // blob's pixels darker than opaque_transmission of the background, opened by a disc of
+  // body_radius_px, grown by body_rim_px. Where it lies, fin and body cannot be told apart, so
+  // the fit and the scores leave those pixels out (silhouette_residual.hpp, coverage_residual.hpp).
+  cv::Mat body;
 };
 
 // `frame`: 8-bit grey (CV_8U). Throws finverse::Error if the frame is empty or not grey, or the
@@ -91,7 +104,11 @@ cv::Mat signed_distance(const cv::Mat& mask);
 // Pixels of `mask` with a 4-neighbour outside it (the inner contour), as (x, y).
 std::vector<cv::Point> inner_contour(const cv::Mat& mask);
 
-// Intersection over union of two masks of the same size.
-double mask_iou(const cv::Mat& a, const cv::Mat& b);
+// Intersection over union of two masks of the same size; with `excluded` (same size, non-empty)
+// over the pixels outside it only.
+double mask_iou(const cv::Mat& a, const cv::Mat& b, const cv::Mat& excluded = {});
+
+// The opaque, thick part of `mask` in `frame` against `background` (Segmentation::body).
+cv::Mat opaque_body(const cv::Mat& frame, const cv::Mat& background, const cv::Mat& mask, const SegmentationOptions& options);
 
 }  // namespace finverse::vision

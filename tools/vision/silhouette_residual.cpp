@@ -83,6 +83,12 @@ class ContourGrid {
   std::vector<int> order_;
 };
 
+bool in_body(const ViewData& view, cv::Point2d u) {
+  if (view.body.empty()) return false;
+  const int x = static_cast<int>(std::lround(u.x)), y = static_cast<int>(std::lround(u.y));
+  return x >= 0 && y >= 0 && x < view.body.cols && y < view.body.rows && view.body.at<std::uint8_t>(y, x);
+}
+
 double huber_weight(double r, double k) { return std::abs(r) <= k ? 1.0 : k / std::abs(r); }
 
 // Adds g . d(uv)/dp of the surface point (barycentric combination of a triangle's vertices).
@@ -183,6 +189,7 @@ SilhouetteStats add_silhouette_residuals(const ViewData& view, const ModelView& 
     const auto bc = barycentric(m, tri, t, q.x, q.y);
     cv::Point2d u(0, 0);
     for (int k = 0; k < 3; ++k) u += bc[k] * m.uv[tri(t, k)];
+    if (in_body(view, u)) continue;  // behind or on the opaque body: the image cannot tell
     double gx, gy;
     const double r = sample_distance(view.sdf, u.x, u.y, &gx, &gy) + 0.5;
     const double w = o.weight * huber_weight(r, o.huber_px);
@@ -201,6 +208,7 @@ SilhouetteStats add_silhouette_residuals(const ViewData& view, const ModelView& 
   const ContourGrid grid(model_contour, m.mask.size());
   for (std::size_t i = 0; i < view.contour.size(); i += stride) {
     const auto q = view.contour[i];
+    if (!view.body.empty() && view.body.at<std::uint8_t>(q)) continue;  // the body's outline, not the fin's
     if (m.mask.at<std::uint8_t>(q)) {  // covered: this direction is satisfied
       ++st.residuals;
       continue;

@@ -162,8 +162,11 @@ FrameFit SkeletonFitter::fit(const std::vector<ViewData>& views, const Pose& sta
     if (!views[v].valid) continue;
     const auto m = project_model(views[v].camera, out.points, tri_);
     NormalEquations scratch(0);
-    out.iou[v] = mask_iou(m.mask, views[v].mask);
-    out.area_ratio[v] = static_cast<double>(cv::countNonZero(m.mask)) / std::max(1, cv::countNonZero(views[v].mask));
+    // Outside the opaque body only, where the image tells fin from not-fin.
+    const auto& body = views[v].body;
+    out.iou[v] = mask_iou(m.mask, views[v].mask, body);
+    const auto area = [&](const cv::Mat& a) { return body.empty() ? cv::countNonZero(a) : cv::countNonZero(a & (body == 0)); };
+    out.area_ratio[v] = static_cast<double>(area(m.mask)) / std::max(1, area(views[v].mask));
     out.rms_px[v] = add_silhouette_residuals(views[v], m, tri_, nullptr, o_.silhouette, scratch).rms_px;
     out.valid[v] = 1;
   }

@@ -132,7 +132,7 @@ class TruthScorer {
     for (std::ptrdiff_t v = 0; v < static_cast<std::ptrdiff_t>(t_.cameras.size()); ++v) {
       truth_pixels_[v] = project_model(t_.cameras[v], P, m_.surface.triangles).mask;
       truth_cover_[v] = silhouette_coverage(t_.cameras[v], P, m_.surface.triangles, kSupersample);
-      if (views[v].valid) truth_iou[v] = std::min(truth_iou[v], mask_iou(truth_pixels_[v], views[v].mask));
+      if (views[v].valid) truth_iou[v] = std::min(truth_iou[v], mask_iou(truth_pixels_[v], views[v].mask, views[v].body));
     }
   }
 
@@ -295,7 +295,14 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
         SegmentationContext ctx;
         ctx.median = medians[v], ctx.previous = last_mask[v];
         if (const auto it = options_.fin_regions.find(cameras[v].name); it != options_.fin_regions.end()) ctx.fin_region = it->second;
-        if (options_.cut_at_root_plane) ctx.cut_at_line = root_plane_line(cameras[v], model_.chord, ctx.root_line);
+        // The body is cut off at the root plane where the view sees it as a line; elsewhere (from
+        // behind) it lies behind the fin and is marked (Segmentation::body) and left out.
+        if (options_.cut_at_root_plane || so.fin_cut) {
+          const bool line = root_plane_line(cameras[v], model_.chord, ctx.root_line);
+          ctx.cut_at_line = line && options_.cut_at_root_plane;
+          ctx.orient_by_line = line && so.fin_cut;
+          ctx.find_body = !line;
+        }
         views[v] = prepare_view(cameras[v], img, so, ro, ctx);
         if (views[v].valid) last_mask[v] = views[v].mask;
         lost[v] += views[v].lost, at_border[v] += views[v].valid && views[v].touches_border;

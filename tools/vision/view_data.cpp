@@ -20,6 +20,7 @@ ViewData prepare_view(const Camera& camera, const cv::Mat& frame, const Segmenta
   v.touches_border = seg.touches_border, v.lost = seg.lost, v.fin_cut = seg.fin_cut;
   v.mask = seg.mask;
   v.coverage = seg.coverage;
+  v.body = seg.body;
   v.valid = cv::countNonZero(v.mask) > 0;
   if (!v.valid) return v;
   v.sdf = signed_distance(v.mask);

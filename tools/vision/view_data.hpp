@@ -26,6 +26,9 @@ struct ViewData {
   // The segmentation's doubts (segmentation.hpp): the blob touches the border; no blob near the
   // previous frame's fish (then not valid); the body was cut off at the peduncle.
   bool touches_border = false, lost = false, fin_cut = false;
+  // CV_8U the opaque body seen behind or beside the fin (Segmentation::body; empty: none): no
+  // residual or score reads these pixels.
+  cv::Mat body;
 };
 
 // An empty `frame` gives an invalid (missing) view. Throws finverse::Error naming the view when

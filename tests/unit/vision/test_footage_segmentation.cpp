@@ -187,3 +187,74 @@ TEST(FootageSegmentation, TheCaudalFinIsCutAtThePeduncle) {
   const auto region = fin_region_mask(fish.all, cv::Rect(145, 0, 55, H));
   EXPECT_GT(iou(region, fish.fin), 0.85);
 }
+
+TEST(FootageSegmentation, TheOpaqueBodyBehindAnEdgeOnFinIsMarked) {
+  // From behind: the body's opaque cross-section, and in front of it the fin edge-on, a
+  // translucent band 3 px wide reaching past the body, its rays dark dots along it.
+  cv::Mat body = cv::Mat::zeros(H, W, CV_8U), fin = cv::Mat::zeros(H, W, CV_8U), rays = cv::Mat::zeros(H, W, CV_8U);
+  cv::ellipse(body, {160, 60}, {20, 32}, 0, 0, 360, cv::Scalar(255), cv::FILLED);
+  fin(cv::Rect(158, 6, 3, 108)).setTo(255);
+  for (int y = 10; y < 112; y += 10) rays(cv::Rect(158, y, 3, 3)).setTo(255);
+  const cv::Mat frame = render({{body, 0.25}, {fin, 0.6}, {rays, 0.3}}, 7);
+  SegmentationContext ctx;
+  ctx.find_body = true;
+  const auto seg = segment_fin(frame, {}, ctx);
+  ASSERT_FALSE(seg.body.empty());
+  EXPECT_GT(cv::countNonZero(seg.body & body), 0.97 * cv::countNonZero(body));
+  // The fin beyond the body (and its rays there) is not taken for body.
+  cv::Mat near_body;
+  cv::dilate(body, near_body, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(9, 9)));
+  EXPECT_EQ(cv::countNonZero(seg.body & fin & (near_body == 0)), 0);
+  EXPECT_LT(iou(seg.mask, fin), 0.3);               // the blob is mostly body
+  EXPECT_GT(mask_iou(seg.mask, fin, seg.body), 0.85);  // outside the body it is the fin
+  // Without the request, no body mask; a translucent fish has no opaque part to mark.
+  EXPECT_TRUE(segment_fin(frame).body.empty());
+  EXPECT_TRUE(segment_fin(render({{body, 0.6}}, 8), {}, ctx).body.empty());
+}
+
+TEST(FootageSegmentation, AStaticBodyTakesOnlyItsSideOfTheRootLineIntoTheBackground) {
+  // Side view: a body held still at the left border, the fin's root beside it just as still,
+  // the rest of the fin beating; the root plane at x = 100, the fin to the right of it.
+  cv::Mat body = cv::Mat::zeros(H, W, CV_8U), root = cv::Mat::zeros(H, W, CV_8U);
+  body(cv::Rect(0, 45, 100, 30)).setTo(255);
+  root(cv::Rect(100, 40, 30, 40)).setTo(255);
+  std::vector<cv::Mat> frames, tails;
+  for (int k = 0; k < 24; ++k) {
+    cv::Mat tail = cv::Mat::zeros(H, W, CV_8U);
+    cv::ellipse(tail, {150, static_cast<int>(60 + 30 * std::sin(0.5 * k))}, {22, 12}, 0, 0, 360, cv::Scalar(255), cv::FILLED);
+    tail(cv::Rect(128, 0, 2, H)).setTo(0);
+    cv::line(tail, {128, 60}, {150, static_cast<int>(60 + 30 * std::sin(0.5 * k))}, cv::Scalar(255), 9);
+    tails.push_back(tail);
+    frames.push_back(render({{body, 0.3}, {root, 0.55}, {tail, 0.55}}, 20 + k));
+  }
+  const cv::Mat background = temporal_median(frames, kStaticQuantile);
+  SegmentationContext ctx;
+  ctx.median = background;
+  ctx.cut_at_line = true;
+  ctx.root_line = {1, 0, -100};
+  const int k = 5;
+  const cv::Mat fin = (root | tails[k]) & fin_side_mask(cv::Mat(H, W, CV_8U, cv::Scalar(255)), ctx.root_line);
+  EXPECT_GT(iou(segment_fin(frames[k], {}, ctx).mask, fin), 0.85);
+  // Taking the whole static structure from the percentile background loses the fin's root.
+  SegmentationContext whole;
+  whole.median = background;
+  const cv::Mat without = fin_side_mask(segment_fin(frames[k], {}, whole).mask, ctx.root_line);
+  EXPECT_LT(cv::countNonZero(without & root), 0.5 * cv::countNonZero(root));
+}
+
+TEST(FootageSegmentation, ThePeduncleCutKeepsTheEndBeyondTheRootPlane) {
+  // The image border cuts the body short, so it has less area than the fin.
+  cv::Mat all = cv::Mat::zeros(H, W, CV_8U), fin = cv::Mat::zeros(H, W, CV_8U);
+  all(cv::Rect(0, 45, 30, 30)).setTo(255);
+  all(cv::Rect(30, 56, 20, 8)).setTo(255);
+  const std::vector<cv::Point> fan{{50, 56}, {110, 20}, {110, 100}, {50, 64}};
+  cv::fillPoly(fin, std::vector<std::vector<cv::Point>>{fan}, cv::Scalar(255));
+  all |= fin;
+  ASSERT_LT(cv::countNonZero(all(cv::Rect(0, 0, 30, H))), cv::countNonZero(fin));
+  EXPECT_LT(iou(separate_caudal_fin(all).fin, fin), 0.5);  // by area: the body is taken for the fin
+  const cv::Vec3d line{1, 0, -50};
+  const auto cut = separate_caudal_fin(all, {}, &line);
+  ASSERT_TRUE(cut.cut);
+  EXPECT_GT(iou(cut.fin, fin), 0.9);
+  EXPECT_GT(cut.tailward.x, 0.9);
+}
