@@ -80,6 +80,7 @@ std::vector<MidlineFrame> extract_midlines(const std::vector<cv::Mat>& masks, in
   if (axis_out) *axis_out = u;
 
   std::vector<MidlineFrame> out(masks.size());
+  std::vector<double> length(masks.size(), 0.0);  // the silhouette's extent on the axis (px)
   for (std::size_t i = 0; i < masks.size(); ++i) {
     auto& f = out[i];
     if (pts[i].size() < 8) continue;
@@ -107,6 +108,16 @@ std::vector<MidlineFrame> extract_midlines(const std::vector<cv::Mat>& masks, in
     f.tip = centroid[i] + (hi + 0.5) * u + (tip_sum[0] / tip_n) * n;
     f.centroid = centroid[i];
     f.valid = true;
+    length[i] = len;
+  }
+  std::vector<double> lengths;
+  for (double l : length)
+    if (l > 0) lengths.push_back(l);
+  if (!lengths.empty()) {
+    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+    const double median = lengths[lengths.size() / 2];
+    for (std::size_t i = 0; i < masks.size(); ++i)
+      if (out[i].valid && length[i] < (1 - kLostFinFraction) * median) out[i].valid = false, out[i].lost_fin = true;
   }
   return out;
 }
@@ -157,12 +168,17 @@ TailBeat tail_beat(const std::vector<MidlineFrame>& m, const cv::Point2d& axis, 
     for (double v : cy)
       if (!std::isnan(v)) cmean += v, ++cn;
     cmean /= static_cast<double>(cn);
+    // Whole beats only: within half a beat of the record's ends, where the window would be cut
+    // short and take part of a swing, the nearest whole window's mean holds.
     const int half = std::max(1, static_cast<int>(std::lround(0.5 / best_f)));
+    const int last = static_cast<int>(nf) - 1;
+    const bool whole = last >= 2 * half;
     for (std::size_t i = 0; i < nf; ++i) {
+      const int centre = whole ? std::clamp(static_cast<int>(i), half, last - half) : static_cast<int>(i);
       double sum = 0;
       int k = 0;
-      for (int j = static_cast<int>(i) - half; j <= static_cast<int>(i) + half; ++j)
-        if (j >= 0 && j < static_cast<int>(nf)) sum += c[static_cast<std::size_t>(j)], ++k;
+      for (int j = centre - half; j <= centre + half; ++j)
+        if (j >= 0 && j <= last) sum += c[static_cast<std::size_t>(j)], ++k;
       ref[i] = cmean + sum / k;
     }
   }

@@ -4,8 +4,10 @@
 // similar tools report). The midline is sampled along the fish's mean axis over the record (a
 // swimming fish's heading changes slowly against its undulation): at each of `stations` equal
 // steps from head to tail, the centre of the silhouette's pixels across the axis. The tail tip is
-// the silhouette's end on the axis. Lateral: across the mean axis, from the centroid averaged over
-// one beat (frequency found on the tip's excursion from the frame's own centroid).
+// the silhouette's end on the axis. A frame whose silhouette is shorter on the axis than the
+// record's median by more than kLostFinFraction has lost the fin (its end jumped back to the
+// peduncle): not measured. Lateral: across the mean axis, from the centroid averaged over one
+// whole beat (frequency found on the tip's excursion from the frame's own centroid).
 //   frequency: the spectral peak of the tip's lateral excursion (parabolic refinement of the
 //     DFT magnitude, mean removed, Hann window);
 //   amplitude: half the mean peak-to-peak excursion per beat;
@@ -19,8 +21,13 @@
 
 namespace finverse::vision {
 
+// A bending fish shortens on its mean axis by a few per cent (1 - cos 20 deg = 6 %); a lost caudal
+// fin takes a fifth of it (fin-synth's fish: the fin's chord over 5 chords).
+inline constexpr double kLostFinFraction = 0.1;
+
 struct MidlineFrame {
   bool valid = false;
+  bool lost_fin = false;            // the silhouette's end jumped back (not valid)
   std::vector<cv::Point2d> points;  // head to tail (px); NaN where a station has no pixel
   cv::Point2d tip;                  // tail tip (px)
   cv::Point2d centroid;             // of the silhouette (px): the lateral excursions' reference

@@ -70,6 +70,26 @@ TEST(Midline, TailTipFrequencyAmplitudeAndWavelengthOfASwimmer) {
   EXPECT_EQ(beat.beats, 3);
 }
 
+TEST(Midline, AFrameThatLostTheFinIsNotMeasured) {
+  const Swimmer s;
+  std::vector<cv::Mat> masks;
+  const int nf = 64;
+  for (int k = 0; k < nf; ++k) masks.push_back(s.mask(k / s.fps));
+  // Frame 10: the tail's last fifth missing from the mask (too faint to segment).
+  masks[10].colRange(static_cast<int>(s.x0 + 0.8 * s.L), masks[10].cols).setTo(0);
+  cv::Point2d axis;
+  const auto m = extract_midlines(masks, 25, &axis);
+  EXPECT_FALSE(m[10].valid);
+  EXPECT_TRUE(m[10].lost_fin);
+  for (int k = 0; k < nf; ++k)
+    if (k != 10) {
+      EXPECT_TRUE(m[k].valid) << k;
+    }
+  const auto beat = tail_beat(m, axis, s.fps);
+  EXPECT_TRUE(std::isnan(beat.tip_lateral_px[10]));
+  EXPECT_NEAR(beat.amplitude_px, s.a_tail, 0.05 * s.a_tail);
+}
+
 #ifdef FIN_TRACK_EXE
 TEST(FinTrackMidline, AnAviClipGivesTheTailBeatInPxAndMm) {
   const Swimmer s;
