@@ -1,6 +1,7 @@
 // The 2-D single-view mode's run and its files (see single_view.hpp).
 #include "vision/single_view.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -43,6 +44,10 @@ SingleViewResult track_single_view(const std::vector<long>& frames, const std::f
   }
   cv::Point2d axis;
   r.midlines = extract_midlines(masks, o.stations, &axis);
+  const auto lost = std::count_if(r.midlines.begin(), r.midlines.end(), [](const MidlineFrame& m) { return m.lost_fin; });
+  if (lost > 0)
+    log::warn(source + ": in " + std::to_string(lost) + " of " + std::to_string(nf) +
+              " frames the silhouette ends short of the fish's length (the fin lost); not measured (valid 0)");
   r.beat = tail_beat(r.midlines, axis, o.fps);
   return r;
 }
