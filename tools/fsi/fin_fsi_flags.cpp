@@ -4,8 +4,11 @@
 namespace finverse::fsi {
 
 void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
-  command.add_option("--thickness-cells", o.thickness_cells, "closed thin body thickness [cells]")->capture_default_str();
-  command.add_option("--ramp-periods", o.ramp_periods, "--motion: periods of the root's ramp from rest before its first frame")
+  command.add_option("--thickness-cells", o.thickness_cells, "closed thin body thickness [cells]")
+      ->capture_default_str();
+  command
+      .add_option("--ramp-periods", o.ramp_periods,
+                  "--motion: periods of the root's ramp from rest before its first frame")
       ->capture_default_str();
   command.add_option("--ramp-time", o.ramp_time, "--motion: the ramp in seconds instead (0: --ramp-periods)")
       ->capture_default_str();
@@ -16,15 +19,18 @@ void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
       ->capture_default_str();
   command.add_option("--max-iterations", o.max_iterations, "coupling iterations per step")->capture_default_str();
   command.add_flag("--strict", o.strict, "stop at the iteration cap (default: accept the best iterate, counted)");
-  command.add_option("--spectral-radius", o.spectral_radius, "structure's generalized-alpha rho_inf")->capture_default_str();
+  command.add_option("--spectral-radius", o.spectral_radius, "structure's generalized-alpha rho_inf")
+      ->capture_default_str();
   command.add_option("--structure-tolerance", o.structure_tolerance, "structure Newton residual tolerance")
       ->capture_default_str();
-  command.add_option("--structure-max-iterations", o.structure_max_iterations, "structure Newton iterations per sub-step")
+  command
+      .add_option("--structure-max-iterations", o.structure_max_iterations, "structure Newton iterations per sub-step")
       ->capture_default_str();
   command.add_option("--substeps", o.substeps, "structure sub-steps per coupling step")->capture_default_str();
   command.add_option("--rayleigh-mass", o.rayleigh_mass, "structure damping a_M [1/s]; < 0: the materials file's")
       ->capture_default_str();
-  command.add_option("--rayleigh-stiffness", o.rayleigh_stiffness,
+  command
+      .add_option("--rayleigh-stiffness", o.rayleigh_stiffness,
                   "structure damping a_K [s] (damps the membrane's fast modes); < 0: the materials file's")
       ->capture_default_str();
 }

@@ -5,9 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "fit/levenberg_marquardt.hpp"
 #include "fit/residual_function.hpp"
@@ -65,7 +64,8 @@ FlapFrame plane_frame(const std::filesystem::path& path, const fv::HessenthalerF
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   const nlohmann::json::json_pointer p("/parameters/mean_flow_load_last_fifth");
   if (j.is_discarded() || !j.contains(p))
-    throw InvalidInput(path.string() + ": expected fin-fsi hessenthaler_plane's summary with "
+    throw InvalidInput(path.string() +
+                       ": expected fin-fsi hessenthaler_plane's summary with "
                        "parameters.mean_flow_load_last_fifth");
   const auto& load = j[p];
   FlapFrame f{"phase_I_plane", flap.tip_deflection_phase_I, scaled(load, "transverse_N_m2", flap.width, path.string()),
@@ -86,17 +86,22 @@ FlapFrame plane_frame(const std::filesystem::path& path, const fv::HessenthalerF
 
 Summary carried_fit(const std::filesystem::path& path, const std::string& name, double& E) {
   const Summary fit = Summary::read(path);
-  Summary s("validation", name,
-            "Hessenthaler et al. 2017 silicone flap (issue 34 validation 2): (i) fin-fit flap's E from the buoyancy-only "
-            "tip (metrics carried from its summary); (ii) 3-D Phase I still missing; (iii) fin-loop flap: the effect "
-            "tracer on the measured tips from the uniaxial and the fitted modulus, refusing what the data cannot identify");
+  Summary s(
+      "validation", name,
+      "Hessenthaler et al. 2017 silicone flap (issue 34 validation 2): (i) fin-fit flap's E from the buoyancy-only "
+      "tip (metrics carried from its summary); (ii) 3-D Phase I still missing; (iii) fin-loop flap: the effect "
+      "tracer on the measured tips from the uniaxial and the fitted modulus, refusing what the data cannot identify");
   E = 0;
   for (const auto& m : fit.metrics()) {
     if (m.name == "youngs_modulus") E = m.value;
-    if (m.kind == "relative") s.relative(m.name, m.value, *m.reference, *m.tolerance, m.source, m.units);
-    else if (m.kind == "absolute") s.absolute(m.name, m.value, *m.reference, *m.tolerance, m.source, m.units);
-    else if (m.kind == "max") s.at_most(m.name, m.value, *m.tolerance, m.source, m.units);
-    else s.info(m.name, m.value, m.units);
+    if (m.kind == "relative")
+      s.relative(m.name, m.value, *m.reference, *m.tolerance, m.source, m.units);
+    else if (m.kind == "absolute")
+      s.absolute(m.name, m.value, *m.reference, *m.tolerance, m.source, m.units);
+    else if (m.kind == "max")
+      s.at_most(m.name, m.value, *m.tolerance, m.source, m.units);
+    else
+      s.info(m.name, m.value, m.units);
   }
   if (!(E > 0)) throw InvalidInput(path.string() + ": expected fin-fit flap's summary with the metric youngs_modulus");
   return s;
@@ -192,7 +197,9 @@ nlohmann::json run_one(const RunSpec& spec, const FlapTraceSetup& base_setup, co
   for (int k = 0; k < nf; ++k) {
     const auto& fr = setup.frames[static_cast<std::size_t>(k)];
     const bool held = std::find(spec.held_out.begin(), spec.held_out.end(), k) != spec.held_out.end();
-    frames.push_back({{"frame", fr.name}, {"role", held ? "held_out" : "training"}, {"measured_m", fr.measured},
+    frames.push_back({{"frame", fr.name},
+                      {"role", held ? "held_out" : "training"},
+                      {"measured_m", fr.measured},
                       {"tip_before_m", before[static_cast<std::size_t>(k)]},
                       {"tip_after_m", after[static_cast<std::size_t>(k)]}});
     s.info("loop_" + spec.name + "_" + fr.name + "_residual_before", before[static_cast<std::size_t>(k)] - fr.measured,
@@ -202,9 +209,8 @@ nlohmann::json run_one(const RunSpec& spec, const FlapTraceSetup& base_setup, co
   }
   s.info("loop_" + spec.name + "_identifiable", identifiable ? 1.0 : 0.0);
   s.info("loop_" + spec.name + "_effects_added", static_cast<double>(added.size()));
-  s.at_most("loop_" + spec.name + "_unidentified_effects_added",
-            identifiable ? 0.0 : static_cast<double>(added.size()), 0.0,
-            "issue 34 (iii): the loop adds nothing the flap's scalar data cannot identify");
+  s.at_most("loop_" + spec.name + "_unidentified_effects_added", identifiable ? 0.0 : static_cast<double>(added.size()),
+            0.0, "issue 34 (iii): the loop adds nothing the flap's scalar data cannot identify");
   std::ostringstream why;
   why << data << " training datum(s) for " << nb << " fitted parameter(s) + 1 per candidate"
       << (spec.held_out.empty() ? ", no held-out frame" : "");
@@ -243,8 +249,9 @@ Summary run_flap_loop(const FlapLoopOptions& o) {
   s.info("phase_I_plane_frame_used", with_plane ? 1.0 : 0.0);
 
   const double E_uniaxial = 2.0 * (1.0 + flap.poisson_ratio) * flap.uniaxial_shear_modulus;
-  const std::vector<RunSpec> runs{{"uniaxial", E_uniaxial, false, with_plane ? std::vector<int>{1} : std::vector<int>{}},
-                                  {"fitted", E_fit, true, {}}};
+  const std::vector<RunSpec> runs{
+      {"uniaxial", E_uniaxial, false, with_plane ? std::vector<int>{1} : std::vector<int>{}},
+      {"fitted", E_fit, true, {}}};
   nlohmann::json out = nlohmann::json::object();
   for (const auto& r : runs) out[r.name] = run_one(r, setup, o, s);
 
@@ -258,8 +265,9 @@ Summary run_flap_loop(const FlapLoopOptions& o) {
                     {"youngs_modulus_fit_Pa", E_fit},
                     {"youngs_modulus_uniaxial_Pa", E_uniaxial},
                     {"phase_I_plane", plane},
-                    {"phase_I_plane_label", "PLANE: the flow load of a 2-D section (fin-fsi hessenthaler_plane), not the "
-                                            "3-D experiment's; the 3-D Phase I prediction is still missing"},
+                    {"phase_I_plane_label",
+                     "PLANE: the flow load of a 2-D section (fin-fsi hessenthaler_plane), not the "
+                     "3-D experiment's; the 3-D Phase I prediction is still missing"},
                     {"runs", out}};
   s.set_timing(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(), 1);
   return s;

@@ -23,8 +23,8 @@
 namespace finverse::loop {
 
 struct FlapLoopOptions {
-  std::filesystem::path reference;    // hessenthaler2017.json
-  std::filesystem::path fit_summary;  // fin-fit flap's summary.json: E and the metrics carried over
+  std::filesystem::path reference;                     // hessenthaler2017.json
+  std::filesystem::path fit_summary;                   // fin-fit flap's summary.json: E and the metrics carried over
   std::optional<std::filesystem::path> plane_summary;  // fin-fsi hessenthaler_plane's: the Phase I load
   std::string name = "loop_hessenthaler";
   fem::validation::FlapMesh mesh{fem::validation::FlapModel::shell, 32, 4};

@@ -79,11 +79,16 @@ std::vector<double> FlapTracedModel::tips(const std::vector<std::string>& effect
     const double v = physical(base + static_cast<Eigen::Index>(k));
     const std::string& e = effects[k];
     candidate(e);
-    if (e == "density_error") density_error = v;
-    else if (e == "precurved_rest_shape") shape.rest_curvature = v;
-    else if (e == "cupped_rest_shape") shape.rest_cupping = v;
-    else if (e == "distal_softening") shape.distal_softening = v;
-    else E *= v;  // modulus_offset
+    if (e == "density_error")
+      density_error = v;
+    else if (e == "precurved_rest_shape")
+      shape.rest_curvature = v;
+    else if (e == "cupped_rest_shape")
+      shape.rest_cupping = v;
+    else if (e == "distal_softening")
+      shape.distal_softening = v;
+    else
+      E *= v;  // modulus_offset
   }
   const auto& f = setup_.flap;
   const double buoyancy = (f.fluid_density - f.solid_density - density_error) * f.gravity * f.width * f.thickness;

@@ -3,11 +3,11 @@
 // sits at its arc, a load profile equal to the uniform load is the uniform load, softening and
 // cupping move the tip the way they must; one datum makes every candidate score alike and the loop
 // refuses to add, flagged; a twin with two data closes exactly with any candidate (coarse meshes).
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "core/summary.hpp"
 #include "fem/errors.hpp"
@@ -42,8 +42,7 @@ TEST(FlapVariant, ProfileEqualToUniformLoadIsTheUniformLoad) {
   const auto profile = fv::flap_deflection(flap, 2e5, kShell, fv::FlapLoad{0, std::vector<double>(4, q), {}}, {});
   EXPECT_NEAR(profile.tip, uniform.tip, 1e-9);
   // An axial pull along +x straightens the bent flap.
-  const auto pulled =
-      fv::flap_deflection(flap, 2e5, kShell, fv::FlapLoad{q, {}, std::vector<double>(4, 2 * q)}, {});
+  const auto pulled = fv::flap_deflection(flap, 2e5, kShell, fv::FlapLoad{q, {}, std::vector<double>(4, 2 * q)}, {});
   EXPECT_LT(pulled.tip, uniform.tip);
 }
 

@@ -11,14 +11,17 @@ void add_turek_hron_flags(CLI::App& command, TurekHronFsiOptions& o) {
   command.add_option("--absolute-tolerance", o.absolute_tolerance, "... or interface displacement change [m]")
       ->capture_default_str();
   command.add_option("--max-iterations", o.max_iterations, "coupling iterations per step")->capture_default_str();
-  command.add_option("--cells-per-diameter", o.cells_per_diameter, "flow grid: D / h in the box")->capture_default_str();
+  command.add_option("--cells-per-diameter", o.cells_per_diameter, "flow grid: D / h in the box")
+      ->capture_default_str();
   command.add_option("--core-cells-per-diameter", o.core_cells_per_diameter, "finer core around the body: D / h_core")
       ->capture_default_str();
   command.add_option("--core-wake", o.core_wake, "the core ends this many D behind the tip")->capture_default_str();
   command.add_option("--wake-box", o.wake_box, "uniform box behind the tip [D]")->capture_default_str();
   command.add_option("--stretch-ratio", o.stretch_ratio, "largest neighbouring cell-width ratio outside the box")
       ->capture_default_str();
-  command.add_option("--wall-stretch-ratio", o.wall_stretch_ratio, "the same towards the channel walls; 0: --stretch-ratio")
+  command
+      .add_option("--wall-stretch-ratio", o.wall_stretch_ratio,
+                  "the same towards the channel walls; 0: --stretch-ratio")
       ->capture_default_str();
   command.add_option("--channel-length", o.channel_length, "channel length [m] (< 2.5: tests only)")
       ->capture_default_str();
@@ -33,8 +36,9 @@ void add_turek_hron_flags(CLI::App& command, TurekHronFsiOptions& o) {
       ->capture_default_str();
   command.add_option("--substeps", o.structure_substeps, "structure sub-steps per step")->capture_default_str();
   command.add_option("--output-every", o.output_every, "fsi.h5 frame every k steps")->capture_default_str();
-  command.add_option("--divergence-iterations", o.divergence_iterations,
-                 "residual growing this many iterations in a row: diverged (0: off)")
+  command
+      .add_option("--divergence-iterations", o.divergence_iterations,
+                  "residual growing this many iterations in a row: diverged (0: off)")
       ->capture_default_str();
   command.add_option("--checkpoint", o.checkpoint, "checkpoint file (replaced atomically) for --restart");
   command.add_option("--checkpoint-every", o.checkpoint_every, "checkpoint every N steps (0: after the last only)")
@@ -42,12 +46,12 @@ void add_turek_hron_flags(CLI::App& command, TurekHronFsiOptions& o) {
   command.add_option("--restart", o.restart, "continue from this checkpoint (same options; t_end may grow)")
       ->check(CLI::ExistingFile);
   command.add_flag("--restart-new-coupling", o.restart_new_coupling,
-               "the restart may change acceleration, omega, tolerances and caps (drops the carried history)");
+                   "the restart may change acceleration, omega, tolerances and caps (drops the carried history)");
   command.add_option("--paraview", o.paraview_dir, "ParaView series (structure.pvd, flow.pvd) into this directory");
   command.add_option("--paraview-every", o.paraview_every, "ParaView frame every k-th fsi.h5 frame")
       ->capture_default_str();
   command.add_flag("--hold-flag-rigid", o.hold_flag_rigid,
-               "benchmark: from --restart on, the flow alone with the flag frozen (wall time per step)");
+                   "benchmark: from --restart on, the flow alone with the flag frozen (wall time per step)");
 }
 
 void add_pitching_plate_flags(CLI::App& command, PitchingPlateOptions& o) {
@@ -59,7 +63,8 @@ void add_pitching_plate_flags(CLI::App& command, PitchingPlateOptions& o) {
   command.add_option("--mass-ratio", o.mass_ratio, "rho_s h / (rho_f L)")->capture_default_str();
   command.add_option("--nx", o.nx, "shell cells along the chord")->capture_default_str();
   command.add_option("--nz", o.nz, "shell cells along the span (even)")->capture_default_str();
-  command.add_option("--cells-per-chord", o.cells_per_chord, "flow grid: L / h around the plate")->capture_default_str();
+  command.add_option("--cells-per-chord", o.cells_per_chord, "flow grid: L / h around the plate")
+      ->capture_default_str();
   command.add_option("--thickness-cells", o.thickness_cells, "closed thin body thickness [h]")->capture_default_str();
   command.add_option("--stretch-ratio", o.stretch_ratio, "cell-width ratio outside the uniform box")
       ->capture_default_str();

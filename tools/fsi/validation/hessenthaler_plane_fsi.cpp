@@ -206,7 +206,8 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
   const double station = flap.length / bins;
   std::vector<double> along, transverse, edges;
   for (int b = 0; b <= bins; ++b) edges.push_back(b * station);
-  for (int b = 0; b < bins; ++b) along.push_back(mean_load(0, b) / station), transverse.push_back(mean_load(1, b) / station);
+  for (int b = 0; b < bins; ++b)
+    along.push_back(mean_load(0, b) / station), transverse.push_back(mean_load(1, b) / station);
 
   Summary s("validation", "loop_hessenthaler_phase_I_plane",
             "PLANE VERSION of the Hessenthaler 2017 Phase I flow (2-D section: the flap spans the depth and "
@@ -243,8 +244,9 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
                     {"buoyancy_body_force_N_m3", (flap.fluid_density - flap.solid_density) * g0},
                     {"tip_history_t_s_uy_m", history},
                     {"mean_flow_load_last_fifth",
-                     {{"note", "flow's load on the flap per unit length and unit depth, time mean over the last fifth, "
-                               "piecewise constant on stations from the clamp (no hydrostatics; buoyancy excluded)"},
+                     {{"note",
+                       "flow's load on the flap per unit length and unit depth, time mean over the last fifth, "
+                       "piecewise constant on stations from the clamp (no hydrostatics; buoyancy excluded)"},
                       {"window_s", {t0, time.back()}},
                       {"station_edges_m", edges},
                       {"along_N_m2", along},
