@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.hpp"
 
@@ -131,7 +132,10 @@ LoopSection loop_section(const LoopFile& loop, const stage::Mesh& mesh, const st
   const std::string with = added.empty() ? "no effect added" : "with " + join(added);
   const double exc = loop.excursion.value_or(0);
   auto of_excursion = [&](double v) {
-    return exc > 0 && std::isfinite(v) ? std::to_string(v / exc) + " of the trailing-edge excursion" : std::string();
+    if (!(exc > 0) || !std::isfinite(v)) return std::string();
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g of the trailing-edge excursion", v / exc);
+    return std::string(text);
   };
   auto& sc = out.scores;
   sc.push_back(info(kPrefix + "effects added", static_cast<double>(added.size()), "",
