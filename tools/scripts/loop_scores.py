@@ -93,8 +93,12 @@ def main():
         if rank is None and same_name:
             rank, note = ranking.index(same_name[0]) + 1, note + f"; {first} is no candidate, {same_name[0]} taken"
         metrics.append(metric("planted_effect_rank", rank, "", "max", None, 1, note))
-        took = [c for c in added if c == first or c.split(":")[0] == planted[0]["name"]]
-        metrics.append(metric("planted_effect_added", 1.0 if took else 0.0, "", "absolute", 1.0, 0.0,
+        # The same effect on another ray group (e.g. the edge rays' stiffening for every ray's).
+        kind_rank = next((i + 1 for i, c in enumerate(ranking) if c.split(":")[0] == planted[0]["name"]), None)
+        metrics.append(metric("planted_effect_kind_rank", kind_rank, "", "info", None, None,
+                              f"first candidate of effect {planted[0]['name']} on any ray group"))
+        took = [c for c in added if c == first] or [c for c in added if c.split(":")[0] == planted[0]["name"]]
+        metrics.append(metric("planted_effect_added", 1.0 if first in added else 0.0, "", "absolute", 1.0, 0.0,
                               f"added {added} ({loop.get('stop_reason')})"))
         before, after = base_state["trailing_edge_rms_m"], final_state["trailing_edge_rms_m"]
         ratio = after / before if before > 0 else None
