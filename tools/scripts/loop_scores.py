@@ -114,7 +114,7 @@ def main():
         metrics.append(metric("effects_added", float(len(added)), "", "max", None, 0.0,
                               f"control: added {added} ({loop.get('stop_reason')})"))
         metrics.append(metric("trailing_edge_rms_final", final_state["trailing_edge_rms_m"], "m", "info", None, None,
-                              "the tracking's own error floor"))
+                              "the floor: tracking error and the root drive read off the reconstruction"))
     for name in a.parameters.split(","):
         if name not in truth:
             fail(f"--parameters: {name} is not among {a.truth}'s /materials/names")
