@@ -283,6 +283,11 @@ Segmentation segment_fin(const cv::Mat& frame, const SegmentationOptions& o, con
     s.mask = cut.fin;
   }
   if (ctx.find_body) s.body = opaque_body(frame, s.background, s.mask, o);
+  if (ctx.cut_at_line && ctx.root_band_px > 0) {
+    const cv::Vec3d beyond(ctx.root_line[0], ctx.root_line[1], ctx.root_line[2] - ctx.root_band_px);
+    const cv::Mat band = fin_side_mask(cv::Mat(H, W, CV_8U, cv::Scalar(255)), beyond) == 0;
+    s.body = s.body.empty() ? band : cv::Mat(s.body | band);
+  }
   // The soft segmentation keeps the fin's rim: nothing beyond two pixels of the cleaned mask.
   cv::Mat near;
   cv::dilate(s.mask, near, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));

@@ -64,6 +64,9 @@ struct SegmentationContext {
   bool orient_by_line = false;  // the peduncle cut keeps the end on the fin's side of root_line
   cv::Vec3d root_line{0, 0, 0};
   bool find_body = false;    // mark the opaque body in the fish's blob (Segmentation::body)
+  // With cut_at_line: the pixels up to this far (px) on the fin's side of root_line are marked
+  // body too: the peduncle around the fin's root and the cut's own edge are not the fin's outline.
+  double root_band_px = 0;
 };
 
 struct Segmentation {

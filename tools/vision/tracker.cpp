@@ -302,6 +302,12 @@ TrackResult Tracker::track(const TrackInput& in, const TruthReference* truth) co
           ctx.cut_at_line = line && options_.cut_at_root_plane;
           ctx.orient_by_line = line && so.fin_cut;
           ctx.find_body = !line;
+          // The cut lies a fiftieth of a chord upstream of the root; the band reaches as far
+          // downstream of the root, and the body's rim beyond (fin_separation.hpp).
+          if (ctx.cut_at_line) {
+            const auto q = cameras[v].project({0.02 * model_.chord, 0, 0});
+            ctx.root_band_px = ctx.root_line[0] * q.x + ctx.root_line[1] * q.y + ctx.root_line[2] + so.body_rim_px;
+          }
         }
         views[v] = prepare_view(cameras[v], img, so, ro, ctx);
         if (views[v].valid) last_mask[v] = views[v].mask;
