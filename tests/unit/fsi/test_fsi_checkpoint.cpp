@@ -18,6 +18,8 @@
 #include <iterator>
 #include <string>
 
+#include <unistd.h>
+
 #include "core/stage_files.hpp"
 #include "core/vtk_compare.hpp"
 #include "fsi/implicit_coupling.hpp"
@@ -28,7 +30,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) { return fs::temp_directory_path() / ("finverse_test_fsi_ckpt_" + name); }
+// The process id keeps tests that ctest runs side by side off each other's files (a shared
+// reference JSON truncated by one test while another parsed it failed CI once).
+fs::path scratch(const std::string& name) {
+  return fs::temp_directory_path() / ("finverse_test_fsi_ckpt_" + std::to_string(::getpid()) + "_" + name);
+}
 
 fs::path reference_file() {
   const fs::path path = scratch("turek_hron.json");

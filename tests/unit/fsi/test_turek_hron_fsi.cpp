@@ -16,6 +16,8 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 #include "core/stage_files.hpp"
 #include "fsi/implicit_coupling.hpp"
 #include "fsi/validation/flag_flow_body.hpp"
@@ -25,7 +27,8 @@ namespace finverse::fsi::validation {
 namespace {
 
 std::filesystem::path reference_file() {
-  const auto path = std::filesystem::temp_directory_path() / "finverse_test_turek_hron_fsi.json";
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("finverse_test_turek_hron_fsi_" + std::to_string(::getpid()) + ".json");
   std::ofstream out(path);
   out << R"({"geometry": {"cylinder_centre": [0.2, 0.2], "cylinder_radius": 0.05, "flag_length": 0.35,
               "flag_thickness": 0.02, "point_A": [0.6, 0.2]}, "solid": {"nu_s": 0.4},
