@@ -14,7 +14,7 @@
 namespace finverse::fem {
 
 namespace {
-constexpr std::array<int, 6> kAllDofs = {0, 1, 2, 3, 4, 5};
+constexpr std::array<int, 6> kBeamDofs = {0, 1, 2, 3, 4, 5};
 
 // E A E^T with E = blockdiag(R, R, R, R), block by block (a 12x12 GEMM costs more than the
 // rest of the element).
@@ -28,7 +28,7 @@ CorotationalBeam::Mat12 rotate_blocks(const Mat3& R, const CorotationalBeam::Mat
 }
 }  // namespace
 
-std::span<const int> CorotationalBeam::active_dofs() const { return kAllDofs; }
+std::span<const int> CorotationalBeam::active_dofs() const { return kBeamDofs; }
 
 CorotationalBeam::CorotationalBeam(int node1, int node2, const Vec3& X1, const Vec3& X2,
                                    const Vec3& y_axis_hint, const Material& material,

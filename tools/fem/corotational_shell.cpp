@@ -13,7 +13,7 @@
 namespace finverse::fem {
 
 namespace {
-constexpr std::array<int, 6> kAllDofs = {0, 1, 2, 3, 4, 5};
+constexpr std::array<int, 6> kShellDofs = {0, 1, 2, 3, 4, 5};
 
 // Side-aligned frame of a triangle; returns false when the triangle is degenerate.
 bool side_aligned_frame(const Vec3& x1, const Vec3& x2, const Vec3& x3, Mat3& R) {
@@ -34,7 +34,7 @@ std::string describe(const std::array<int, 3>& n) {
 }
 }  // namespace
 
-std::span<const int> CorotationalShell::active_dofs() const { return kAllDofs; }
+std::span<const int> CorotationalShell::active_dofs() const { return kShellDofs; }
 
 CorotationalShell::CorotationalShell(int node1, int node2, int node3, const Vec3& X1,
                                      const Vec3& X2, const Vec3& X3, const Material& material,

@@ -15,7 +15,7 @@
 namespace finverse::cfd {
 namespace {
 
-double overlap(double a, double b, double lo, double hi) { return std::max(0.0, std::min(b, hi) - std::max(a, lo)); }
+double overlap3(double a, double b, double lo, double hi) { return std::max(0.0, std::min(b, hi) - std::max(a, lo)); }
 
 // Largest |sum_f (+-) alpha_f A_f e_f - sum of the pieces' area vectors| over the cells, relative
 // to the cell's largest face; and the number of cells with pieces.
@@ -59,7 +59,7 @@ TEST(CutFaces3D, BoxGivesExactAperturesAndClosedCells) {
           const double a1 = g.axis(t1).face(idx[t1]), b1 = g.axis(t1).face(idx[t1] + 1);
           const double a2 = g.axis(t2).face(idx[t2]), b2 = g.axis(t2).face(idx[t2] + 1);
           const auto D = static_cast<std::size_t>(d), T1 = static_cast<std::size_t>(t1), T2 = static_cast<std::size_t>(t2);
-          const double solid = (c > lo[D] && c < hi[D]) ? overlap(a1, b1, lo[T1], hi[T1]) * overlap(a2, b2, lo[T2], hi[T2]) : 0;
+          const double solid = (c > lo[D] && c < hi[D]) ? overlap3(a1, b1, lo[T1], hi[T1]) * overlap3(a2, b2, lo[T2], hi[T2]) : 0;
           const double alpha = 1 - solid / ((b1 - a1) * (b2 - a2));
           ASSERT_NEAR(cf.aperture(d, i, j, k), alpha, 1e-12) << d << ": " << i << ", " << j << ", " << k;
           partial += alpha > 0 && alpha < 1;

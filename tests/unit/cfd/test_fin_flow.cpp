@@ -18,12 +18,12 @@ namespace {
 using test::tiny_plate;
 
 // 10 ms: two outputs 5 ms apart.
-FinFlowOptions tiny_options() { return test::tiny_options(0.05); }
+FinFlowOptions tiny_flow_options() { return test::tiny_options(0.05); }
 
 TEST(FinFlow, TinyPlateRunGivesAConsistentLoadsHistory) {
   const FinInput in = tiny_plate();
   FinFlowStats st;
-  const stage::Loads l = run_fin_flow(in, tiny_options(), st);
+  const stage::Loads l = run_fin_flow(in, tiny_flow_options(), st);
   ASSERT_EQ(l.time.size(), 2u);
   EXPECT_NEAR(l.time(0), 0.005, 1e-15);
   EXPECT_NEAR(l.time(1), 0.010, 1e-15);
@@ -62,13 +62,13 @@ TEST(FinFlow, RefusesBadRunParameters) {
       EXPECT_NE(std::string(e.what()).find(flag), std::string::npos) << e.what();
     }
   };
-  FinFlowOptions o = tiny_options();
+  FinFlowOptions o = tiny_flow_options();
   o.output_interval = 0.003;
   expect(o, "--output-interval");
-  o = tiny_options();
+  o = tiny_flow_options();
   o.downstream = 0.6;
   expect(o, "--downstream");
-  o = tiny_options();
+  o = tiny_flow_options();
   o.reynolds = -1;
   expect(o, "--reynolds");
 }

@@ -20,7 +20,7 @@
 namespace finverse::cfd {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // ---- order of accuracy ------------------------------------------------------------------------
 
@@ -283,7 +283,7 @@ FlowSolver channel_solver() {
   return s;
 }
 
-bool same_state(const FlowSolver& a, const FlowSolver& b) {
+bool same_flow_state(const FlowSolver& a, const FlowSolver& b) {
   const auto sa = a.state(), sb = b.state();
   if (sa.size() != sb.size()) return false;
   for (std::size_t m = 0; m < sa.size(); ++m)
@@ -301,12 +301,12 @@ TEST(FlowSolver, RestartFromCheckpointIsBitwiseIdentical) {
   for (int n = 0; n < 5; ++n) full.step();
 
   FlowSolver restarted = channel_solver();
-  EXPECT_FALSE(same_state(full, restarted));
+  EXPECT_FALSE(same_flow_state(full, restarted));
   read_checkpoint(path, restarted);
   std::filesystem::remove(path);
   EXPECT_EQ(restarted.steps(), 5);
   for (int n = 0; n < 5; ++n) restarted.step();
-  EXPECT_TRUE(same_state(full, restarted));
+  EXPECT_TRUE(same_flow_state(full, restarted));
   EXPECT_EQ(restarted.time(), full.time());
 }
 
@@ -327,7 +327,7 @@ TEST(FlowSolver, ResultsIndependentOfThreadCount) {
     return s;
   };
   const FlowSolver a = run(1), b = run(3);
-  EXPECT_TRUE(same_state(a, b));
+  EXPECT_TRUE(same_flow_state(a, b));
 }
 
 TEST(FlowSolver, BlowUpEndsWithAnErrorNamingTheStep) {

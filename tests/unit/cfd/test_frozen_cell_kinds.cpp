@@ -1,7 +1,7 @@
 // The flow's response to a deforming body's position with the cells' kinds frozen
 // (FlowSolver::set_body_state's kinds_at; GhostCellSet(grid, body, kinds_from)), what makes the
 // FSI coupling operator H(x) continuous (issue 32; docs/studies/fsi_turek_hron.md section 7):
-//   - a bending flap is stepped from one saved state to positions shifted by s; by bisection on s
+//   - a bending frozen_flap is stepped from one saved state to positions shifted by s; by bisection on s
 //     a shift s* where a cell centre crosses the wall (the kinds of the plain placement change)
 //     is found, and the step is taken at s* - eps and s* + eps (eps = 1e-7 h): with the kinds
 //     classified at each position the force and the velocity jump by O(1) there, with the kinds
@@ -22,9 +22,9 @@
 namespace finverse::cfd {
 namespace {
 
-// A flap of constant thickness whose centre line bends as y = y0 + a(t) xi^2 (as in
+// A frozen_flap of constant thickness whose centre line bends as y = y0 + a(t) xi^2 (as in
 // test_deforming_body.cpp), shifted by dy.
-PolygonState flap(double t, double dy) {
+PolygonState frozen_flap(double t, double dy) {
   const double x0 = 0.2537, L = 0.5, y0 = 0.5, half = 0.035, a = 0.06, w = 2 * std::numbers::pi;
   const int n = 40;
   PolygonState s;
@@ -43,14 +43,14 @@ PolygonState flap(double t, double dy) {
 constexpr int kCells = 48;
 constexpr double kH = 1.0 / kCells;
 
-FlowSolver flap_solver() {
+FlowSolver frozen_flap_solver() {
   const StretchedGrid g(Axis::uniform(0, 1, kCells), Axis::uniform(0, 1, kCells));
   FlowOptions opt;
   opt.nu = 2e-3;
   opt.dt = 0.01;
   FlowSolver s;
   s.setup(g, FlowBoundary{}, opt);
-  s.immerse_deforming(flap(0, 0));
+  s.immerse_deforming(frozen_flap(0, 0));
   s.initialise({});
   return s;
 }
@@ -61,13 +61,13 @@ struct Response {
   std::vector<double> u;  // u and v of every cell
 };
 
-// One step from `saved` to the flap shifted by dy, the kinds from the flap shifted by kinds_dy
+// One step from `saved` to the frozen_flap shifted by dy, the kinds from the frozen_flap shifted by kinds_dy
 // (none: the plain placement).
 Response step_to(FlowSolver& s, const std::vector<StateArray>& saved, double dy, const double* kinds_dy) {
   s.restore(saved);
   const double t = s.time() + s.next_dt();
-  const PolygonState k = kinds_dy ? flap(t, *kinds_dy) : PolygonState{};
-  s.set_body_state(flap(t, dy), kinds_dy ? &k : nullptr);
+  const PolygonState k = kinds_dy ? frozen_flap(t, *kinds_dy) : PolygonState{};
+  s.set_body_state(frozen_flap(t, dy), kinds_dy ? &k : nullptr);
   s.step();
   Response r;
   r.lift = s.edge_traction(1.0).force[1];
@@ -87,13 +87,13 @@ double max_diff(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 TEST(FrozenCellKinds, ResponseIsContinuousWhereACellCentreCrossesTheWall) {
-  FlowSolver s = flap_solver();
+  FlowSolver s = frozen_flap_solver();
   for (int n = 0; n < 5; ++n) {  // a moving flow and the AB2 history
-    s.set_body_state(flap(s.time() + s.next_dt(), 0));
+    s.set_body_state(frozen_flap(s.time() + s.next_dt(), 0));
     s.step();
   }
   const std::vector<StateArray> saved = s.state();
-  // Bisection on the shift for a change of the plain placement's kinds (the flap moves up by
+  // Bisection on the shift for a change of the plain placement's kinds (the frozen_flap moves up by
   // 0.6 h, so some centre crosses its lower or upper side).
   double lo = 0, hi = 0.6 * kH;
   const std::vector<CellKind> k0 = step_to(s, saved, lo, nullptr).kinds;
@@ -107,7 +107,7 @@ TEST(FrozenCellKinds, ResponseIsContinuousWhereACellCentreCrossesTheWall) {
   const Response fa = step_to(s, saved, lo, &zero), fb = step_to(s, saved, hi, &zero);
   ASSERT_NE(a.kinds, b.kinds);
   EXPECT_EQ(fa.kinds, fb.kinds);
-  const double lift_scale = std::abs(fa.lift) + 1e-3, u_scale = 0.4;  // the flap tip's speed ~0.38
+  const double lift_scale = std::abs(fa.lift) + 1e-3, u_scale = 0.4;  // the frozen_flap tip's speed ~0.38
   const double plain_lift = std::abs(b.lift - a.lift), frozen_lift = std::abs(fb.lift - fa.lift);
   const double plain_u = max_diff(a.u, b.u), frozen_u = max_diff(fa.u, fb.u);
   std::printf("crossing at dy = %.9g h (eps %.2g h): plain |dlift| %.3g |du| %.3g; frozen |dlift| %.3g |du| %.3g\n",
@@ -119,7 +119,7 @@ TEST(FrozenCellKinds, ResponseIsContinuousWhereACellCentreCrossesTheWall) {
   EXPECT_LT(frozen_lift, 1e-2 * plain_lift) << "plain " << plain_lift << ", frozen " << frozen_lift;
 }
 
-bool same_state(const std::vector<StateArray>& sa, const std::vector<StateArray>& sb) {
+bool same_frozen_state(const std::vector<StateArray>& sa, const std::vector<StateArray>& sb) {
   if (sa.size() != sb.size()) return false;
   for (std::size_t m = 0; m < sa.size(); ++m)
     if (sa[m].name != sb[m].name || sa[m].values.size() != sb[m].values.size() ||
@@ -130,10 +130,10 @@ bool same_state(const std::vector<StateArray>& sa, const std::vector<StateArray>
 }
 
 TEST(FrozenCellKinds, OwnKindsAreThePlainStepAndRestoreKeepsTheFrozenKinds) {
-  FlowSolver plain = flap_solver(), own = flap_solver();
+  FlowSolver plain = frozen_flap_solver(), own = frozen_flap_solver();
   for (int n = 0; n < 4; ++n) {
     const double t = plain.time() + plain.next_dt();
-    const PolygonState st = flap(t, 0);
+    const PolygonState st = frozen_flap(t, 0);
     plain.set_body_state(st);
     plain.step();
     own.set_body_state(st, &st);
@@ -146,22 +146,22 @@ TEST(FrozenCellKinds, OwnKindsAreThePlainStepAndRestoreKeepsTheFrozenKinds) {
   EXPECT_EQ(b.back().values[0], 1.0);
   a.pop_back();
   b.pop_back();
-  EXPECT_TRUE(same_state(a, b));
+  EXPECT_TRUE(same_frozen_state(a, b));
 
   // Frozen kinds at a shifted position survive restore(): the next step repeats bitwise.
   const double t = own.time() + own.next_dt();
-  const PolygonState k = flap(t, 0.3 * kH);
-  own.set_body_state(flap(t, 0), &k);
+  const PolygonState k = frozen_flap(t, 0.3 * kH);
+  own.set_body_state(frozen_flap(t, 0), &k);
   own.step();
   const std::vector<StateArray> saved = own.state();
   const auto next = [&] {
-    own.set_body_state(flap(own.time() + own.next_dt(), 0));
+    own.set_body_state(frozen_flap(own.time() + own.next_dt(), 0));
     own.step();
     return own.state();
   };
   const std::vector<StateArray> first = next();
   own.restore(saved);
-  EXPECT_TRUE(same_state(first, next()));
+  EXPECT_TRUE(same_frozen_state(first, next()));
 }
 
 }  // namespace

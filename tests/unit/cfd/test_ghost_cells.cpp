@@ -12,7 +12,7 @@
 namespace finverse::cfd {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 TEST(Polygon, CircleGeometryQueries) {
   const double r = 0.05;

@@ -21,7 +21,7 @@
 namespace finverse::cfd {
 namespace {
 
-double lin(const std::array<double, 3>& x) { return 0.3 + 2.0 * x[0] - 1.5 * x[1] + 0.7 * x[2]; }
+double lin3(const std::array<double, 3>& x) { return 0.3 + 2.0 * x[0] - 1.5 * x[1] + 0.7 * x[2]; }
 
 TEST(GhostCells3D, LinearFieldsAreImposedExactly) {
   const StretchedGrid g(Axis::uniform(0, 1, 20), Axis::stretched(0, 1, 0.3, 0.7, 0.045, 1.1), Axis::uniform(0, 1, 18));
@@ -34,7 +34,7 @@ TEST(GhostCells3D, LinearFieldsAreImposedExactly) {
       for (int i = 0; i < g.nx(); ++i) {
         const bool fluid = ib.kind(i, j, k) == CellKind::Fluid;
         EXPECT_EQ(fluid, !body.inside({g.xc(i), g.yc(j), g.zc(k)}));
-        q(i, j, k) = p(i, j, k) = fluid ? lin({g.xc(i), g.yc(j), g.zc(k)}) : 0.0;
+        q(i, j, k) = p(i, j, k) = fluid ? lin3({g.xc(i), g.yc(j), g.zc(k)}) : 0.0;
       }
   std::vector<double> ub, dn;
   int substituted = 0;
@@ -42,7 +42,7 @@ TEST(GhostCells3D, LinearFieldsAreImposedExactly) {
     EXPECT_LT(gc.boundary.distance, 0.0);
     for (std::size_t d = 0; d < 3; ++d)
       EXPECT_NEAR(gc.image_point[d] + (d == 0 ? g.xc(gc.i) : d == 1 ? g.yc(gc.j) : g.zc(gc.k)), 2 * gc.intercept[d], 1e-12);
-    ub.push_back(lin(gc.intercept));
+    ub.push_back(lin3(gc.intercept));
     dn.push_back(2.0 * gc.normal[0] - 1.5 * gc.normal[1] + 0.7 * gc.normal[2]);
     substituted += !gc.stencil_all_fluid;
   }
@@ -50,7 +50,7 @@ TEST(GhostCells3D, LinearFieldsAreImposedExactly) {
   ib.impose_dirichlet(q, ub);
   ib.impose_neumann(p, dn);
   for (const GhostCell& gc : ib.ghosts()) {
-    const double exact = lin({g.xc(gc.i), g.yc(gc.j), g.zc(gc.k)});
+    const double exact = lin3({g.xc(gc.i), g.yc(gc.j), g.zc(gc.k)});
     EXPECT_NEAR(q(gc.i, gc.j, gc.k), exact, 1e-10);
     EXPECT_NEAR(p(gc.i, gc.j, gc.k), exact, 1e-10);
   }

@@ -13,7 +13,7 @@ using namespace finverse::cfd;
 
 namespace {
 
-StretchedGrid stretched_3d() {
+StretchedGrid stretched_vortex_grid() {
   return StretchedGrid(Axis::stretched(0, 2, 0.8, 1.2, 0.1, 1.2), Axis::stretched(0, 1, 0.4, 0.6, 0.08, 1.15),
                        Axis::stretched(-1, 1, -0.2, 0.2, 0.1, 1.25));
 }
@@ -30,7 +30,7 @@ Field sample(const StretchedGrid& g, F f) {
 }  // namespace
 
 TEST(VortexIdentification, GradientOfAQuadraticFieldIsExactOnAStretchedGrid) {
-  const StretchedGrid g = stretched_3d();
+  const StretchedGrid g = stretched_vortex_grid();
   ASSERT_GT(g.axis(0).max_stretch_ratio(), 1.1);
   const Field u = sample(g, [](double x, double y, double z) { return 0.5 * x * x - 2 * x * y + 3 * z * z + y; });
   const Field v = sample(g, [](double x, double y, double z) { return x * z - y * y; });
@@ -49,7 +49,7 @@ TEST(VortexIdentification, GradientOfAQuadraticFieldIsExactOnAStretchedGrid) {
 }
 
 TEST(VortexIdentification, RotationIsAVortexAndStrainIsNot) {
-  const StretchedGrid g = stretched_3d();
+  const StretchedGrid g = stretched_vortex_grid();
   const double omega = 1.7, a = 0.9;
   // Solid-body rotation about z: vorticity (0, 0, 2 Omega); S = 0, W^2 has eigenvalues
   // -Omega^2, -Omega^2, 0, so lambda_2 = -Omega^2.

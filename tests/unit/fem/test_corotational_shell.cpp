@@ -20,7 +20,7 @@
 namespace finverse::fem {
 namespace {
 
-const Material kMaterial{"test", 7.0e7, 0.3, 1100.0};
+const Material kShellMaterial{"test", 7.0e7, 0.3, 1100.0};
 
 struct ShellFixture {
   std::array<Vec3, 3> X;
@@ -43,7 +43,7 @@ Vec3 random_vector(std::mt19937& rng, double scale) {
 
 // A large deformation: rigid rotation + translation plus deformational translations (strain ~1 %)
 // and deformational rotations up to ~0.3 rad.
-NodalState deformed(const ShellFixture& s, std::mt19937& rng, double rigid_angle) {
+NodalState shell_deformed(const ShellFixture& s, std::mt19937& rng, double rigid_angle) {
   NodalState st = s.reference;
   const Mat3 Q = exp_so3(random_vector(rng, rigid_angle));
   const Vec3 t = random_vector(rng, 2.0);
@@ -54,7 +54,7 @@ NodalState deformed(const ShellFixture& s, std::mt19937& rng, double rigid_angle
   return st;
 }
 
-Eigen::VectorXd force(const CorotationalShell& e, const NodalState& s) {
+Eigen::VectorXd shell_force(const CorotationalShell& e, const NodalState& s) {
   Eigen::VectorXd f(18);
   e.internal_force(s, f, nullptr);
   return f;
@@ -62,9 +62,9 @@ Eigen::VectorXd force(const CorotationalShell& e, const NodalState& s) {
 
 TEST(CorotationalShell, RigidMotionGivesNoForceOrEnergy) {
   const ShellFixture s = skew_triangle();
-  const CorotationalShell e(0, 1, 2, s.X[0], s.X[1], s.X[2], kMaterial, 0.02);
+  const CorotationalShell e(0, 1, 2, s.X[0], s.X[1], s.X[2], kShellMaterial, 0.02);
   std::mt19937 rng(42);
-  const double scale = kMaterial.youngs_modulus * 0.02;  // force of a unit membrane strain
+  const double scale = kShellMaterial.youngs_modulus * 0.02;  // shell_force of a unit membrane strain
   for (int trial = 0; trial < 5; ++trial) {
     NodalState st = s.reference;
     const Mat3 Q = exp_so3(random_vector(rng, 3.0));  // up to ~5 rad: beyond pi as well
@@ -73,17 +73,17 @@ TEST(CorotationalShell, RigidMotionGivesNoForceOrEnergy) {
       st.position[a] = Q * s.X[a] + t;
       st.rotation[a] = Q;
     }
-    EXPECT_LT(force(e, st).norm(), 1e-10 * scale) << "trial " << trial;
+    EXPECT_LT(shell_force(e, st).norm(), 1e-10 * scale) << "trial " << trial;
     EXPECT_LT(e.strain_energy(st), 1e-20 * scale);
   }
 }
 
 TEST(CorotationalShell, ForceIsObjectiveAndSelfEquilibrated) {
   const ShellFixture s = skew_triangle();
-  const CorotationalShell e(0, 1, 2, s.X[0], s.X[1], s.X[2], kMaterial, 0.02);
+  const CorotationalShell e(0, 1, 2, s.X[0], s.X[1], s.X[2], kShellMaterial, 0.02);
   std::mt19937 rng(7);
-  const NodalState st = deformed(s, rng, 1.0);
-  const Eigen::VectorXd f = force(e, st);
+  const NodalState st = shell_deformed(s, rng, 1.0);
+  const Eigen::VectorXd f = shell_force(e, st);
   ASSERT_GT(f.norm(), 0.0);
   // Superposed rigid rotation: forces and moments rotate with it.
   const Mat3 Q = exp_so3(Vec3(0.4, -1.9, 0.8));
@@ -92,10 +92,10 @@ TEST(CorotationalShell, ForceIsObjectiveAndSelfEquilibrated) {
     rotated.position[a] = Q * st.position[a] + Vec3(1, 2, 3);
     rotated.rotation[a] = Q * st.rotation[a];
   }
-  const Eigen::VectorXd fr = force(e, rotated);
+  const Eigen::VectorXd fr = shell_force(e, rotated);
   for (int b = 0; b < 6; ++b)
     EXPECT_LT((fr.segment<3>(3 * b) - Q * f.segment<3>(3 * b)).norm(), 1e-10 * f.norm());
-  // Resultant force and moment (about the origin) vanish in the current configuration.
+  // Resultant shell_force and moment (about the origin) vanish in the current configuration.
   Vec3 F = Vec3::Zero(), M = Vec3::Zero();
   for (int a = 0; a < 3; ++a) {
     F += f.segment<3>(6 * a);
@@ -103,7 +103,7 @@ TEST(CorotationalShell, ForceIsObjectiveAndSelfEquilibrated) {
   }
   EXPECT_LT(F.norm(), 1e-10 * f.norm());
   EXPECT_LT(M.norm(), 1e-10 * f.norm() * 3.0);
-  // The force is the gradient of the strain energy (with respect to translations and spins).
+  // The shell_force is the gradient of the strain energy (with respect to translations and spins).
   Eigen::VectorXd dir(18);
   for (int i = 0; i < 18; ++i) dir(i) = std::sin(1.0 + 3.7 * i);
   const double eps = 1e-6;
@@ -114,7 +114,7 @@ TEST(CorotationalShell, ForceIsObjectiveAndSelfEquilibrated) {
   EXPECT_NEAR(dU, f.dot(dir), 1e-6 * f.norm() * dir.norm());
 }
 
-// Central differences of the internal force: translations perturbed additively, rotations by a
+// Central differences of the internal shell_force: translations perturbed additively, rotations by a
 // spatial spin, R <- exp(skew(eps e_k)) R, matching the solvers' multiplicative update.
 Eigen::MatrixXd finite_difference_tangent(const CorotationalShell& e, const NodalState& st,
                                           double h_trans, double h_rot) {
@@ -130,18 +130,18 @@ Eigen::MatrixXd finite_difference_tangent(const CorotationalShell& e, const Noda
       p.rotation[node] = exp_so3(h * Vec3::Unit(dof - 3)) * st.rotation[node];
       m.rotation[node] = exp_so3(-h * Vec3::Unit(dof - 3)) * st.rotation[node];
     }
-    K.col(j) = (force(e, p) - force(e, m)) / (2.0 * h);
+    K.col(j) = (shell_force(e, p) - shell_force(e, m)) / (2.0 * h);
   }
   return K;
 }
 
 TEST(CorotationalShell, TangentMatchesCentralDifferences) {
   const ShellFixture s = skew_triangle();
-  const CorotationalShell e(0, 1, 2, s.X[0], s.X[1], s.X[2], kMaterial, 0.02);
+  const CorotationalShell e(0, 1, 2, s.X[0], s.X[1], s.X[2], kShellMaterial, 0.02);
   std::mt19937 rng(2024);
   double worst = 0;
   for (int trial = 0; trial < 6; ++trial) {
-    const NodalState st = deformed(s, rng, 2.5);
+    const NodalState st = shell_deformed(s, rng, 2.5);
     Eigen::VectorXd f(18);
     Eigen::MatrixXd K(18, 18);
     Element::MatrixRef Kref(K);
@@ -166,10 +166,10 @@ TEST(CorotationalShell, TangentMatchesCentralDifferences) {
 TEST(CorotationalShell, MassAndGravity) {
   const ShellFixture s = skew_triangle();
   const double h = 0.02;
-  const CorotationalShell e(0, 1, 2, s.X[0], s.X[1], s.X[2], kMaterial, h);
+  const CorotationalShell e(0, 1, 2, s.X[0], s.X[1], s.X[2], kShellMaterial, h);
   const double area = 0.5 * (s.X[1] - s.X[0]).cross(s.X[2] - s.X[0]).norm();
   EXPECT_NEAR(e.area(), area, 1e-14);
-  EXPECT_NEAR(e.total_mass(), kMaterial.density * h * area, 1e-12);
+  EXPECT_NEAR(e.total_mass(), kShellMaterial.density * h * area, 1e-12);
   Eigen::MatrixXd M(18, 18);
   e.mass_matrix(s.reference, M);
   EXPECT_LT((M - M.transpose()).norm(), 1e-15 * M.norm());
@@ -187,15 +187,15 @@ TEST(CorotationalShell, MassAndGravity) {
 
 TEST(CorotationalShell, PerElementStiffnessScalesLinearly) {
   const ShellFixture s = skew_triangle();
-  Material stiff = kMaterial;
+  Material stiff = kShellMaterial;
   stiff.youngs_modulus *= 3.0;
-  const CorotationalShell a(0, 1, 2, s.X[0], s.X[1], s.X[2], kMaterial, 0.02);
+  const CorotationalShell a(0, 1, 2, s.X[0], s.X[1], s.X[2], kShellMaterial, 0.02);
   const CorotationalShell b(0, 1, 2, s.X[0], s.X[1], s.X[2], stiff, 0.02);
   std::mt19937 rng(3);
-  const NodalState st = deformed(s, rng, 1.0);
-  EXPECT_LT((force(b, st) - 3.0 * force(a, st)).norm(), 1e-12 * force(b, st).norm());
-  EXPECT_THROW(CorotationalShell(0, 1, 2, s.X[0], s.X[1], s.X[2], kMaterial, 0.0), InvalidInput);
-  EXPECT_THROW(CorotationalShell(0, 1, 2, s.X[0], s.X[1], s.X[0], kMaterial, 0.02), InvalidInput);
+  const NodalState st = shell_deformed(s, rng, 1.0);
+  EXPECT_LT((shell_force(b, st) - 3.0 * shell_force(a, st)).norm(), 1e-12 * shell_force(b, st).norm());
+  EXPECT_THROW(CorotationalShell(0, 1, 2, s.X[0], s.X[1], s.X[2], kShellMaterial, 0.0), InvalidInput);
+  EXPECT_THROW(CorotationalShell(0, 1, 2, s.X[0], s.X[1], s.X[0], kShellMaterial, 0.02), InvalidInput);
 }
 
 TEST(CorotationalShell, StripRollsIntoHalfCircleUnderEndMoment) {

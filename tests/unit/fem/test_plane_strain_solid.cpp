@@ -44,7 +44,7 @@ Mat3 rotation_z(double angle) {
 }
 
 // A large deformation: stretch, shear, a rotation of 0.7 rad and a random perturbation.
-std::array<Vec3, 9> deformed(const std::array<Vec3, 9>& X, unsigned seed = 1) {
+std::array<Vec3, 9> solid_deformed(const std::array<Vec3, 9>& X, unsigned seed = 1) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-0.08, 0.08);
   Mat3 A = Mat3::Identity();
@@ -58,7 +58,7 @@ std::array<Vec3, 9> deformed(const std::array<Vec3, 9>& X, unsigned seed = 1) {
   return x;
 }
 
-Eigen::VectorXd force(const PlaneStrainSolid& e, const NodalState& s) {
+Eigen::VectorXd solid_force(const PlaneStrainSolid& e, const NodalState& s) {
   Eigen::VectorXd f(e.size());
   e.internal_force(s, f, nullptr);
   return f;
@@ -68,7 +68,7 @@ TEST(PlaneStrainSolid, TangentMatchesFiniteDifferencesOfInternalForce) {
   const auto X = distorted_element();
   const PlaneStrainSolid e(first_nine(), X, kMaterial);
   for (unsigned seed : {1u, 2u, 3u}) {
-    const NodalState s = state_at(deformed(X, seed));
+    const NodalState s = state_at(solid_deformed(X, seed));
     Eigen::VectorXd f(18);
     Eigen::MatrixXd K(18, 18);
     Element::MatrixRef Kref(K);
@@ -80,7 +80,7 @@ TEST(PlaneStrainSolid, TangentMatchesFiniteDifferencesOfInternalForce) {
       NodalState sp = s, sm = s;
       sp.position[c / 2](c % 2) += h;
       sm.position[c / 2](c % 2) -= h;
-      Kfd.col(c) = (force(e, sp) - force(e, sm)) / (2 * h);
+      Kfd.col(c) = (solid_force(e, sp) - solid_force(e, sm)) / (2 * h);
     }
     EXPECT_LT((K - Kfd).norm() / K.norm(), 1e-7) << "seed " << seed;
     EXPECT_LT((K - K.transpose()).norm() / K.norm(), 1e-14);
@@ -90,8 +90,8 @@ TEST(PlaneStrainSolid, TangentMatchesFiniteDifferencesOfInternalForce) {
 TEST(PlaneStrainSolid, InternalForceIsGradientOfStrainEnergy) {
   const auto X = distorted_element();
   const PlaneStrainSolid e(first_nine(), X, kMaterial);
-  const NodalState s = state_at(deformed(X, 4));
-  const Eigen::VectorXd f = force(e, s);
+  const NodalState s = state_at(solid_deformed(X, 4));
+  const Eigen::VectorXd f = solid_force(e, s);
   // W is a quartic polynomial of the positions: central differences err by h^2 W''' / 6.
   const double h = 1e-5;
   Eigen::VectorXd ffd(18);
@@ -107,22 +107,22 @@ TEST(PlaneStrainSolid, InternalForceIsGradientOfStrainEnergy) {
 TEST(PlaneStrainSolid, RigidMotionGivesNoForceAndForceIsObjective) {
   const auto X = distorted_element();
   const PlaneStrainSolid e(first_nine(), X, kMaterial);
-  const double scale = kMaterial.youngs_modulus * e.volume();  // force of a unit strain
+  const double scale = kMaterial.youngs_modulus * e.volume();  // solid_force of a unit strain
   for (double angle : {0.3, 1.2, 2.5, -3.0}) {
     const Mat3 Q = rotation_z(angle);
     std::array<Vec3, 9> x;
     for (int k = 0; k < 9; ++k) x[k] = Q * X[k] + Vec3(1.5, -0.7, 0);
     for (auto& p : x) p.z() = 0.3;
     const NodalState s = state_at(x);
-    EXPECT_LT(force(e, s).norm(), 1e-12 * scale) << angle;
+    EXPECT_LT(solid_force(e, s).norm(), 1e-12 * scale) << angle;
     EXPECT_LT(std::abs(e.strain_energy(s)), 1e-14 * scale) << angle;
 
-    // A rotated deformed state: the same strain energy, and forces rotated with it.
-    const auto xd = deformed(X, 5);
+    // A rotated solid_deformed state: the same strain energy, and forces rotated with it.
+    const auto xd = solid_deformed(X, 5);
     std::array<Vec3, 9> xr;
     for (int k = 0; k < 9; ++k) xr[k] = Q * xd[k];
     for (auto& p : xr) p.z() = 0.3;
-    const Eigen::VectorXd f0 = force(e, state_at(xd)), f1 = force(e, state_at(xr));
+    const Eigen::VectorXd f0 = solid_force(e, state_at(xd)), f1 = solid_force(e, state_at(xr));
     Eigen::VectorXd f0r(18);
     for (int a = 0; a < 9; ++a) f0r.segment<2>(2 * a) = Q.topLeftCorner<2, 2>() * f0.segment<2>(2 * a);
     EXPECT_LT((f1 - f0r).norm(), 1e-12 * f0.norm()) << angle;

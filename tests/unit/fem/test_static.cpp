@@ -18,7 +18,7 @@ using finverse::fem::test::cantilever;
 
 namespace {
 template <class E, class F>
-std::string message_of(F&& f) {
+std::string static_message_of(F&& f) {
   try {
     f();
   } catch (const E& e) {
@@ -106,7 +106,7 @@ TEST(StaticSolver, UnconstrainedModelIsReportedAsSingular) {
   for (auto backend : {SolverBackend::cholmod, SolverBackend::simplicial_ldlt}) {
     StaticSolver solver(m, StaticOptions{.steps = 1, .backend = backend});
     NodalState s = m.reference_state();
-    const std::string msg = message_of<SingularMatrix>([&] { solver.solve(s, 0, 1); });
+    const std::string msg = static_message_of<SingularMatrix>([&] { solver.solve(s, 0, 1); });
     EXPECT_NE(msg.find("singular"), std::string::npos) << msg;
     EXPECT_NE(msg.find("rigid-body"), std::string::npos) << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos);
@@ -115,7 +115,7 @@ TEST(StaticSolver, UnconstrainedModelIsReportedAsSingular) {
 
 TEST(StaticSolver, NanLoadIsRejectedWithItsLocation) {
   Model m = cantilever(2, 1.0, 1e9, 0.01, 0.002, 0.01, 0.002);
-  const std::string msg = message_of<InvalidInput>(
+  const std::string msg = static_message_of<InvalidInput>(
       [&] { m.add_nodal_load(2, 1, std::numeric_limits<double>::quiet_NaN()); });
   EXPECT_NE(msg.find("node 2"), std::string::npos) << msg;
   EXPECT_NE(msg.find("nan"), std::string::npos) << msg;
@@ -129,7 +129,7 @@ TEST(StaticSolver, NanLoadIsRejectedWithItsLocation) {
 
 TEST(StaticSolver, NonPhysicalMaterialsAreRejected) {
   Model m;
-  auto msg = [&](Material mat) { return message_of<InvalidInput>([&] { m.add_material(mat); }); };
+  auto msg = [&](Material mat) { return static_message_of<InvalidInput>([&] { m.add_material(mat); }); };
   EXPECT_NE(msg({"ray", 0.0, 0.3, 1000}).find("Young's modulus"), std::string::npos);
   EXPECT_NE(msg({"ray", -1e9, 0.3, 1000}).find("Young's modulus"), std::string::npos);
   EXPECT_NE(msg({"ray", 1e9, 0.5, 1000}).find("Poisson ratio"), std::string::npos);
@@ -151,7 +151,7 @@ TEST(StaticSolver, NonConvergenceIsReportedAfterStepCutting) {
   o.min_step_fraction = 0.05;
   StaticSolver solver(m, o);
   NodalState s = m.reference_state();
-  const std::string msg = message_of<NotConverged>([&] { solver.solve(s, 0, 1); });
+  const std::string msg = static_message_of<NotConverged>([&] { solver.solve(s, 0, 1); });
   EXPECT_NE(msg.find("did not converge"), std::string::npos) << msg;
   // With the default iteration limit the same problem converges (the check is not vacuous).
   StaticSolver ok(m, StaticOptions{.steps = 4});

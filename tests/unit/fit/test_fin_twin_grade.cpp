@@ -14,7 +14,7 @@ using namespace finverse;
 
 namespace {
 
-fem::io::MaterialSpec truth() {
+fem::io::MaterialSpec grade_truth() {
   return fem::io::parse_material_spec(nlohmann::json::parse(R"({
       "membrane": {"E": 1.2e7, "nu": 0.4, "density": 1050},
       "rays": {"E": 3e8, "nu": 0.4, "density": 1100},
@@ -41,7 +41,7 @@ const Metric* find(const Summary& s, const std::string& name) {
 
 TEST(FinTwinGrade, CloseFitPassesAndReportsTheMedian) {
   const Summary s = fit::validation::grade_fin_twin(fitted(1.25e7, 1.33e9, 5.1e7, 2.9e8, {1, 1, 1, 1, 0}),
-                                                    truth(), "twin");
+                                                    grade_truth(), "twin");
   EXPECT_TRUE(s.pass());
   const Metric* median = find(s, "median ray modulus error");
   ASSERT_NE(median, nullptr);
@@ -52,7 +52,7 @@ TEST(FinTwinGrade, CloseFitPassesAndReportsTheMedian) {
 
 TEST(FinTwinGrade, AnIdentifiedRayOffByMoreThanTheGoalFails) {
   const Summary s = fit::validation::grade_fin_twin(fitted(1.2e7, 1.3e9, 5e7 * 1.2, 3e8, {1, 1, 1, 1, 0}),
-                                                    truth(), "twin");
+                                                    grade_truth(), "twin");
   EXPECT_FALSE(s.pass());
   EXPECT_FALSE(*find(s, "E_ray2")->pass());
 }
@@ -60,17 +60,17 @@ TEST(FinTwinGrade, AnIdentifiedRayOffByMoreThanTheGoalFails) {
 TEST(FinTwinGrade, AnUnidentifiedRayIsListedNotGradedButTheMembraneIsAlways) {
   // Ray 2 is 3x off but the fit says it cannot tell: reported, not graded, and the median of
   // three (0, 0, 2) is 0. The membrane 20 % off fails whether identified or not.
-  Summary s = fit::validation::grade_fin_twin(fitted(1.2e7, 1.3e9, 1.5e8, 3e8, {1, 1, 0, 1, 0}), truth(), "twin");
+  Summary s = fit::validation::grade_fin_twin(fitted(1.2e7, 1.3e9, 1.5e8, 3e8, {1, 1, 0, 1, 0}), grade_truth(), "twin");
   EXPECT_TRUE(s.pass());
   EXPECT_EQ(find(s, "E_ray2"), nullptr);
   ASSERT_NE(find(s, "E_ray2 (not identified) relative error"), nullptr);
   EXPECT_NEAR(find(s, "rays identified")->value, 2, 0);
-  s = fit::validation::grade_fin_twin(fitted(1.44e7, 1.3e9, 5e7, 3e8, {0, 1, 1, 1, 0}), truth(), "twin");
+  s = fit::validation::grade_fin_twin(fitted(1.44e7, 1.3e9, 5e7, 3e8, {0, 1, 1, 1, 0}), grade_truth(), "twin");
   EXPECT_FALSE(s.pass());
 }
 
 TEST(FinTwinGrade, AParameterTheTruthDoesNotDefineIsAnError) {
   stage::Materials m = fitted(1.2e7, 1.3e9, 5e7, 3e8, {1, 1, 1, 1, 0});
   m.names[4] = "E_fin";
-  EXPECT_THROW(fit::validation::grade_fin_twin(m, truth(), "twin"), fit::InvalidInput);
+  EXPECT_THROW(fit::validation::grade_fin_twin(m, grade_truth(), "twin"), fit::InvalidInput);
 }

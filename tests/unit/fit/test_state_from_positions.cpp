@@ -22,7 +22,7 @@ using fem::Vec3;
 namespace {
 
 using fit::test::hybrid_plate_case;
-fem::validation::HybridPlateCase plate_case() { return hybrid_plate_case(); }
+fem::validation::HybridPlateCase state_plate_case() { return hybrid_plate_case(); }
 
 // A straight beam of n elements along x, length 1.
 fem::Model straight_beam(int n) {
@@ -54,7 +54,7 @@ double arc_rotation_error(int n, double radius) {
 }  // namespace
 
 TEST(StateFromPositions, RigidMotionGivesTheRotationExactly) {
-  const auto hp = fem::validation::build_hybrid_plate(plate_case(), 4, 4, fem::validation::HybridPlateLoad::none);
+  const auto hp = fem::validation::build_hybrid_plate(state_plate_case(), 4, 4, fem::validation::HybridPlateLoad::none);
   const fem::Model& m = hp.model;
   const Mat3 R = fem::exp_so3(Vec3(0.3, -0.7, 1.1));
   const Vec3 c(0.4, -2.0, 5.0);

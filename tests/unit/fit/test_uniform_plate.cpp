@@ -21,18 +21,18 @@ using fit::validation::UniformPlateTwin;
 
 namespace {
 
-constexpr int kNx = 6, kNz = 3, kStepsPerPeriod = 100;
+constexpr int kPlateNx = 6, kNz = 3, kStepsPerPeriod = 100;
 constexpr double kDt = 1.0 / kStepsPerPeriod;
 // Half the validation's load density (uniform_plate_fit.hpp): on this coarse grid the truth at 0.1
 // stalls Newton at t = 1.82 T.
 constexpr double kLoad = 0.05;
 
-std::shared_ptr<UniformPlateTwin> make_twin() {
+std::shared_ptr<UniformPlateTwin> make_plate_twin() {
   const UniformPlateCase c;
   std::vector<double> times;
   for (int k = 0; k <= 2 * kStepsPerPeriod; ++k) times.push_back(k * kDt);
-  return std::make_shared<UniformPlateTwin>(c, kNx, kNz,
-                                            fit::validation::uniform_plate_loads(c, kNx, kNz, kLoad, times));
+  return std::make_shared<UniformPlateTwin>(c, kPlateNx, kNz,
+                                            fit::validation::uniform_plate_loads(c, kPlateNx, kNz, kLoad, times));
 }
 
 }  // namespace
@@ -58,7 +58,7 @@ TEST(UniformPlateTwin, ThicknessDensityAndSmoothPitch) {
 }
 
 TEST(UniformPlateTwin, LeadingEdgePitchesAboutTheSpanAxis) {
-  const auto twin = make_twin();
+  const auto twin = make_plate_twin();
   EXPECT_EQ(twin->parameter_names(), (std::vector<std::string>{"E", "nu"}));
   EXPECT_EQ(twin->prescribed_nodes().size(), static_cast<size_t>(kNz + 1));
   const fit::TargetMotion truth =
@@ -69,13 +69,13 @@ TEST(UniformPlateTwin, LeadingEdgePitchesAboutTheSpanAxis) {
   for (int n : twin->prescribed_nodes()) EXPECT_LT((truth.positions.back()[n] - X[n]).norm(), 1e-12);
   double y = 0;
   for (int n : twin->trailing_edge()) y += truth.positions.back()[n].y() / twin->trailing_edge().size();
-  std::printf("uniform plate %dx%d: trailing edge y = %.3f at the pitch's peak (rigid: %.3f)\n", kNx, kNz, y,
+  std::printf("uniform plate %dx%d: trailing edge y = %.3f at the pitch's peak (rigid: %.3f)\n", kPlateNx, kNz, y,
               -std::sin(twin->plate_case().pitch(1.25)));
   EXPECT_LT(y, 0);
 }
 
 TEST(UniformPlateTwin, ObjectiveVanishesAtTheTruthAndGrowsOffIt) {
-  const auto twin = make_twin();
+  const auto twin = make_plate_twin();
   const fit::TargetMotion truth =
       fit::validation::uniform_plate_truth(*twin, twin->truth(), {.output_interval = kDt, .end_time = 2.0});
   // The last period, 10 frames, 10 steps each: the truth's own time step.
@@ -101,7 +101,7 @@ TEST(UniformPlateTwin, ObjectiveVanishesAtTheTruthAndGrowsOffIt) {
 
 TEST(UniformPlateFit, AShortFitLandsNearTheTruth) {
   fit::validation::UniformPlateFitOptions o;
-  o.nx = kNx, o.nz = kNz, o.steps_per_period = kStepsPerPeriod, o.compared_frames = 10, o.load_scale = kLoad;
+  o.nx = kPlateNx, o.nz = kNz, o.steps_per_period = kStepsPerPeriod, o.compared_frames = 10, o.load_scale = kLoad;
   // A box of +-0.1 decade around the truth (the basin's width): the machinery, not the global
   // search, which the validation runs over three decades.
   o.decades_below = 0.1, o.decades_above = 0.1;

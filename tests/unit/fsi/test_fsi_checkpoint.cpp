@@ -1,5 +1,5 @@
 // Checkpoint / restart and failures of the coupled flow + flag run (tools/fsi/validation/
-// fsi_checkpoint.hpp, turek_hron_fsi.hpp; issue 32 "Outputs" and "Bad input") on the tiny FSI3 of
+// fsi_checkpoint.hpp, turek_hron_fsi.hpp; issue 32 "Outputs" and "Bad input") on the tiny_ckpt FSI3 of
 // test_turek_hron_fsi.cpp:
 //   - 6 steps straight against 3 steps with checkpoints + a restart to step 6: fsi.h5 identical
 //     bit for bit (flow, structure incl. accelerations, IQN-ILS's reused columns, the frames), and
@@ -36,7 +36,7 @@ fs::path scratch(const std::string& name) {
   return fs::temp_directory_path() / ("finverse_test_fsi_ckpt_" + std::to_string(::getpid()) + "_" + name);
 }
 
-fs::path reference_file() {
+fs::path ckpt_reference_file() {
   const fs::path path = scratch("turek_hron.json");
   std::ofstream out(path);
   out << R"({"geometry": {"cylinder_centre": [0.2, 0.2], "cylinder_radius": 0.05, "flag_length": 0.35,
@@ -47,9 +47,9 @@ fs::path reference_file() {
   return path;
 }
 
-TurekHronFsiOptions tiny(int steps) {
+TurekHronFsiOptions tiny_ckpt(int steps) {
   TurekHronFsiOptions o;
-  o.reference = reference_file();
+  o.reference = ckpt_reference_file();
   o.case_name = "FSI3";
   o.cells_per_diameter = 10;
   o.channel_length = 1.0;
@@ -66,7 +66,7 @@ TurekHronFsiOptions tiny(int steps) {
 }
 
 template <class T>
-bool same_bits(const NdArray<T>& a, const NdArray<T>& b) {
+bool same_bits_ckpt(const NdArray<T>& a, const NdArray<T>& b) {
   return a.shape == b.shape && std::memcmp(a.data.data(), b.data.data(), sizeof(T) * a.data.size()) == 0;
 }
 
@@ -78,20 +78,20 @@ std::string bytes(const fs::path& p) {
 TEST(FsiCheckpoint, RestartWritesTheUninterruptedRunsFileBitForBit) {
   fs::remove_all(scratch("pv_straight"));
   fs::remove_all(scratch("pv_restarted"));
-  TurekHronFsiOptions o = tiny(6);
+  TurekHronFsiOptions o = tiny_ckpt(6);
   o.fsi_h5 = scratch("straight.h5");
   o.paraview_dir = scratch("pv_straight");
   o.paraview_every = 2;
   const TurekHronFsiRun straight = run_turek_hron_fsi(o);
 
-  TurekHronFsiOptions first = tiny(3);
+  TurekHronFsiOptions first = tiny_ckpt(3);
   first.checkpoint = scratch("ckpt.h5");
   first.checkpoint_every = 2;
   first.paraview_dir = scratch("pv_restarted");
   first.paraview_every = 2;
   (void)run_turek_hron_fsi(first);
   ASSERT_TRUE(fs::exists(first.checkpoint));
-  TurekHronFsiOptions second = tiny(6);
+  TurekHronFsiOptions second = tiny_ckpt(6);
   second.restart = first.checkpoint;
   second.fsi_h5 = scratch("restarted.h5");
   second.paraview_dir = first.paraview_dir;
@@ -101,15 +101,15 @@ TEST(FsiCheckpoint, RestartWritesTheUninterruptedRunsFileBitForBit) {
 
   const auto a = stage::read<stage::Fsi>(o.fsi_h5), b = stage::read<stage::Fsi>(second.fsi_h5);
   ASSERT_EQ(a.time.size(), 6u);
-  EXPECT_TRUE(same_bits(a.time, b.time));
-  EXPECT_TRUE(same_bits(a.points, b.points));
-  EXPECT_TRUE(same_bits(a.velocity, b.velocity));
-  EXPECT_TRUE(same_bits(a.nodal_force, b.nodal_force));
-  EXPECT_TRUE(same_bits(a.force_total, b.force_total));
-  EXPECT_TRUE(same_bits(a.coupling_iterations, b.coupling_iterations));
-  EXPECT_TRUE(same_bits(a.coupling_residual, b.coupling_residual));
-  EXPECT_TRUE(same_bits(a.coupling_relative_residual, b.coupling_relative_residual));
-  EXPECT_TRUE(same_bits(a.probe_displacement, b.probe_displacement));
+  EXPECT_TRUE(same_bits_ckpt(a.time, b.time));
+  EXPECT_TRUE(same_bits_ckpt(a.points, b.points));
+  EXPECT_TRUE(same_bits_ckpt(a.velocity, b.velocity));
+  EXPECT_TRUE(same_bits_ckpt(a.nodal_force, b.nodal_force));
+  EXPECT_TRUE(same_bits_ckpt(a.force_total, b.force_total));
+  EXPECT_TRUE(same_bits_ckpt(a.coupling_iterations, b.coupling_iterations));
+  EXPECT_TRUE(same_bits_ckpt(a.coupling_residual, b.coupling_residual));
+  EXPECT_TRUE(same_bits_ckpt(a.coupling_relative_residual, b.coupling_relative_residual));
+  EXPECT_TRUE(same_bits_ckpt(a.probe_displacement, b.probe_displacement));
   EXPECT_EQ(straight.uy_a, restarted.uy_a);
   ASSERT_EQ(straight.records.size(), restarted.records.size());
   for (std::size_t k = 0; k < straight.records.size(); ++k)
@@ -131,10 +131,10 @@ TEST(FsiCheckpoint, RestartWritesTheUninterruptedRunsFileBitForBit) {
 }
 
 TEST(FsiCheckpoint, RestartWithOtherOptionsIsRefusedNamingTheOption) {
-  TurekHronFsiOptions first = tiny(2);
+  TurekHronFsiOptions first = tiny_ckpt(2);
   first.checkpoint = scratch("options.h5");
   (void)run_turek_hron_fsi(first);
-  TurekHronFsiOptions other = tiny(3);
+  TurekHronFsiOptions other = tiny_ckpt(3);
   other.restart = first.checkpoint;
   other.spectral_radius = 0.5;
   try {
@@ -143,24 +143,24 @@ TEST(FsiCheckpoint, RestartWithOtherOptionsIsRefusedNamingTheOption) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("spectral_radius"), std::string::npos) << e.what();
   }
-  other = tiny(3);
+  other = tiny_ckpt(3);
   other.restart = first.checkpoint;
   other.acceleration = "aitken";
   EXPECT_THROW((void)run_turek_hron_fsi(other), Error);
   other.restart_new_coupling = true;  // a new acceleration from the checkpoint (the benchmark's use)
   const TurekHronFsiRun run = run_turek_hron_fsi(other);
   EXPECT_EQ(run.statistics.size(), 3u);
-  other = tiny(2);  // t_end not beyond the checkpoint
+  other = tiny_ckpt(2);  // t_end not beyond the checkpoint
   other.restart = first.checkpoint;
   EXPECT_THROW((void)run_turek_hron_fsi(other), Error);
 }
 
 TEST(FsiCheckpoint, DivergenceAfterRestartKeepsTheLastGoodCheckpoint) {
-  TurekHronFsiOptions first = tiny(2);
+  TurekHronFsiOptions first = tiny_ckpt(2);
   first.checkpoint = scratch("kept.h5");
   (void)run_turek_hron_fsi(first);
   const std::string before = bytes(first.checkpoint);
-  TurekHronFsiOptions bad = tiny(4);
+  TurekHronFsiOptions bad = tiny_ckpt(4);
   bad.restart = first.checkpoint;
   bad.restart_new_coupling = true;
   bad.acceleration = "constant";  // omega = 1 at rho_s / rho_f = 1: the added-mass instability
@@ -185,7 +185,7 @@ TEST(FsiCheckpoint, DivergenceAfterRestartKeepsTheLastGoodCheckpoint) {
 }
 
 TEST(FsiCheckpoint, AbsurdTimeStepIsACflBlowUpNamingTheStep) {
-  TurekHronFsiOptions o = tiny(1);
+  TurekHronFsiOptions o = tiny_ckpt(1);
   o.dt = 0.05;  // CFL about 10 on h = D / 10 at half the inflow
   o.t_end = o.dt;
   o.fsi_h5 = scratch("cfl.h5");

@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Scene {
+struct FootageScene {
   mesh::FinTemplate fin = mesh::make_caudal_fin({});
   FinSurface surface = make_fin_surface(fin, 2);
   PrescribedKinematics model{KinematicParams{}};
@@ -40,7 +40,7 @@ double level_at(const cv::Mat& img, const Camera& cam, const cv::Vec3d& world) {
   return img.at<float>(static_cast<int>(std::lround(p.y)), static_cast<int>(std::lround(p.x)));
 }
 
-std::string slurp(const fs::path& p) {
+std::string slurp_file(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), {}};
 }
@@ -48,7 +48,7 @@ std::string slurp(const fs::path& p) {
 }  // namespace
 
 TEST(FishBody, DrawnUpstreamOfTheRootAndMovesWithIt) {
-  Scene s;
+  FootageScene s;
   const FishBody body(s.surface, {});
   RenderOptions o;
   o.supersample = 1;
@@ -87,7 +87,7 @@ TEST(FishBody, DrawnUpstreamOfTheRootAndMovesWithIt) {
 }
 
 TEST(FootageRender, ExposureAndSensorAreRenderFrameAndGainSaturates) {
-  Scene s;
+  FootageScene s;
   RenderOptions o;
   o.supersample = 1;
   const Renderer r(s.surface, o);
@@ -159,11 +159,11 @@ TEST(FinSynth, RealisticFootageDeterministicAndBadFlagsExit2) {
   ASSERT_EQ(run("a", "--footage realistic --threads 2"), 0);
   ASSERT_EQ(run("b", "--footage realistic --threads 1"), 0);
   const char* f = "frames/side/000001.png";
-  EXPECT_TRUE(slurp(dir / "a" / f) == slurp(dir / "b" / f));
+  EXPECT_TRUE(slurp_file(dir / "a" / f) == slurp_file(dir / "b" / f));
   for (const char* bad : {"--jpeg-quality 101", "--body-length 2", "--footage realistic --gain -1",
                           "--footage realistic --debris -3", "--field-chords 0"}) {
     EXPECT_EQ(run("bad", bad), 2) << bad;
-    const auto err = slurp(dir / "bad.err");
+    const auto err = slurp_file(dir / "bad.err");
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << bad << ": " << err;
   }
   fs::remove_all(dir);

@@ -161,7 +161,7 @@ TEST(FsiMotion, RefusesSamplesThatDoNotCoverAPeriod) {
 
 TEST(FsiMotion, FilesThatDoNotBelongTogetherAreRefusedInOneLine) {
   const Fixture f;
-  const test::ScratchDir dir;
+  const finverse::test::ScratchDir dir;
   const double T = 0.2, c = f.fin.chord;
   auto m = f.m;
   stage::write(dir / "mesh.h5", m, Provenance{"test", {}, {}});
@@ -204,7 +204,7 @@ TEST(FsiMotion, FilesThatDoNotBelongTogetherAreRefusedInOneLine) {
 // the root drive; a drive whose frequency is not the FSI's is refused in one line (exit 2).
 TEST(FinSynth, FsiSourceRecordsMaterialsAndTheRootDrive) {
   const Fixture f;
-  const test::ScratchDir dir;
+  const finverse::test::ScratchDir dir;
   const double T = 1 / 4.4, c = f.fin.chord;  // Re 1000, St 0.44 on A = 1.0 c: f = 4.4 Hz
   auto m = f.m;
   stage::write(dir / "mesh.h5", m, Provenance{"test", {}, {}});
@@ -270,7 +270,7 @@ TEST(FinSynth, FsiSourceRecordsMaterialsAndTheRootDrive) {
 // where fsi.h5 would; truth.h5 names the source "fem" and records the run's planted effects.
 TEST(FinSynth, FemSourceRecordsTheRunsEffects) {
   const Fixture f;
-  const test::ScratchDir dir;
+  const finverse::test::ScratchDir dir;
   const double T = 1 / 4.4, c = f.fin.chord;
   auto m = f.m;
   stage::write(dir / "mesh.h5", m, Provenance{"test", {}, {}});

@@ -444,13 +444,7 @@ class FlowSolver {
   int last_helmholtz_iterations_ = 0;
 };
 
-inline double FlowSolver::face_area(int d, int i, int j, int k) const {
-  switch (d) {
-    case 0: return grid_.dy(j) * grid_.dz(k);
-    case 1: return grid_.dx(i) * grid_.dz(k);
-    default: return grid_.dx(i) * grid_.dy(j);
-  }
-}
+inline double FlowSolver::face_area(int d, int i, int j, int k) const { return grid_.face_area(d, i, j, k); }
 
 // Linear interpolation to the face between the centres of its two cells (second order on smooth
 // stretched grids: the weight accounts for the face not being midway between the centres).

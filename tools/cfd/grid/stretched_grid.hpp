@@ -37,6 +37,14 @@ class StretchedGrid {
   double dy(int j) const { return axes_[1].width(j); }
   double dz(int k) const { return axes_[2].width(k); }
   double volume(int i, int j, int k) const { return dx(i) * dy(j) * dz(k); }
+  // Area of the face normal to axis d at (i,j,k): the product of the two tangential widths.
+  double face_area(int d, int i, int j, int k) const {
+    switch (d) {
+      case 0: return dy(j) * dz(k);
+      case 1: return dx(i) * dz(k);
+      default: return dx(i) * dy(j);
+    }
+  }
 
   // Largest cell aspect ratio (longest over shortest side, over the active axes).
   double max_aspect_ratio() const;

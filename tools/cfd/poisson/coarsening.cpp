@@ -101,19 +101,6 @@ StretchedGrid coarsen_grid(const StretchedGrid& fine, const Coarsening& c) {
   return StretchedGrid(axis(0), axis(1), axis(2));
 }
 
-namespace {
-double face_area(const StretchedGrid& g, int d, int i, int j, int k) {
-  switch (d) {
-    case 0:
-      return g.dy(j) * g.dz(k);
-    case 1:
-      return g.dx(i) * g.dz(k);
-    default:
-      return g.dx(i) * g.dy(j);
-  }
-}
-}  // namespace
-
 PoissonOperator coarsen_operator(const PoissonOperator& fine, const Coarsening& c) {
   const StretchedGrid cg = coarsen_grid(fine.grid(), c);
   const StretchedGrid& g = fine.grid();
@@ -142,7 +129,7 @@ PoissonOperator coarsen_operator(const PoissonOperator& fine, const Coarsening& 
         for (int k = lo[2]; k <= hi[2]; ++k)
           for (int j = lo[1]; j <= hi[1]; ++j)
             for (int i = lo[0]; i <= hi[0]; ++i) {
-              const double a = face_area(g, d, i, j, k);
+              const double a = g.face_area(d, i, j, k);
               num += a * beta(d, i, j, k);
               den += a;
             }

@@ -12,15 +12,6 @@ namespace finverse::cfd {
 
 namespace {
 
-// Cell widths tangential to axis d at the face (i,j,k): the face area is their product.
-double face_area(const StretchedGrid& g, int d, int i, int j, int k) {
-  switch (d) {
-    case 0: return g.dy(j) * g.dz(k);
-    case 1: return g.dx(i) * g.dz(k);
-    default: return g.dx(i) * g.dy(j);
-  }
-}
-
 // out = b - A p (with_b) or A p over all lines (j,k) in parallel (stencil_lines.hpp).
 template <int D, bool WithB>
 void stencil(const PoissonOperator& op, const Field* b, const Field& p, Field& out) {
@@ -81,7 +72,7 @@ void PoissonOperator::setup(const StretchedGrid& grid, const FaceCoefficients& b
         else continue;  // Neumann: the flux is data, it goes to the right-hand side
         int bi = i, bj = j, bk = k;
         (d == 0 ? bi : d == 1 ? bj : bk) = bf;
-        t[beta.index(d, i, j, k)] = beta(d, bi, bj, bk) * face_area(grid, d, i, j, k) / dist;
+        t[beta.index(d, i, j, k)] = beta(d, bi, bj, bk) * grid.face_area(d, i, j, k) / dist;
       }
     }
   }
@@ -168,7 +159,7 @@ void PoissonOperator::assemble_rhs(const Field& f, const BoundaryValues& values,
         const std::size_t fx = beta_.index(d, fi[0], fi[1], fi[2]);
         double add;
         if (type == BcType::Dirichlet) add = t_[static_cast<std::size_t>(d)][fx] * val;
-        else add = beta_.values(d)[fx] * face_area(g, d, fi[0], fi[1], fi[2]) * val;
+        else add = beta_.values(d)[fx] * g.face_area(d, fi[0], fi[1], fi[2]) * val;
         b(ci[0], ci[1], ci[2]) += add;
       }
   }

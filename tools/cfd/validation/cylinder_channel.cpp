@@ -6,9 +6,7 @@
 
 namespace finverse::cfd {
 
-namespace {
 int round8(double n) { return std::max(8, 8 * static_cast<int>(std::lround(n / 8))); }
-}  // namespace
 
 StretchedGrid channel_grid(const ChannelGridSpec& s) {
   const double wall_ratio = s.wall_ratio > 0 ? s.wall_ratio : s.ratio;

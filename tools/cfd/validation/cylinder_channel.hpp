@@ -24,6 +24,8 @@ struct ChannelGridSpec {
   double ratio = 1.05, wall_ratio = 0;
 };
 StretchedGrid channel_grid(const ChannelGridSpec& spec);
+// A cell count n rounded to the nearest multiple of 8, at least 8 (three multigrid halvings).
+int round8(double n);
 
 FlowBoundary channel_benchmark_boundary(double um, double ramp_time);
 FlowOptions channel_benchmark_options(double nu, double cfl, double h, double um);

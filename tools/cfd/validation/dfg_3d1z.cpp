@@ -14,10 +14,9 @@
 namespace finverse::cfd {
 
 namespace {
-constexpr double kLength = 2.5, kHeight = 0.41, kD = 0.1, kXc = 0.5, kYc = 0.2, kNu = 1e-3, kUm = 0.45;
-
-// Cell counts that are multiples of 8 keep three halvings for the multigrid.
-int round8(double n) { return std::max(8, 8 * static_cast<int>(std::lround(n / 8))); }
+// The 3-D channel's geometry (k3d: dfg_benchmark.cpp names the 2-D channel's kLength, ... and both
+// files share one translation unit in a unity build).
+constexpr double k3dLength = 2.5, k3dHeight = 0.41, k3dD = 0.1, k3dXc = 0.5, k3dYc = 0.2, k3dNu = 1e-3, k3dUm = 0.45;
 
 // n cells on [0, H] clustered towards both walls (header comment).
 Axis wall_clustered(double height, int n) {
@@ -58,17 +57,17 @@ Dfg3dResult run_dfg_3d1z(const Dfg3dSetup& ds) {
   if (!(ds.overhang > 0)) throw Error("dfg_3d1z: overhang must be > 0");
   if (ds.span_cells != 0 && ds.span_cells < 8) throw Error("dfg_3d1z: span_cells must be 0 (automatic) or at least 8");
   const auto t0 = std::chrono::steady_clock::now();
-  const double Ubar = 4 * kUm / 9, h = kD / ds.cells_per_diameter;
-  const double xlo = kXc - 0.1, xhi = kXc + 0.2, ylo = kYc - kD, yhi = kYc + kD;
-  const int nx = round8(Axis::stretched(0, kLength, xlo, xhi, h, ds.stretch_ratio).size());
-  const int ny = round8(Axis::stretched(0, kHeight, ylo, yhi, h, ds.stretch_ratio).size());
+  const double Ubar = 4 * k3dUm / 9, h = k3dD / ds.cells_per_diameter;
+  const double xlo = k3dXc - 0.1, xhi = k3dXc + 0.2, ylo = k3dYc - k3dD, yhi = k3dYc + k3dD;
+  const int nx = round8(Axis::stretched(0, k3dLength, xlo, xhi, h, ds.stretch_ratio).size());
+  const int ny = round8(Axis::stretched(0, k3dHeight, ylo, yhi, h, ds.stretch_ratio).size());
   // Mid-span width 1.285 H / nz (the mapping's slope at s = 1/2 is 1/2 + pi/4).
-  const int nz = ds.span_cells > 0 ? ds.span_cells : round8((0.5 + std::numbers::pi / 4) * kHeight / h);
-  const StretchedGrid grid(Axis::stretched_count(0, kLength, xlo, xhi, nx, ds.stretch_ratio),
-                           Axis::stretched_count(0, kHeight, ylo, yhi, ny, ds.stretch_ratio), wall_clustered(kHeight, nz));
+  const int nz = ds.span_cells > 0 ? ds.span_cells : round8((0.5 + std::numbers::pi / 4) * k3dHeight / h);
+  const StretchedGrid grid(Axis::stretched_count(0, k3dLength, xlo, xhi, nx, ds.stretch_ratio),
+                           Axis::stretched_count(0, k3dHeight, ylo, yhi, ny, ds.stretch_ratio), wall_clustered(k3dHeight, nz));
 
-  const FlowBoundary bc = channel_benchmark_boundary(kUm, 0.0);
-  FlowOptions opt = channel_benchmark_options(kNu, ds.cfl, h, kUm);
+  const FlowBoundary bc = channel_benchmark_boundary(k3dUm, 0.0);
+  FlowOptions opt = channel_benchmark_options(k3dNu, ds.cfl, h, k3dUm);
   // As the sphere (sphere_flow.cpp): tolerances far below the 2% goal at a 3-D cost.
   opt.helmholtz_rtol = 1e-8;
   opt.poisson.rtol = 1e-7;
@@ -76,13 +75,13 @@ Dfg3dResult run_dfg_3d1z(const Dfg3dSetup& ds) {
   FlowSolver solver;
   solver.setup(grid, bc, opt);
   // Rings about every h along the span (short triangles keep the traction's sub-sampling coarse).
-  const double z0 = -ds.overhang, z1 = kHeight + ds.overhang;
+  const double z0 = -ds.overhang, z1 = k3dHeight + ds.overhang;
   const int layers = std::max(1, static_cast<int>(std::ceil((z1 - z0) / h)));
-  const TriangulatedSurface cylinder = cylinder_surface(kXc, kYc, 0.5 * kD, z0, z1, ds.segments, layers);
+  const TriangulatedSurface cylinder = cylinder_surface(k3dXc, k3dYc, 0.5 * k3dD, z0, z1, ds.segments, layers);
   solver.immerse(cylinder);
-  const double H4 = std::pow(kHeight, 4);
+  const double H4 = std::pow(k3dHeight, 4);
   solver.initialise([H4](double, double y, double z, double) {
-    return std::array<double, 3>{16 * kUm * y * z * (kHeight - y) * (kHeight - z) / H4, 0, 0};
+    return std::array<double, 3>{16 * k3dUm * y * z * (k3dHeight - y) * (k3dHeight - z) / H4, 0, 0};
   });
   SurfaceClip clip;
   clip.enabled = true;
@@ -95,8 +94,8 @@ Dfg3dResult run_dfg_3d1z(const Dfg3dSetup& ds) {
   r.ghost_cells = static_cast<long>(solver.immersed()->ghosts().size());
   r.surface_samples = static_cast<long>(traction.samples().size());
   r.triangles = static_cast<long>(cylinder.triangles.size());
-  const double scale = 2 / (Ubar * Ubar * kD * kHeight);
-  const Vec3 front{kXc - 0.5 * kD, kYc, 0.205}, back{kXc + 0.5 * kD, kYc, 0.205};
+  const double scale = 2 / (Ubar * Ubar * k3dD * k3dHeight);
+  const Vec3 front{k3dXc - 0.5 * k3dD, k3dYc, 0.205}, back{k3dXc + 0.5 * k3dD, k3dYc, 0.205};
   long poisson = 0, momentum = 0;
   double cd = 0;
   SurfaceForces F;
@@ -108,7 +107,7 @@ Dfg3dResult run_dfg_3d1z(const Dfg3dSetup& ds) {
     ++r.steps;
     bool stop = solver.time() >= ds.t_end - 1e-12;
     if (r.steps % std::max(1, ds.force_every) == 0 || stop) {
-      F = traction.evaluate(solver.u(0), solver.u(1), solver.u(2), solver.p(), kNu, 1.0);
+      F = traction.evaluate(solver.u(0), solver.u(1), solver.u(2), solver.p(), k3dNu, 1.0);
       Dfg3dSample s;
       s.t = st.time;
       s.cd = cd = scale * F.total[0];

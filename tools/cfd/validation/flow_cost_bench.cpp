@@ -8,15 +8,13 @@
 #include <vector>
 
 #include "cfd/flow/flow_solver.hpp"
+#include "core/elapsed.hpp"
 
 namespace finverse::cfd {
 
 namespace {
 
 using clock_type = std::chrono::steady_clock;
-double seconds_since(clock_type::time_point t0) {
-  return std::chrono::duration<double>(clock_type::now() - t0).count();
-}
 
 Axis periodic_axis(int n, double stretch) {
   std::vector<double> f(static_cast<std::size_t>(n) + 1);

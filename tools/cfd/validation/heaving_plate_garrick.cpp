@@ -13,7 +13,7 @@
 namespace finverse::cfd {
 
 namespace {
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 }  // namespace
 
 double HeavingPlateSetup::period() const { return pi / reduced_frequency; }

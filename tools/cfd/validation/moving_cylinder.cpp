@@ -14,11 +14,11 @@ namespace finverse::cfd {
 
 namespace {
 // Cell counts that are multiples of 8 keep three halvings for the multigrid.
-int round8(int n) { return std::max(8, 8 * ((n + 7) / 8)); }
+int round_up8(int n) { return std::max(8, 8 * ((n + 7) / 8)); }
 
 Axis axis(double lo, double hi, double ulo, double uhi, double h) {
   constexpr double ratio = 1.05;
-  return Axis::stretched_count(lo, hi, ulo, uhi, round8(Axis::stretched(lo, hi, ulo, uhi, h, ratio).size()), ratio);
+  return Axis::stretched_count(lo, hi, ulo, uhi, round_up8(Axis::stretched(lo, hi, ulo, uhi, h, ratio).size()), ratio);
 }
 
 // In-line force per unit depth (rho = 1) on the solver's moving body, or on fixed_body at rest.

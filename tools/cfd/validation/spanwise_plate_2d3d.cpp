@@ -17,7 +17,7 @@
 namespace finverse::cfd {
 
 namespace {
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // Heave y and counter-clockwise pitch theta with their first two time derivatives.
 struct Pose {

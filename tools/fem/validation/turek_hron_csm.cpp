@@ -21,7 +21,7 @@ namespace {
 
 const char* kSourcePrefix = "Turek & Hron 2006, LNCSE 53, table of CSM results (turek_hron.json ";
 
-nlohmann::json read_json(const std::filesystem::path& path) {
+nlohmann::json read_reference_json(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw InvalidInput("cannot open reference file " + path.string());
   try {
@@ -179,7 +179,7 @@ Summary run_turek_hron_csm_static(const CsmStaticOptions& opt) {
     throw InvalidInput("turek_hron_csm: case number must be 1 or 2, got " +
                        std::to_string(opt.case_number));
   const std::string csm = "CSM" + std::to_string(opt.case_number);
-  const nlohmann::json ref = read_json(opt.reference);
+  const nlohmann::json ref = read_reference_json(opt.reference);
   const Flag flag(ref, csm, opt.reference);
   const double ux_ref = number(ref, "/cases/" + csm + "/ux_A", opt.reference);
   const double uy_ref = number(ref, "/cases/" + csm + "/uy_A", opt.reference);
@@ -347,7 +347,7 @@ std::string dt_name(double dt) {
 
 Summary run_turek_hron_csm3(const Csm3Options& opt) {
   const std::string csm = "CSM3";
-  const nlohmann::json ref = read_json(opt.reference);
+  const nlohmann::json ref = read_reference_json(opt.reference);
   const Flag flag(ref, csm, opt.reference);
   const auto [ux_mean_ref, ux_amp_ref] = pair_of(ref, "/cases/CSM3/ux_A", opt.reference);
   const auto [uy_mean_ref, uy_amp_ref] = pair_of(ref, "/cases/CSM3/uy_A", opt.reference);

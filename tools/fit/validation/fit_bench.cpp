@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/elapsed.hpp"
 #include "core/log.hpp"
 #include "fem/validation/hybrid_plate_model.hpp"
 #include "fit/cmaes_run.hpp"
@@ -31,10 +32,6 @@ namespace finverse::fit::validation {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // --- the twin --------------------------------------------------------------------------------
 // The same twin as the fit validations (hybrid_plate_setup.hpp).

@@ -8,6 +8,7 @@
 #include <random>
 #include <sstream>
 
+#include "core/elapsed.hpp"
 #include "core/log.hpp"
 #include "fem/validation/hybrid_plate_model.hpp"
 #include "fit/dynamic_objective.hpp"
@@ -22,7 +23,7 @@ namespace finverse::fit::validation {
 
 namespace {
 
-constexpr const char* kPaper = "seed paper Table 3 (Liu et al.)";
+constexpr const char* kTable3Source = "seed paper Table 3 (Liu et al.)";
 
 FitOptions with_progress(FitOptions f, const std::string& label) {
   f.progress = [label](int run, const std::string& method, const GenerationRecord& g, double eta) {
@@ -32,10 +33,6 @@ FitOptions with_progress(FitOptions f, const std::string& label) {
     log::info(s.str());
   };
   return f;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void report_fit(Summary& s, const std::string& prefix, const FitResult& r, double tolerance,
@@ -75,7 +72,7 @@ Summary run_hybrid_plate_fit(const HybridPlateFitOptions& o) {
   auto t0 = std::chrono::steady_clock::now();
   const FitResult rd = run_fit(space, dynamic, with_progress(o.fit, "fit_hybrid_plate eq. (1)"), "dynamic");
   const double wall_dynamic = seconds_since(t0);
-  report_fit(s, "dynamic", rd, 0.01, std::string(kPaper) + ": errors up to 7.9 %; goal 1 %");
+  report_fit(s, "dynamic", rd, 0.01, std::string(kTable3Source) + ": errors up to 7.9 %; goal 1 %");
 
   QuasiStaticOptions qs;
   qs.instants = mid_swing_instants(t, o);
@@ -84,12 +81,12 @@ Summary run_hybrid_plate_fit(const HybridPlateFitOptions& o) {
   t0 = std::chrono::steady_clock::now();
   const FitResult rq = run_fit(space, quasi, with_progress(o.fit, "fit_hybrid_plate eq. (2)"), "quasi_static");
   const double wall_quasi = seconds_since(t0);
-  report_fit(s, "quasi_static", rq, 0.05, std::string(kPaper) + ": errors up to 19.5 %; goal 5 %");
+  report_fit(s, "quasi_static", rq, 0.05, std::string(kTable3Source) + ": errors up to 19.5 %; goal 5 %");
   if (!o.materials_out.empty())
     io::write_materials(o.materials_out, rq, Provenance{"fin-fit", s.parameters(), {o.case_file}});
 
   s.at_most("quasi_static_over_dynamic_wall_time", wall_quasi / wall_dynamic, 1.0 / 25,
-            std::string(kPaper) + ": quasi-static about 25x faster");
+            std::string(kTable3Source) + ": quasi-static about 25x faster");
   s.info("dynamic_evaluations_per_second", rd.evaluations / std::max(1e-9, rd.wall_seconds), "1/s");
   s.info("quasi_static_evaluations_per_second", rq.evaluations / std::max(1e-9, rq.wall_seconds), "1/s");
   return s;

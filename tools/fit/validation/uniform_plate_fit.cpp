@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 
+#include "core/elapsed.hpp"
 #include "core/log.hpp"
 #include "fit/dynamic_objective.hpp"
 #include "fit/errors.hpp"
@@ -16,7 +17,7 @@ namespace finverse::fit::validation {
 
 namespace {
 
-constexpr const char* kPaper = "seed paper Table 2 (Liu et al.), average2";
+constexpr const char* kTable2Source = "seed paper Table 2 (Liu et al.), average2";
 
 // E: log10 over [truth 10^-below, truth 10^above] (default three decades off centre, as
 // hybrid_plate_fit.cpp); nu in [0.15, 0.45] as the paper.
@@ -43,10 +44,6 @@ void trailing_edge_amplitudes(const UniformPlateTwin& twin, const TargetMotion& 
   }
   *amplitude = 0.5 * (hi - lo) / c.chord;
   *deflection = dmax / c.chord;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
@@ -116,9 +113,9 @@ Summary run_uniform_plate_fit(const UniformPlateFitOptions& o) {
                     {"loads", "thin-airfoil pressure of the rigid pitch (C(k) = 1) + added mass, along y"},
                     {"load_density", o.load_scale}};
   const Eigen::VectorXd x = space.truth();
-  s.relative("E", r.best_x(0), x(0), 0.005, std::string(kPaper) + ": -1.8 % (E = 5.892e6); goal 0.5 %",
+  s.relative("E", r.best_x(0), x(0), 0.005, std::string(kTable2Source) + ": -1.8 % (E = 5.892e6); goal 0.5 %",
              "rho U^2");
-  s.relative("nu", r.best_x(1), x(1), 0.05, std::string(kPaper) + ": 11.7 % (nu = 0.279); goal 5 %");
+  s.relative("nu", r.best_x(1), x(1), 0.05, std::string(kTable2Source) + ": 11.7 % (nu = 0.279); goal 5 %");
   for (int i = 0; i < space.size(); ++i)
     s.info(space[i].name + "_identified", r.uncertainty.identified.empty() ? 0 : r.uncertainty.identified[i]);
   s.info("objective", r.best_objective, "chord");

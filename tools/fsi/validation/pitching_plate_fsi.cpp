@@ -14,6 +14,7 @@
 #include "cfd/flow/flow_solver.hpp"
 #include "cfd/validation/case_support.hpp"
 #include "core/error.hpp"
+#include "core/printf_format.hpp"
 #include "fem/coupled_structure.hpp"
 #include "fem/modal.hpp"
 #include "fem/validation/hybrid_plate_model.hpp"
@@ -25,12 +26,6 @@ namespace finverse::fsi::validation {
 namespace {
 
 constexpr double pi = std::numbers::pi;
-
-std::string format(const char* fmt, double a) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, a);
-  return buf;
-}
 
 void check(const PitchingPlateOptions& o) {
   if (!(o.re > 0 && o.aspect > 0 && o.pitch_amplitude_deg > 0 && o.frequency > 0 && o.mass_ratio > 0 &&
@@ -44,7 +39,7 @@ void check(const PitchingPlateOptions& o) {
     throw Error("pitching plate: expected steps_per_period >= 8, ramp_periods >= 1 and periods > ramp_periods");
   if (o.max_iterations < 1) throw Error("pitching plate: expected max_iterations >= 1");
   for (double k : o.stiffness)
-    if (!(k > 0)) throw Error("pitching plate: every K must be > 0 (got " + format("%g", k) + ")");
+    if (!(k > 0)) throw Error("pitching plate: every K must be > 0 (got " + printf_format("%g", k) + ")");
 }
 
 // alpha(t) with the ramp, and its first two derivatives.
@@ -214,7 +209,7 @@ PitchingPlateCaseResult run_pitching_plate_case(const PitchingPlateOptions& o, d
   const InterfaceLayout layout = step.layout();
   ImplicitCoupling coupling(layout, Eigen::VectorXd::Zero(layout.size()),
                             make_acceleration(o.acceleration, layout, o.omega), co);
-  const std::string tag = rigid ? std::string("rigid") : "K " + format("%g", stiffness);
+  const std::string tag = rigid ? std::string("rigid") : "K " + printf_format("%g", stiffness);
   for (long s = 1; s <= steps; ++s) {
     const double t = static_cast<double>(s) * dt;
     Eigen::Matrix3Xd x, v, a;
@@ -249,10 +244,10 @@ PitchingPlateCaseResult run_pitching_plate_case(const PitchingPlateOptions& o, d
     it_sum += iterations;
     res.coupling_iterations_max = std::max(res.coupling_iterations_max, static_cast<double>(iterations));
     if (o.progress)
-      o.progress(tag + ": step " + std::to_string(s) + " t " + format("%.4f", t) + ": " + std::to_string(iterations) +
-                 " it, residual " + format("%.2e", residual) + ", F (" + format("%.4f", fx.back()) + ", " +
-                 format("%.4f", fy.back()) + "), y_TE " + format("%.4f", res.te_y.back()) + " (rigid " +
-                 format("%.4f", rigid_te.back()) + ")");
+      o.progress(tag + ": step " + std::to_string(s) + " t " + printf_format("%.4f", t) + ": " + std::to_string(iterations) +
+                 " it, residual " + printf_format("%.2e", residual) + ", F (" + printf_format("%.4f", fx.back()) + ", " +
+                 printf_format("%.4f", fy.back()) + "), y_TE " + printf_format("%.4f", res.te_y.back()) + " (rigid " +
+                 printf_format("%.4f", rigid_te.back()) + ")");
   }
   res.coupling_iterations_mean = it_sum / static_cast<double>(steps);
 
@@ -309,7 +304,7 @@ PitchingPlateRun run_pitching_plate(const PitchingPlateOptions& o) {
   std::vector<double> swept;
   long failed = 0;
   for (const PitchingPlateCaseResult& c : run.cases) {
-    const std::string tag = c.rigid ? std::string("rigid") : "K" + format("%g", c.stiffness);
+    const std::string tag = c.rigid ? std::string("rigid") : "K" + printf_format("%g", c.stiffness);
     if (!c.error.empty()) {
       ++failed;
       s.parameters()["errors"][tag] = c.error;

@@ -14,6 +14,7 @@
 #include "cfd/validation/turek_hron_cfd.hpp"
 #include "core/error.hpp"
 #include "core/sha256.hpp"
+#include "core/printf_format.hpp"
 #include "fem/coupled_structure.hpp"
 #include "fem/errors.hpp"
 #include "fem/validation/turek_hron_csm.hpp"
@@ -30,12 +31,6 @@ namespace finverse::fsi::validation {
 namespace {
 
 constexpr double kRho = 1000, kNu = 1e-3;
-
-std::string format(const char* fmt, double a) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, a);
-  return buf;
-}
 
 nlohmann::json read_case(const std::filesystem::path& reference, const std::string& name) {
   std::ifstream in(reference);
@@ -198,7 +193,7 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
                             make_acceleration(opt.acceleration, layout, opt.omega), co);
   if (opt.progress && opt.progress_iterations)
     coupling.set_progress([&](const IterationReport& r) {
-      opt.progress("  " + progress_line(r) + ", |x_out - x_in| " + format("%.2e", r.absolute) + " m");
+      opt.progress("  " + progress_line(r) + ", |x_out - x_in| " + printf_format("%.2e", r.absolute) + " m");
     });
 
   FsiOutput output(X0, {flag.point_a}, kRho, ubar, D * 1.0);
@@ -219,7 +214,7 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
                   std::to_string(r.coupling_state.size()) + " values, this flag has " + std::to_string(layout.size()));
     if (r.steps >= steps)
       throw Error("turek_hron_fsi: --restart " + opt.restart.string() + " ends at step " + std::to_string(r.steps) +
-                  " (t = " + format("%.6g", r.time) + " s): t_end must lie beyond it");
+                  " (t = " + printf_format("%.6g", r.time) + " s): t_end must lie beyond it");
     // FlowStructureStep keeps the flow wall's V^n, the accepted input's velocity block, which it
     // takes from accept(); give it that through one throw-away structure step (the structure is
     // then put back to the checkpoint's state).
@@ -326,12 +321,12 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
     if (opt.progress) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
       const double eta = wall / static_cast<double>(n - run.first_step) * static_cast<double>(steps - n);
-      opt.progress("step " + std::to_string(n) + "/" + std::to_string(steps) + " t " + format("%.4f", rec.time) +
+      opt.progress("step " + std::to_string(n) + "/" + std::to_string(steps) + " t " + printf_format("%.4f", rec.time) +
                    ": " + std::to_string(st.iterations) + " it" + (st.converged ? "" : " (cap: best iterate)") +
-                   ", residual " + format("%.2e", st.residual) + ", drag " + format("%.4f", rec.force[0]) +
-                   " lift " + format("%.4f", rec.force[1]) + " N/m, A (" + format("%.4e", ua.x()) + ", " +
-                   format("%.4e", ua.y()) + ") m, power " + format("%.3e", rec.power) + " W/m, ETA " +
-                   format("%.0f", eta) + " s");
+                   ", residual " + printf_format("%.2e", st.residual) + ", drag " + printf_format("%.4f", rec.force[0]) +
+                   " lift " + printf_format("%.4f", rec.force[1]) + " N/m, A (" + printf_format("%.4e", ua.x()) + ", " +
+                   printf_format("%.4e", ua.y()) + ") m, power " + printf_format("%.3e", rec.power) + " W/m, ETA " +
+                   printf_format("%.0f", eta) + " s");
     }
   }
   run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
