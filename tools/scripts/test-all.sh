@@ -32,6 +32,9 @@ heavy='DynamicObjective.VanishesAtTheTruth|UniformPlateTwin.ObjectiveVanishes|Un
 heavy+='|FinLoadNoise.ATranslatingTwoCellPlate|Objectives.EvaluationTimes'
 heavy+='|FinTrackFitQuality.ASingleViewExitsOneWithItsReasonAndAFlaggedRecord'
 heavy+='|CheckerboardCalibration.SimulatedRecordingGivesBackTheRig'
+# Variants of FinFsi.SmallFinRunsAndTheRootFollowsTheDrive (the same coupled fin step, 24-41 s
+# each under the sanitizers): a tracked drive and planted effects.
+heavy+='|FinFsi.TrackedRootMotionDrivesTheFin|FinFsi.EffectsAreAppliedToTheStructureAndRecorded'
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan -j "$jobs" --output-on-failure --timeout 1800 -L unit -E "$heavy"
 echo "== all tests passed"
