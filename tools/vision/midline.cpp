@@ -65,8 +65,10 @@ cv::Point2d refine_tail_tip(const cv::Mat& mask, const TipEvidence& e, const cv:
     const int x = static_cast<int>(std::lround(q.x)), y = static_cast<int>(std::lround(q.y));
     return x >= 0 && y >= 0 && x < mask.cols && y < mask.rows && mask.at<std::uint8_t>(y, x) != 0;
   };
-  const cv::Mat& D = e.darkening;
-  const auto darkening = [&](const cv::Point2d& q) {  // bilinear; 0 (background) outside the window
+  cv::Mat Db;  // the darkening as the segmentation's detection sees it
+  if (e.blur_sigma > 0) cv::GaussianBlur(e.darkening, Db, cv::Size(0, 0), e.blur_sigma);
+  else Db = e.darkening;
+  const auto sample = [&](const cv::Mat& D, const cv::Point2d& q) {  // bilinear; 0 (background) outside the window
     const double x = q.x - e.origin.x, y = q.y - e.origin.y;
     const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
     if (x0 < 0 || y0 < 0 || x0 + 1 >= D.cols || y0 + 1 >= D.rows) return 0.0;
@@ -76,7 +78,7 @@ cv::Point2d refine_tail_tip(const cv::Mat& mask, const TipEvidence& e, const cv:
   };
   constexpr double ds = 0.05, dt = 0.25;  // sampling along and across the axis (px)
   const int ns = static_cast<int>(std::lround((kTipWindowPx + kTipReachPx + 1) / ds)) + 1;
-  std::vector<double> d(ns);
+  std::vector<double> d(ns), db(ns);
   std::vector<char> m(ns);
   double best = -1e300, best_t = 0;
   for (double t = tlo - 1; t <= thi + 1 + 1e-9; t += dt) {
@@ -84,19 +86,27 @@ cv::Point2d refine_tail_tip(const cv::Mat& mask, const TipEvidence& e, const cv:
     double peak = 0;
     for (int k = 0; k < ns; ++k) {
       const cv::Point2d q = (hi - kTipWindowPx + k * ds) * u + t * n;
-      d[k] = darkening(q), m[k] = on_mask(q);
+      d[k] = sample(e.darkening, q), db[k] = sample(Db, q), m[k] = on_mask(q);
       if (m[k]) last = k;
     }
     if (last < 0) continue;
-    for (int k = std::max(0, last - static_cast<int>(std::lround(kTipLevelPx / ds))); k <= last; ++k)
-      if (m[k]) peak = std::max(peak, d[k]);
+    // The fin seen beyond the mask: still detected (a sliver the rim rule left out).
+    int end = last;
+    while (end + 1 < ns && db[end + 1] > e.threshold && (end + 1 - last) * ds <= kTipReachPx) ++end;
+    for (int k = std::max(0, end - static_cast<int>(std::lround(kTipLevelPx / ds))); k <= end; ++k) peak = std::max(peak, d[k]);
     if (peak < e.threshold) continue;
-    const double half = 0.5 * peak, s_last = hi - kTipWindowPx + last * ds;
-    int k = last;
-    while (k + 1 < ns && d[k + 1] >= half && (k + 1 - last) * ds <= kTipReachPx) ++k;
-    double s = hi - kTipWindowPx + k * ds;
-    if (d[k] < half) s = s_last;  // below half already at the mask's end: the mask's own end
-    else if (k + 1 < ns && d[k + 1] < half) s += ds * (d[k] - half) / (d[k] - d[k + 1]);
+    const double half = 0.5 * peak;
+    const auto s_at = [&](int k) { return hi - kTipWindowPx + k * ds; };
+    int k = end;
+    double s = s_at(last);  // below half from the mask's end on: the mask's own end
+    if (d[k] >= half) {
+      while (k + 1 < ns && d[k + 1] >= half && (k + 1 - last) * ds <= kTipReachPx) ++k;
+      s = s_at(k);
+      if (k + 1 < ns && d[k + 1] < half) s += ds * (d[k] - half) / (d[k] - d[k + 1]);
+    } else {
+      while (k > last && d[k] < half) --k;
+      if (d[k] >= half) s = s_at(k) + ds * (d[k] - half) / (d[k] - d[k + 1]);
+    }
     if (s > best) best = s, best_t = t;
   }
   return best > -1e300 ? best * u + best_t * n : fallback;

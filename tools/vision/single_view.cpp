@@ -50,6 +50,7 @@ SingleViewResult track_single_view(const std::vector<long>& frames, const std::f
       tips[i].darkening = seg.background(box) - grey;
       tips[i].origin = box.tl();
       tips[i].threshold = seg.threshold;
+      tips[i].blur_sigma = o.segmentation.blur_sigma_px;
     }
     r.segmentation_doubt[i] = seg.touches_border || seg.lost;
     if (cv::countNonZero(seg.mask) > 0) ctx.previous = seg.mask;
