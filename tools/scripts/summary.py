@@ -38,15 +38,18 @@ def load(path):
 
 
 def write_summary(out, kind, name, description, metrics, parameters, producer, wall_s=None, threads=1,
-                  passed=None):
+                  passed=None, inputs=None):
     """Writes a finverse/summary file (tools/core/summary.hpp's layout, indent 2, a final newline)
-    to `out` through a temporary and a rename. passed None: every graded metric passes."""
+    to `out` through a temporary and a rename. passed None: every graded metric passes. inputs:
+    the files read, listed in provenance after the host (None: no such key)."""
     if passed is None:
         passed = all(m["pass"] for m in metrics if m["pass"] is not None)
+    provenance = {"producer": producer, "host": socket.gethostname()}
+    if inputs is not None:
+        provenance["inputs"] = list(inputs)
     summary = {"schema": "finverse/summary", "schema_version": 1, "kind": kind, "name": name,
                "description": description, "pass": passed, "metrics": metrics, "parameters": parameters,
-               "timing": {"wall_s": wall_s, "threads": threads},
-               "provenance": {"producer": producer, "host": socket.gethostname()}}
+               "timing": {"wall_s": wall_s, "threads": threads}, "provenance": provenance}
     os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
     with open(out + ".tmp", "w") as f:
         json.dump(summary, f, indent=2)

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -50,7 +51,70 @@ std::vector<double> filled(const std::vector<double>& x) {
 
 }  // namespace
 
-std::vector<MidlineFrame> extract_midlines(const std::vector<cv::Mat>& masks, int stations, cv::Point2d* axis_out) {
+cv::Point2d refine_tail_tip(const cv::Mat& mask, const TipEvidence& e, const cv::Point2d& u, const cv::Point2d& fallback) {
+  std::vector<cv::Point> pts;
+  cv::findNonZero(mask, pts);
+  if (pts.empty() || e.darkening.empty()) return fallback;
+  const cv::Point2d n(-u.y, u.x);
+  double hi = -1e300;
+  for (const auto& p : pts) hi = std::max(hi, cv::Point2d(p).dot(u));
+  double tlo = 1e300, thi = -1e300;
+  for (const auto& p : pts)
+    if (cv::Point2d(p).dot(u) >= hi - kTipWindowPx) tlo = std::min(tlo, cv::Point2d(p).dot(n)), thi = std::max(thi, cv::Point2d(p).dot(n));
+  const auto on_mask = [&](const cv::Point2d& q) {
+    const int x = static_cast<int>(std::lround(q.x)), y = static_cast<int>(std::lround(q.y));
+    return x >= 0 && y >= 0 && x < mask.cols && y < mask.rows && mask.at<std::uint8_t>(y, x) != 0;
+  };
+  cv::Mat Db;  // the darkening as the segmentation's detection sees it
+  if (e.blur_sigma > 0) cv::GaussianBlur(e.darkening, Db, cv::Size(0, 0), e.blur_sigma);
+  else Db = e.darkening;
+  const auto sample = [&](const cv::Mat& D, const cv::Point2d& q) {  // bilinear; 0 (background) outside the window
+    const double x = q.x - e.origin.x, y = q.y - e.origin.y;
+    const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+    if (x0 < 0 || y0 < 0 || x0 + 1 >= D.cols || y0 + 1 >= D.rows) return 0.0;
+    const double fx = x - x0, fy = y - y0;
+    return (1 - fy) * ((1 - fx) * D.at<float>(y0, x0) + fx * D.at<float>(y0, x0 + 1)) +
+           fy * ((1 - fx) * D.at<float>(y0 + 1, x0) + fx * D.at<float>(y0 + 1, x0 + 1));
+  };
+  constexpr double ds = 0.05, dt = 0.25;  // sampling along and across the axis (px)
+  const int ns = static_cast<int>(std::lround((kTipWindowPx + kTipReachPx + 1) / ds)) + 1;
+  std::vector<double> d(ns), db(ns);
+  std::vector<char> m(ns);
+  double best = -1e300, best_t = 0;
+  for (double t = tlo - 1; t <= thi + 1 + 1e-9; t += dt) {
+    int last = -1;
+    double peak = 0;
+    for (int k = 0; k < ns; ++k) {
+      const cv::Point2d q = (hi - kTipWindowPx + k * ds) * u + t * n;
+      d[k] = sample(e.darkening, q), db[k] = sample(Db, q), m[k] = on_mask(q);
+      if (m[k]) last = k;
+    }
+    if (last < 0) continue;
+    // The fin seen beyond the mask: still detected (a sliver the rim rule left out).
+    int end = last;
+    while (end + 1 < ns && db[end + 1] > e.threshold && (end + 1 - last) * ds <= kTipReachPx) ++end;
+    for (int k = std::max(0, end - static_cast<int>(std::lround(kTipLevelPx / ds))); k <= end; ++k) peak = std::max(peak, d[k]);
+    if (peak < e.threshold) continue;
+    const double half = 0.5 * peak;
+    const auto s_at = [&](int k) { return hi - kTipWindowPx + k * ds; };
+    int k = end;
+    double s = s_at(last);  // below half from the mask's end on: the mask's own end
+    if (d[k] >= half) {
+      while (k + 1 < ns && d[k + 1] >= half && (k + 1 - last) * ds <= kTipReachPx) ++k;
+      s = s_at(k);
+      if (k + 1 < ns && d[k + 1] < half) s += ds * (d[k] - half) / (d[k] - d[k + 1]);
+    } else {
+      while (k > last && d[k] < half) --k;
+      if (d[k] >= half) s = s_at(k) + ds * (d[k] - half) / (d[k] - d[k + 1]);
+    }
+    if (s > best) best = s, best_t = t;
+  }
+  return best > -1e300 ? best * u + best_t * n : fallback;
+}
+
+std::vector<MidlineFrame> extract_midlines(const std::vector<cv::Mat>& masks, int stations, cv::Point2d* axis_out,
+                                           const std::vector<TipEvidence>* evidence) {
+  if (evidence && evidence->size() != masks.size()) throw Error("midline: expected one tip evidence per mask");
   if (stations < 3) throw Error("midline: expected at least 3 stations");
   // The mean axis: principal axis of the union of all frames' pixels, relative to each frame's
   // centroid (the fish may translate).
@@ -106,6 +170,7 @@ std::vector<MidlineFrame> extract_midlines(const std::vector<cv::Mat>& masks, in
       f.points[b] = cnt[b] > 0 ? centroid[i] + s * u + (sum[b] / cnt[b]) * n : cv::Point2d(kNaN, kNaN);
     }
     f.tip = centroid[i] + (hi + 0.5) * u + (tip_sum[0] / tip_n) * n;
+    if (evidence) f.tip = refine_tail_tip(masks[i], (*evidence)[i], u, f.tip);
     f.centroid = centroid[i];
     f.valid = true;
     length[i] = len;

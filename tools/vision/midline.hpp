@@ -4,8 +4,8 @@
 // similar tools report). The midline is sampled along the fish's mean axis over the record (a
 // swimming fish's heading changes slowly against its undulation): at each of `stations` equal
 // steps from head to tail, the centre of the silhouette's pixels across the axis. The tail tip is
-// the silhouette's end on the axis. A frame whose silhouette is shorter on the axis than the
-// record's median by more than kLostFinFraction has lost the fin (its end jumped back to the
+// the silhouette's end on the axis, refined in the image where given (refine_tail_tip). A frame
+// whose silhouette is shorter on the axis than the record's median by more than kLostFinFraction has lost the fin (its end jumped back to the
 // peduncle): not measured. Lateral: across the mean axis, from the centroid averaged over one
 // whole beat (frequency found on the tip's excursion from the frame's own centroid).
 //   frequency: the spectral peak of the tip's lateral excursion (parabolic refinement of the
@@ -40,9 +40,40 @@ struct TailBeat {
   int beats = 0;                       // whole beats the amplitude averages over
 };
 
+// What the tail tip's sub-pixel refinement reads of one frame: the darkening (the segmentation's
+// background minus the frame, 8-bit levels, CV_32F) over a window around the fish whose top-left
+// corner is `origin` in the frame, and the darkening that counts as fin (the segmentation's).
+struct TipEvidence {
+  cv::Mat darkening;
+  cv::Point origin{0, 0};
+  double threshold = 0;
+  double blur_sigma = 0;  // the segmentation's pre-smoothing (px) under which `threshold` holds
+};
+
+// The tail tip to sub-pixel precision: the point of the fin's outline farthest along `axis`
+// (head to tail), as the truth and a user define it. The binary mask ends short of faint, blurred
+// lobe tips (the segmentation's rim rule drops a sliver below half the fin's contrast), and the
+// mean of its last pixels falls between lobes. So, on lines along the axis every quarter pixel
+// across the mask's last kTipWindowPx, from the mask's end outward in the grey image: the fin
+// goes on while still detected (the darkening, smoothed as the segmentation's, above its
+// threshold); the lobe's level is the line's peak darkening over the last kTipLevelPx of that
+// (a pixel and the blur's reach: a lobe narrower than the blur never reaches the fin's full
+// contrast); the edge is where the darkening falls below half that level, at most kTipReachPx
+// beyond the mask. The tip is the farthest of these edges. Lines whose level is below the
+// threshold (noise) are skipped; with none left, `fallback`. A square end blurred by sigma is
+// placed about 0.3 sigma long; a tapered apex narrower than the blur, short
+// (docs/studies/realistic_footage.md).
+inline constexpr double kTipWindowPx = 6;
+inline constexpr double kTipReachPx = 3;
+inline constexpr double kTipLevelPx = 2;
+cv::Point2d refine_tail_tip(const cv::Mat& mask, const TipEvidence& evidence, const cv::Point2d& axis,
+                            const cv::Point2d& fallback);
+
 // The midline of each mask, all on the record's mean axis, oriented so that the head is the end
-// with more area (the body; the caudal fin is thinner seen from above) in the record's sum.
-std::vector<MidlineFrame> extract_midlines(const std::vector<cv::Mat>& masks, int stations, cv::Point2d* axis_out = nullptr);
+// with more area (the body; the caudal fin is thinner seen from above) in the record's sum. With
+// `evidence` (one per mask), the tail tips are refined from the image (refine_tail_tip).
+std::vector<MidlineFrame> extract_midlines(const std::vector<cv::Mat>& masks, int stations, cv::Point2d* axis_out = nullptr,
+                                           const std::vector<TipEvidence>* evidence = nullptr);
 
 // Tail-beat frequency, amplitude and body wavelength of the record (frames at `fps`).
 TailBeat tail_beat(const std::vector<MidlineFrame>& midlines, const cv::Point2d& axis, double fps);

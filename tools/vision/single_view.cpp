@@ -36,14 +36,27 @@ SingleViewResult track_single_view(const std::vector<long>& frames, const std::f
   r.frames = frames;
   r.segmentation_doubt.assign(nf, 0);
   std::vector<cv::Mat> masks(nf);
+  std::vector<TipEvidence> tips(nf);  // the darkening around the fish, for the sub-pixel tail tip
   for (std::size_t i = 0; i < nf; ++i) {
-    const auto seg = segment_fin(load(frames[i]), o.segmentation, ctx);
+    const cv::Mat frame = load(frames[i]);
+    const auto seg = segment_fin(frame, o.segmentation, ctx);
     masks[i] = seg.mask;
+    if (cv::countNonZero(seg.mask) > 0) {
+      const int pad = static_cast<int>(std::ceil(kTipReachPx)) + 2;
+      cv::Rect box = cv::boundingRect(seg.mask);
+      box = cv::Rect(box.x - pad, box.y - pad, box.width + 2 * pad, box.height + 2 * pad) & cv::Rect(0, 0, frame.cols, frame.rows);
+      cv::Mat grey;
+      frame(box).convertTo(grey, CV_32F);
+      tips[i].darkening = seg.background(box) - grey;
+      tips[i].origin = box.tl();
+      tips[i].threshold = seg.threshold;
+      tips[i].blur_sigma = o.segmentation.blur_sigma_px;
+    }
     r.segmentation_doubt[i] = seg.touches_border || seg.lost;
     if (cv::countNonZero(seg.mask) > 0) ctx.previous = seg.mask;
   }
   cv::Point2d axis;
-  r.midlines = extract_midlines(masks, o.stations, &axis);
+  r.midlines = extract_midlines(masks, o.stations, &axis, &tips);
   const auto lost = std::count_if(r.midlines.begin(), r.midlines.end(), [](const MidlineFrame& m) { return m.lost_fin; });
   if (lost > 0)
     log::warn(source + ": in " + std::to_string(lost) + " of " + std::to_string(nf) +

@@ -90,6 +90,74 @@ TEST(Midline, AFrameThatLostTheFinIsNotMeasured) {
   EXPECT_NEAR(beat.amplitude_px, s.a_tail, 0.05 * s.a_tail);
 }
 
+// A forked tail drawn here at 1/16 px and blurred (sigma 1 px) as a camera does: two lobes with
+// square ends at x = 52.3 (upper, y 23-27.4) and 49.6 (lower), 40 levels dark. A mask from a
+// threshold above half the fin's contrast (a faint fin in noise) ends a pixel short; the tip read
+// from the image along the axis, where the darkening falls to half the lobe's, is the upper lobe's
+// end to 0.4 px (0.35 blur sigmas: the lobe's level is read within 2 px behind where the fin is
+// last detected, a little past the edge), and across on that lobe's end.
+TEST(Midline, TheTailTipOfABlurredLobeToSubPixel) {
+  const int scale = 16, W = 70, H = 60;
+  const double end_x = 52.3;
+  cv::Mat big = cv::Mat::zeros(H * scale, W * scale, CV_8U);
+  const auto box = [&](double x0, double y0, double x1, double y1) {  // pixel centres at integers
+    cv::rectangle(big, cv::Point(static_cast<int>(std::lround((x0 + 0.5) * scale)), static_cast<int>(std::lround((y0 + 0.5) * scale))),
+                  cv::Point(static_cast<int>(std::lround((x1 + 0.5) * scale)) - 1, static_cast<int>(std::lround((y1 + 0.5) * scale)) - 1),
+                  cv::Scalar(255), cv::FILLED);
+  };
+  box(5, 22, 35, 38);        // the peduncle
+  box(35, 23, end_x, 27.4);  // upper lobe
+  box(35, 32, 49.6, 37);     // lower lobe, 2.7 px shorter
+  cv::Mat cover;
+  cv::resize(big, cover, cv::Size(W, H), 0, 0, cv::INTER_AREA);
+  cover.convertTo(cover, CV_32F, 1.0 / 255);
+  cv::GaussianBlur(cover, cover, cv::Size(0, 0), 1.0);
+  TipEvidence e;
+  e.darkening = 40 * cover;
+  e.threshold = 6;
+  const cv::Mat mask = e.darkening > 32;  // faint: the mask keeps only what is 0.8 covered
+  std::vector<cv::Point> pts;
+  cv::findNonZero(mask, pts);
+  int last = 0;
+  for (const auto& p : pts) last = std::max(last, p.x);
+  EXPECT_GT(end_x - (last + 0.5), 0.7);  // the mask's own end is short
+  const auto tip = refine_tail_tip(mask, e, cv::Point2d(1, 0), cv::Point2d(-1, -1));
+  EXPECT_NEAR(tip.x, end_x, 0.4);
+  EXPECT_GT(tip.y, 23 - 0.5);
+  EXPECT_LT(tip.y, 27.4 - 0.5);
+}
+
+// A tapered lobe drawn at 1/16 px and blurred (sigma 1 px): 7 px wide at its base, its apex
+// at (52.3, 25.2). The half-contrast mask ends 3.8 px short; past it the lobe is still detected
+// (darker than the threshold), and the tip read there is 1.2 px short: an apex narrower than
+// the blur stays below half of any level the lobe reaches (docs/studies/realistic_footage.md).
+TEST(Midline, TheTailTipOfABlurredTaperedLobe) {
+  const int scale = 16, W = 70, H = 60;
+  const cv::Point2d apex(52.3, 25.2);
+  cv::Mat big = cv::Mat::zeros(H * scale, W * scale, CV_8U);
+  std::vector<cv::Point> q;
+  for (const cv::Point2d& v : {cv::Point2d(5, 22), cv::Point2d(35, 22), apex, cv::Point2d(35, 29), cv::Point2d(35, 38), cv::Point2d(5, 38)})
+    q.emplace_back(static_cast<int>(std::lround((v.x + 0.5) * scale)), static_cast<int>(std::lround((v.y + 0.5) * scale)));
+  cv::fillPoly(big, std::vector<std::vector<cv::Point>>{q}, cv::Scalar(255));
+  cv::Mat cover;
+  cv::resize(big, cover, cv::Size(W, H), 0, 0, cv::INTER_AREA);
+  cover.convertTo(cover, CV_32F, 1.0 / 255);
+  cv::GaussianBlur(cover, cover, cv::Size(0, 0), 1.0);
+  TipEvidence e;
+  e.darkening = 40 * cover;
+  e.threshold = 6;
+  const cv::Mat mask = e.darkening > 20;
+  const auto tip = refine_tail_tip(mask, e, cv::Point2d(1, 0), cv::Point2d(-1, -1));
+  std::vector<cv::Point> pts;
+  cv::findNonZero(mask, pts);
+  int last = 0;
+  for (const auto& p : pts) last = std::max(last, p.x);
+  EXPECT_GT(apex.x - (last + 0.5), 3.0);
+  EXPECT_LT(tip.x, apex.x + 0.2);
+  EXPECT_GT(tip.x, apex.x - 1.5);
+  EXPECT_NEAR(tip.y, apex.y, 0.5);
+}
+
 #ifdef FIN_TRACK_EXE
 TEST(FinTrackMidline, AnAviClipGivesTheTailBeatInPxAndMm) {
   const Swimmer s;
