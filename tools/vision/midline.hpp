@@ -50,19 +50,12 @@ struct TipEvidence {
   double blur_sigma = 0;  // the segmentation's pre-smoothing (px) under which `threshold` holds
 };
 
-// The tail tip to sub-pixel precision: the point of the fin's outline farthest along `axis`
-// (head to tail), as the truth and a user define it. The binary mask ends short of faint, blurred
-// lobe tips (the segmentation's rim rule drops a sliver below half the fin's contrast), and the
-// mean of its last pixels falls between lobes. So, on lines along the axis every quarter pixel
-// across the mask's last kTipWindowPx, from the mask's end outward in the grey image: the fin
-// goes on while still detected (the darkening, smoothed as the segmentation's, above its
-// threshold); the lobe's level is the line's peak darkening over the last kTipLevelPx of that
-// (a pixel and the blur's reach: a lobe narrower than the blur never reaches the fin's full
-// contrast); the edge is where the darkening falls below half that level, at most kTipReachPx
-// beyond the mask. The tip is the farthest of these edges. Lines whose level is below the
-// threshold (noise) are skipped; with none left, `fallback`. A square end blurred by sigma is
-// placed about 0.3 sigma long; a tapered apex narrower than the blur, short
-// (docs/studies/realistic_footage.md).
+// The tail tip to sub-pixel precision: the point of the fin's outline farthest along `axis`, as
+// the truth and a user define it. The binary mask ends short of faint, blurred lobe tips, so each
+// line along the axis (every quarter pixel across the mask's last kTipWindowPx) follows the fin in
+// the grey image while it is still detected and puts the edge where the darkening falls to half the
+// lobe's level, at most kTipReachPx past the mask; the farthest edge wins, else `fallback`. Rule,
+// limits and biases: docs/studies/realistic_footage.md.
 inline constexpr double kTipWindowPx = 6;
 inline constexpr double kTipReachPx = 3;
 inline constexpr double kTipLevelPx = 2;
