@@ -62,6 +62,10 @@ _CFD_CASES = {
     # the same section, grid and step; numbers in docs/studies/spanwise_plate_2d3d.md.
     "spanwise_plate_2d3d": ("heaving/pitching plate across a slab between slip walls: 3-D thin body vs 2-D section",
                             None, THREADS_2D, 500, _FORCES),
+    # Graded: the sheet's towed and fixed force histories within 0.5 % (issue 44, goal 2); the
+    # closed body beside it; numbers in docs/studies/thin_surface.md.
+    "sheet_towed_plate": ("plate towed through still fluid vs fixed in a stream (Re 100): zero-thickness sheet and closed body",
+                          None, THREADS_2D, 300, _FORCES),
 }
 
 for _case, (_description, _ref, _threads, _mem_mb, _outputs) in _CFD_CASES.items():
@@ -124,6 +128,40 @@ rule validation_thin_plate_loads:
         " --mesh {output.mesh} --motion {output.motion} > {log} 2>&1 &&"
         " OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {output.mesh} --motion {output.motion}"
         " --out {output.loads} --summary {output.summary} {params.flow} >> {log} 2>&1 " + METRIC_MISSED_IS_A_RESULT
+
+
+# The same plate as a zero-thickness sheet (fin-cfd fin --surface sheet; issue 44, goal 1): the raw
+# force of the step on each output time, graded with the same smoothness metrics; the closed body's
+# raw loads beside it in docs/studies/thin_surface.md.
+register_validation("thin_plate_sheet", "heaving/pitching plate as a zero-thickness sheet through fin-cfd fin: raw per-step loads, smoothness")
+
+rule validation_thin_plate_sheet:
+    input:
+        exe=EXE("fin-cfd"),
+    output:
+        summary="results/validation/thin_plate_sheet/summary.json",
+        mesh="results/validation/thin_plate_sheet/mesh.h5",
+        motion="results/validation/thin_plate_sheet/motion.h5",
+        loads="results/validation/thin_plate_sheet/loads.h5",
+    log:
+        "results/logs/validation/thin_plate_sheet.log",
+    threads: THREADS
+    resources:
+        mem_mb=800,
+    params:
+        plate="--coarse" if COARSE else "",
+        flow=(
+            "--reynolds 100 --speed 0.1 --periods 0.5 --output-periods 0 --cells-per-chord 12"
+            " --upstream 1.5 --downstream 3 --lateral 1.5 --spanwise 1.5 --stretch-ratio 1.2"
+            if COARSE
+            else "--reynolds 100 --speed 0.1 --periods 2 --output-periods 1 --cells-per-chord 20 --output-interval 0.002"
+        ),
+    shell:
+        "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} {params.plate} thin_plate"
+        " --mesh {output.mesh} --motion {output.motion} > {log} 2>&1 &&"
+        " OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --surface sheet --mesh {output.mesh}"
+        " --motion {output.motion} --out {output.loads} --summary {output.summary} {params.flow} >> {log} 2>&1 "
+        + METRIC_MISSED_IS_A_RESULT
 
 
 # The pipeline's loads stage (DESIGN.md section 1) on the case's fin at its chord Reynolds number

@@ -110,6 +110,20 @@ void add_fin_options(CLI::App* f, FinArgs& a) {
   f->add_flag("--sample-loads", o.sample_loads,
               "loads at an output time: the one step on it instead of the mean over the output interval centred "
               "on it (docs/studies/fin_load_noise.md)");
+  f->add_option("--surface", o.surface,
+                "how the flow sees the fin: closed (the closed thin body of mesh.h5 /ibm, ghost cells) or sheet (the "
+                "mid-surface as a zero-thickness immersed surface, docs/studies/thin_surface.md)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"closed", "sheet"}));
+  f->add_option("--kernel", o.kernel, "sheet: regularized delta kernel (roma3, peskin4, smooth3, smooth4)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"roma3", "peskin4", "smooth3", "smooth4"}));
+  f->add_option("--marker-spacing", o.marker_spacing, "sheet: marker spacing in core cell widths")
+      ->capture_default_str()
+      ->check(CLI::Range(0.25, 4.0));
+  f->add_flag("--sheet-loads-mean", o.sheet_loads_mean,
+              "sheet: loads at an output time are the mean over the output interval centred on it instead of the "
+              "raw force of the step on it");
   f->add_option("--checkpoint-every", a.checkpoint_every, "write a checkpoint every N steps (0: never)")
       ->capture_default_str();
   f->add_option("--checkpoint", a.checkpoint, "checkpoint file (default: <out stem>.checkpoint.h5 next to --out)");

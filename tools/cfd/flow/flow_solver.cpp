@@ -72,6 +72,12 @@ void FlowSolver::setup(const StretchedGrid& grid, const FlowBoundary& boundary, 
   cut_cells_.clear();
   cut_flux_.clear();
   cut_slot_.clear();
+  sheet_.reset();
+  sheet_motion_ = nullptr;
+  next_sheet_.reset();
+  sheet_state_ = {};
+  sheet_impulse_.clear();
+  sheet_stats_ = {};
 }
 
 void FlowSolver::immerse(const Polygon& body) { immerse(std::vector<SolidRegion>{SolidRegion{body, false}}); }
@@ -244,6 +250,10 @@ void FlowSolver::initialise(const VelocityFunction& velocity, const std::functio
     place_surface(t0, caller_surface_ ? surface_state_ : surface_motion_(t0));
     fresh_.clear();
   }
+  if (sheet_) {
+    if (sheet_motion_) sheet_state_ = sheet_motion_(t0);
+    sheet_impulse_.assign(sheet_->size(), Vec3{0, 0, 0});
+  }
   for_each_cell(grid_, [&](int i, int j, int k) {
     const auto v = velocity ? velocity(grid_.xc(i), grid_.yc(j), grid_.zc(k), t0) : std::array<double, 3>{0, 0, 0};
     for (int c = 0; c < dim(); ++c) u_[static_cast<std::size_t>(c)](i, j, k) = v[static_cast<std::size_t>(c)];
@@ -280,9 +290,10 @@ void FlowSolver::initialise(const VelocityFunction& velocity, const std::functio
 StepStats FlowSolver::step() {
   const double dt = choose_time_step();
   const double t_new = time_ + dt;
-  if ((deforming_ && !next_polygon_) || (caller_surface_ && !next_surface_))
+  if ((deforming_ && !next_polygon_) || (caller_surface_ && !next_surface_) ||
+      (sheet_ && !sheet_motion_ && !next_sheet_))
     throw Error("flow solver: step to t = " + std::to_string(t_new) +
-                ": set_body_state must give the deforming body's state at the new time level first");
+                ": set_body_state (set_sheet_state) must give the body's (sheet's) state at the new time level first");
   set_boundary_values(t_new, dt, false);
   if (deforming_) {  // (built aside first: a bad state leaves the body as it was)
     DeformingPolygon next(*next_polygon_, "flow solver: deforming body at t = " + std::to_string(t_new),
@@ -299,10 +310,26 @@ StepStats FlowSolver::step() {
     next_surface_.reset();
     move_surface(t_new, std::move(next));
   }
+  std::optional<SheetState> sheet_next;
+  if (sheet_) {
+    sheet_next = sheet_motion_ ? sheet_motion_(t_new) : std::move(*next_sheet_);
+    next_sheet_.reset();
+  }
   predict_momentum(dt);
+  if (sheet_) force_sheet(dt, std::move(*sheet_next));
   face_predictor(dt, coupling_time(dt));
-  const PoissonSolveStats ps = solve_pressure_correction(dt);
+  PoissonSolveStats ps = solve_pressure_correction(dt);
   update_velocity(dt);
+  // A sheet's further forcing and projection passes (SheetForcingOptions::projections): the
+  // pressure increments add up in p, the face velocities carry the earlier corrections.
+  for (int pass = 1; sheet_ && pass < sheet_opt_.projections; ++pass) {
+    for (int c = 0; c < dim(); ++c) copy_interior(u_[static_cast<std::size_t>(c)], ustar_[static_cast<std::size_t>(c)]);
+    add_sheet_impulse(dt);
+    face_predictor(dt, coupling_time(dt));
+    const PoissonSolveStats more = solve_pressure_correction(dt);
+    ps.iterations += more.iterations;
+    update_velocity(dt);
+  }
   for (int c = 0; c < dim(); ++c) std::swap(conv_old_[static_cast<std::size_t>(c)], conv_[static_cast<std::size_t>(c)]);
   bv_ = bv_new_;
   time_ = t_new;
@@ -572,6 +599,16 @@ std::vector<StateArray> FlowSolver::state() const {
     s.push_back({"body_kinds", std::move(k)});
   }
   if (caller_surface_) s.push_back({"body_vertices", surface_state_values(surface_state_)});
+  // A sheet: its node state at time() (positions, velocities) and the last step's impulses (its loads).
+  if (sheet_) {
+    std::vector<double> nodes;
+    append(nodes, sheet_state_.position, sheet_->topology().nodes);
+    append(nodes, sheet_state_.velocity, sheet_->topology().nodes);
+    s.push_back({"sheet_nodes", std::move(nodes)});
+    std::vector<double> g;
+    append(g, sheet_impulse_, sheet_->size());
+    s.push_back({"sheet_impulse", std::move(g)});
+  }
   return s;
 }
 
@@ -620,6 +657,16 @@ void FlowSolver::restore(const std::vector<StateArray>& s) {
     place_surface(time_, caller_surface_ ? surface_state_from(s.back().values, surface_state_) : surface_motion_(time_));
     fresh_.clear();
     for (int c = 0; c < 3; ++c) unraw(s[a++], body_velocity_[static_cast<std::size_t>(c)]);
+  }
+  if (sheet_) {
+    next_sheet_.reset();
+    const std::size_t n = sheet_->topology().nodes;
+    std::size_t at = 0;
+    const std::vector<double>& nodes = s[s.size() - 2].values;
+    sheet_state_.position = take<Vec3>(nodes, at, n);
+    sheet_state_.velocity = take<Vec3>(nodes, at, n);
+    at = 0;
+    sheet_impulse_ = take<Vec3>(s.back().values, at, sheet_->size());
   }
 }
 

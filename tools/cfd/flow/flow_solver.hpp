@@ -116,6 +116,8 @@
 #include "cfd/flow/helmholtz_solver.hpp"
 #include "cfd/poisson/poisson_solver.hpp"
 #include "cfd/immersed/rigid_motion.hpp"
+#include "cfd/immersed/sheet_forcing.hpp"
+#include "cfd/immersed/sheet_markers.hpp"
 #include "cfd/immersed/surface_geometry.hpp"
 #include "cfd/immersed/triangulated_surface.hpp"
 
@@ -261,6 +263,23 @@ class FlowSolver {
   // Traction samples of the 2-D deforming body at time(), by the caller's edges, with the density
   // rho (surface_traction.hpp, the wall velocity linear along each edge).
   EdgeTraction edge_traction(double rho = 1.0) const;
+  // A zero-thickness immersed surface (sheet_forcing.hpp, sheet_step.cpp): the sheet's topology and
+  // rest node positions (markers about options.spacing core cells apart, fixed in material
+  // coordinates), after setup, before initialise; no other immersed body may be present. Its node
+  // state at every new time level comes from `motion` (a fixed sheet: a motion that returns the
+  // rest state), or, without one, from set_sheet_state() before every step() (coupled runs). No cell changes kind:
+  // every cell is fluid, and after the momentum predictor the markers' forces make u* equal to the sheet's velocity at
+  // every marker.
+  void immerse_sheet(const SheetTopology& topology, const std::vector<Vec3>& rest, const SheetForcingOptions& options,
+                     SheetMotion motion = {});
+  // The sheet's node state at t^{n+1} = time() + next_dt() (a sheet without a motion function).
+  void set_sheet_state(SheetState next);
+  const SheetMarkers* sheet() const { return sheet_ ? &*sheet_ : nullptr; }
+  const SheetState& sheet_state() const { return sheet_state_; }  // at time()
+  // The force of the fluid on the sheet during the last step (rho times minus the markers'
+  // impulses), per marker and per node; zero before the first step.
+  SheetLoads sheet_loads(double rho = 1.0) const;
+  const SheetSolveStats& sheet_solve_stats() const { return sheet_stats_; }
   // Cells that were cleared at the start of the last step (i, j, k; k = 0 in 2-D).
   const std::vector<std::array<int, 3>>& freshly_cleared() const { return fresh_; }
   const GhostCellSet* immersed() const { return ib_ ? &*ib_ : nullptr; }
@@ -392,6 +411,20 @@ class FlowSolver {
   // ghost values, then the pressure-like ghosts and the cleared cells' face fluxes; ghost cells of
   // the new geometry that were not solid in `old` (the classification at t^n) get their u^n back.
   void settle_cleared_cells(const GhostCellSet& old, const std::vector<ClearedCell>& cells);
+
+  // Zero-thickness sheet (sheet_step.cpp): forcing after the momentum predictor.
+  void force_sheet(double dt, SheetState next);
+  void add_sheet_impulse(double dt);
+  std::vector<Vec3> sheet_marker_position_;
+  std::optional<RegularizedStencils> sheet_stencils_;  // of the last placement
+  std::vector<Vec3> sheet_marker_velocity_;
+  std::optional<SheetMarkers> sheet_;
+  SheetForcingOptions sheet_opt_;
+  SheetMotion sheet_motion_;
+  std::optional<SheetState> next_sheet_;
+  SheetState sheet_state_;
+  std::vector<Vec3> sheet_impulse_;  // per marker: g, the impulse per unit density given to the fluid
+  SheetSolveStats sheet_stats_;
 
   StretchedGrid grid_;
   FlowBoundary bnd_;

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "cfd/forces/nodal_loads.hpp"
+#include "cfd/forces/sheet_loads.hpp"
 #include "cfd/io/fin_flow_checkpoint.hpp"
 #include "cfd/io/loads_record.hpp"
 #include "cfd/io/loads_window.hpp"
@@ -32,20 +33,30 @@ std::string num(double v) {
 
 }  // namespace
 
-void swept_box(const FinSurfaceMotion& m, double t0, double t1, int samples, Vec3& lo, Vec3& hi, double& max_speed) {
+void swept_box(const FinSurfaceMotion& m, double t0, double t1, int samples, Vec3& lo, Vec3& hi, double& max_speed,
+               bool mid_surface) {
   const double inf = std::numeric_limits<double>::infinity();
   lo = {inf, inf, inf};
   hi = {-inf, -inf, -inf};
   max_speed = 0;
   for (int k = 0; k <= samples; ++k) {
-    const SurfaceState s = m.state(t0 + (t1 - t0) * k / samples);
-    for (std::size_t i = 0; i < s.surface.points.size(); ++i) {
+    const double t = t0 + (t1 - t0) * k / samples;
+    std::vector<Vec3> x, v;
+    if (mid_surface) {
+      MidSurfaceState ms = m.mid_surface(t);
+      x = std::move(ms.x);
+      v = std::move(ms.v);
+    } else {
+      SurfaceState s = m.state(t);
+      x = std::move(s.surface.points);
+      v = std::move(s.velocity);
+    }
+    for (std::size_t i = 0; i < x.size(); ++i) {
       for (int d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], s.surface.points[i][d]);
-        hi[d] = std::max(hi[d], s.surface.points[i][d]);
+        lo[d] = std::min(lo[d], x[i][d]);
+        hi[d] = std::max(hi[d], x[i][d]);
       }
-      if (!s.velocity.empty())
-        max_speed = std::max(max_speed, std::hypot(s.velocity[i][0], s.velocity[i][1], s.velocity[i][2]));
+      if (!v.empty()) max_speed = std::max(max_speed, std::hypot(v[i][0], v[i][1], v[i][2]));
     }
   }
 }
@@ -90,7 +101,13 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   const double U = o.speed > 0 ? o.speed : free_stream_speed(o.reynolds, c, o.viscosity);
   if (!(U > 0)) throw Error("--speed / --viscosity: free-stream speed " + num(U) + " m/s, expected > 0");
   const double nu = U * c / o.reynolds;
-  const double h = o.cells_per_chord > 0 ? c / o.cells_per_chord : std::min(c / 16, body.thickness / 2);
+  if (o.surface != "closed" && o.surface != "sheet")
+    throw Error("--surface: '" + o.surface + "', expected closed or sheet");
+  const bool sheet = o.surface == "sheet";
+  // The sheet has no thickness to resolve: c/16 unless asked.
+  const double h = o.cells_per_chord > 0 ? c / o.cells_per_chord
+                   : sheet               ? c / 16
+                                         : std::min(c / 16, body.thickness / 2);
 
   // Duration and outputs.
   const double t0 = in.frame_time.front();
@@ -119,7 +136,7 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   // Grid around the swept body.
   st = {};
   swept_box(motion, t0, periodic ? t0 + *in.layout.wrap : t1, 4 * static_cast<int>(in.frame_time.size()), st.swept_lo,
-            st.swept_hi, st.max_body_speed);
+            st.swept_hi, st.max_body_speed, sheet);
   st.grid = fin_flow_grid(st.swept_lo, st.swept_hi, c, h, o);
   st.h = h;
   st.U = U;
@@ -138,7 +155,8 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   // The loads of output k are the mean over the steps k m - m/2 .. k m + m/2 (loads_window.hpp): a
   // periodic motion runs half an interval past the last output so its window is whole too.
   const long last_output = outputs * m;
-  const long total = last_output + (periodic && !o.sample_loads ? m / 2 : 0);
+  const bool windowed = o.surface == "sheet" ? o.sheet_loads_mean : !o.sample_loads;
+  const long total = last_output + (periodic && windowed ? m / 2 : 0);
   st.t_end = t0 + static_cast<double>(total) * st.dt;
   long first_output = 1;  // in intervals: the first output time after out_from
   while (t0 + static_cast<double>(first_output) * interval <= out_from + 1e-9 * interval) ++first_output;
@@ -158,7 +176,18 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   FlowSolver solver;
   try {
     solver.setup(st.grid, b, opt);
-    solver.immerse(FinSurfaceMotion::as_surface_motion(in.motion));
+    if (sheet) {
+      SheetForcingOptions so;
+      so.kernel = delta_kernel_from_name(o.kernel);
+      so.spacing = o.marker_spacing;
+      const std::shared_ptr<const FinSurfaceMotion> mo = in.motion;
+      solver.immerse_sheet(SheetTopology{3, in.rest.size(), in.mid_triangles}, in.rest, so, [mo](double t) {
+        MidSurfaceState ms = mo->mid_surface(t);
+        return SheetState{std::move(ms.x), std::move(ms.v)};
+      });
+    } else {
+      solver.immerse(FinSurfaceMotion::as_surface_motion(in.motion));
+    }
     solver.initialise([U](double, double, double, double) { return std::array<double, 3>{U, 0, 0}; }, {}, t0);
   } catch (const Error& e) {
     throw Error("fin flow: setting up the body in the " + std::to_string(st.grid.nx()) + " x " +
@@ -167,7 +196,8 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   }
 
   LoadsRecord rec(in.rest.size(), in.mid_triangles.size());
-  LoadsWindow window(m, in.rest.size(), in.mid_triangles.size(), first_output * m, last_output, total, o.sample_loads);
+  const bool one_step = sheet ? !o.sheet_loads_mean : o.sample_loads;
+  LoadsWindow window(m, in.rest.size(), in.mid_triangles.size(), first_output * m, last_output, total, one_step);
   long first = 1;
   std::string last_checkpoint = "; no checkpoint written";  // appended to a failure's message
   if (!ck.restart.empty()) {
@@ -203,13 +233,23 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
     if (progress) progress(n, total, s);
     if (window.needs(n)) {
       const double t = solver.time();
-      const SurfaceForces F = solver.surface_forces(o.rho);
-      const Vec3 total_force = F.total;
+      std::vector<Vec3> nodal;
+      std::vector<double> jump;
+      Vec3 total_force;
+      if (sheet) {
+        const SheetLoads L = solver.sheet_loads(o.rho);
+        nodal = L.nodal;
+        total_force = L.total;
+        jump = sheet_pressure_jump(*solver.sheet(), solver.sheet_state().position, L);
+      } else {
+        const SurfaceForces F = solver.surface_forces(o.rho);
+        total_force = F.total;
+        nodal = nodal_forces(body, F);
+        jump = pressure_jump(body, in.mid_triangles, motion.state(t).surface, F);
+      }
       if (!(std::isfinite(total_force[0]) && std::isfinite(total_force[1]) && std::isfinite(total_force[2])))
         throw failure(n, "step " + std::to_string(n) + " (t = " + num(t) + " s): the surface force is not finite");
-      const SurfaceState now = motion.state(t);
-      for (const auto& w : window.add(n, nodal_forces(body, F), total_force,
-                                      pressure_jump(body, in.mid_triangles, now.surface, F))) {
+      for (const auto& w : window.add(n, nodal, total_force, jump)) {
         const double tw = t0 + static_cast<double>(w.step / m) * interval;  // exact output time
         rec.add(tw, w.nodal, w.total, w.jump);
         if (ck.at_output) ck.at_output(w.step / m, tw, solver);

@@ -25,6 +25,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,16 @@ struct FinFlowOptions {
   // output time, as before.
   bool sample_loads = false;
   double chord = 0;  // [m]; 0: mesh.h5 attribute chord, else the rest mesh's x extent
+  // How the flow sees the fin: "closed", the closed thin body of mesh.h5 /ibm by the ghost-cell
+  // method; "sheet", the mid-surface itself as a zero-thickness immersed surface
+  // (sheet_forcing.hpp; docs/studies/thin_surface.md), with its delta kernel and marker spacing
+  // [cells].
+  std::string surface = "closed";
+  std::string kernel = "smooth3";
+  double marker_spacing = 1.0;
+  // The sheet's loads at an output time: the one step on it (default), or the mean over the output
+  // interval as for the closed body.
+  bool sheet_loads_mean = false;
 };
 
 struct FinFlowStats {
@@ -96,7 +107,9 @@ struct FinFlowFlag {
 };
 std::vector<FinFlowFlag> fin_flow_flags(FinFlowOptions& o);
 
-void swept_box(const FinSurfaceMotion& m, double t0, double t1, int samples, Vec3& lo, Vec3& hi, double& max_speed);
+// mid_surface: of the mid-surface nodes (the sheet) instead of the closed body.
+void swept_box(const FinSurfaceMotion& m, double t0, double t1, int samples, Vec3& lo, Vec3& hi, double& max_speed,
+               bool mid_surface = false);
 
 // The grid of the header comment around the swept box [lo, hi].
 StretchedGrid fin_flow_grid(const Vec3& lo, const Vec3& hi, double chord, double h, const FinFlowOptions& o);

@@ -73,6 +73,13 @@ nlohmann::json fin_flow_config(const FinFlowOptions& o, const FinInput& in) {
                         {"--poisson-rtol", o.poisson_rtol},
                         {"--staircase-balance", !o.cut_cells},
                         {"--sample-loads", o.sample_loads}};
+  // The sheet's options only when it is used, so a closed-body run's configuration is as before.
+  if (o.surface != "closed") {
+    opt["--surface"] = o.surface;
+    opt["--kernel"] = o.kernel;
+    opt["--marker-spacing"] = o.marker_spacing;
+    opt["--sheet-loads-mean"] = o.sheet_loads_mean;
+  }
   return {{"case", "fin"}, {"options", opt}, {"input", fin_input_fingerprint(in)}};
 }
 

@@ -32,6 +32,10 @@ const std::vector<ValidationCase>& validation_cases() {
        run_heaving_plate_garrick, "data/reference/garrick_heaving_plate.json"},
       {"spanwise_plate_2d3d", "heaving/pitching plate across a slab (Re 100): 3-D thin body against the 2-D section",
        run_spanwise_plate_2d3d},
+      {"sheet_towed_plate",
+       "flat plate towed through fluid at rest against the fixed plate in a stream (Re 100): "
+       "the zero-thickness sheet and the closed body",
+       run_sheet_towed_plate},
   };
   return cases;
 }
@@ -157,6 +161,14 @@ std::vector<CaseOption> case_options(const ValidationCase& c, CaseOptions& o) {
     v.push_back({"--staircase-balance", &o.staircase_balance,
                  "both runs with the staircase mass balance instead of the cut-cell one (to compare)"});
     v.push_back({"--at-rest", &o.at_rest, "the plate held still: the drag alone (to compare)"});
+  } else if (n == "sheet_towed_plate") {
+    v.push_back({"--cells-per-chord", &o.cells_per_chord, "grid: h = c / N (default 32)", 8, 4000});
+    v.push_back({"--cfl", &o.cfl, "time step: dt = cfl h / U (default 0.32)", 0.01, 1.0});
+    CaseOption k{"--kernel", &o.kernel, "sheet: regularized delta kernel (default smooth3)"};
+    k.choices = {"roma3", "peskin4", "smooth3", "smooth4"};
+    v.push_back(k);
+    v.push_back({"--marker-spacing", &o.marker_spacing, "sheet: marker spacing in cells (default 1)", 0.25, 4.0});
+    v.push_back({"--projections", &o.projections, "sheet: forcing and projection passes per step (default 1)", 1, 10});
   }
   return v;
 }

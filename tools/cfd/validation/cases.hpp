@@ -41,6 +41,11 @@ struct CaseOptions {
   int cells_per_chord = 0;
   int periods = 0, periods_averaged = 0;
   bool at_rest = false;                       // spanwise_plate_2d3d: the plate held still (drag alone)
+  // The zero-thickness sheet (sheet_forcing.hpp): kernel name (empty: the default), marker spacing
+  // [cells] and projection passes (0: the defaults).
+  std::string kernel;
+  double marker_spacing = 0;
+  int projections = 0;
   // Channel: checkpoint and restart, ParaView output.
   int checkpoint_every = 0;
   std::string restart;
@@ -87,6 +92,7 @@ int run_dfg_2d3(const CaseOptions& o);
 int run_turek_hron_cfd2(const CaseOptions& o);
 int run_turek_hron_cfd3(const CaseOptions& o);
 int run_ib_couette(const CaseOptions& o);
+int run_sheet_towed_plate(const CaseOptions& o);
 int run_cylinder_towed(const CaseOptions& o);
 int run_cylinder_oscillating(const CaseOptions& o);
 int run_sphere_re100(const CaseOptions& o);

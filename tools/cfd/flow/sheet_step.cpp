@@ -1,0 +1,118 @@
+// The zero-thickness immersed surface in the time step (DESIGN.md section 5.1; flow_solver.hpp,
+// sheet_forcing.hpp): set-up, the sheet's state at the new time level, and the direct forcing of
+// the predicted velocity u* between the momentum predictor and the pressure correction
+// (Uhlmann 2005, J. Comput. Phys. 209:448, section 2.2, with the markers' coupling solved
+// exactly). The projection that follows moves the velocity at the markers by O(dt grad phi), the
+// usual slip of the method, which vanishes with dt at a fixed grid.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "cfd/flow/flow_solver.hpp"
+#include "core/error.hpp"
+
+namespace finverse::cfd {
+
+namespace {
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+// The sheet state's sizes and values: a one-line error naming t.
+void check_sheet_state(const SheetState& s, std::size_t nodes, double t) {
+  const std::string at = "flow solver: sheet state at t = " + num(t) + ": ";
+  if (s.position.size() != nodes)
+    throw Error(at + std::to_string(s.position.size()) + " node positions, expected " + std::to_string(nodes));
+  if (!s.velocity.empty() && s.velocity.size() != nodes)
+    throw Error(at + std::to_string(s.velocity.size()) + " node velocities, expected " + std::to_string(nodes));
+  for (const auto* v : {&s.position, &s.velocity})
+    for (const Vec3& p : *v)
+      if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+        throw Error(at + "a node position or velocity is not finite");
+}
+
+}  // namespace
+
+void FlowSolver::immerse_sheet(const SheetTopology& topology, const std::vector<Vec3>& rest,
+                               const SheetForcingOptions& options, SheetMotion motion) {
+  if (ib_ || moving_ || deforming_ || surface_motion_)
+    throw Error("flow solver: a sheet cannot share the grid with a ghost-cell body");
+  if (topology.dim != dim())
+    throw Error("flow solver: a " + std::to_string(topology.dim) + "-D sheet in a " + std::to_string(dim()) +
+                "-D grid");
+  if (!(options.spacing > 0 && options.spacing <= 4))
+    throw Error("flow solver: sheet marker spacing " + num(options.spacing) + " cells, expected in (0, 4]");
+  // The markers' spacing in metres: the grid's finest cell, where the sheet sits.
+  double h = grid_.axis(0).min_width();
+  for (int d = 1; d < dim(); ++d) h = std::min(h, grid_.axis(d).min_width());
+  sheet_.emplace(topology, rest, options.spacing * h, "flow solver: sheet");
+  sheet_opt_ = options;
+  sheet_motion_ = std::move(motion);
+  sheet_state_ = {rest, {}};
+  next_sheet_.reset();
+  sheet_impulse_.assign(sheet_->size(), Vec3{0, 0, 0});
+  // Every marker must be inside the domain at rest (a stencil that fails names the boundary).
+  RegularizedStencils(grid_, {bnd_.periodic(0), bnd_.periodic(1), dim() == 3 && bnd_.periodic(2)},
+                      sheet_->at_markers(rest), sheet_opt_.kernel, "flow solver: sheet at rest");
+}
+
+void FlowSolver::set_sheet_state(SheetState next) {
+  if (!sheet_) throw Error("flow solver: set_sheet_state without a sheet");
+  check_sheet_state(next, sheet_->topology().nodes, time_ + next_dt());
+  next_sheet_ = std::move(next);
+}
+
+void FlowSolver::force_sheet(double dt, SheetState next) {
+  const double t = time_ + dt;
+  check_sheet_state(next, sheet_->topology().nodes, t);
+  const std::string what = "flow solver: step " + std::to_string(step_ + 1) + " (t = " + num(t) + "): sheet";
+  const std::vector<Vec3> X = sheet_->at_markers(next.position);
+  sheet_marker_velocity_ =
+      next.velocity.empty() ? std::vector<Vec3>(X.size(), Vec3{0, 0, 0}) : sheet_->at_markers(next.velocity);
+  sheet_marker_position_ = X;
+  sheet_stencils_.emplace(grid_,
+                          std::array<bool, 3>{bnd_.periodic(0), bnd_.periodic(1), dim() == 3 && bnd_.periodic(2)}, X,
+                          sheet_opt_.kernel, what);
+  sheet_impulse_.assign(X.size(), Vec3{0, 0, 0});
+  sheet_stats_ = {};
+  sheet_state_ = std::move(next);
+  add_sheet_impulse(dt);
+}
+
+// One forcing pass on ustar_: the impulses that bring u* to the sheet's velocity at every marker,
+// added to the step's impulses so far.
+void FlowSolver::add_sheet_impulse(double dt) {
+  const RegularizedStencils& st = *sheet_stencils_;
+  const std::string what = "flow solver: step " + std::to_string(step_ + 1) + " (t = " + num(time_ + dt) + "): sheet";
+  const std::size_t n = st.markers();
+  std::vector<double> ui, b(n), g;
+  for (int c = 0; c < dim(); ++c) {
+    Field& us = ustar_[static_cast<std::size_t>(c)];
+    st.interpolate(us, ui);
+    for (std::size_t m = 0; m < n; ++m) b[m] = (sheet_marker_velocity_[m][c] - ui[m]) / dt;
+    const SheetSolveStats s = solve_marker_system(st, b, g, sheet_opt_, what);
+    sheet_stats_.iterations = std::max(sheet_stats_.iterations, s.iterations);
+    sheet_stats_.relative_residual = std::max(sheet_stats_.relative_residual, s.relative_residual);
+    st.spread(g, dt, us);
+    for (std::size_t m = 0; m < n; ++m) sheet_impulse_[m][c] += g[m];
+  }
+}
+
+SheetLoads FlowSolver::sheet_loads(double rho) const {
+  SheetLoads l;
+  if (!sheet_) return l;
+  l.marker.resize(sheet_impulse_.size());
+  for (std::size_t m = 0; m < sheet_impulse_.size(); ++m)
+    for (int d = 0; d < 3; ++d) {
+      l.marker[m][d] = -rho * sheet_impulse_[m][d];
+      l.total[d] += l.marker[m][d];
+    }
+  l.nodal = sheet_->to_nodes(l.marker);
+  return l;
+}
+
+}  // namespace finverse::cfd

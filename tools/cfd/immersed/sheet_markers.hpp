@@ -1,0 +1,87 @@
+// Lagrangian markers on a zero-thickness immersed surface (a "sheet"; DESIGN.md section 5.1): the
+// fin's mid-surface triangles in 3-D, a plate's or flag's mid-line segments in 2-D. The flow sees
+// the sheet only through its markers (sheet_forcing.hpp): each marker gets the surface velocity,
+// the flow returns a force on it, and the markers' forces go back to the sheet's nodes.
+//
+// The markers are fixed in material coordinates, chosen once on the rest state: every element is
+// divided regularly into pieces no longer than spacing / 2 (candidate points at the vertices of
+// the subdivision, the nodes and edge points first), and the candidates are thinned greedily so
+// that no two markers are closer than `spacing` (every candidate then lies within `spacing` of a
+// marker, so the sheet is covered without gaps wider than about two spacings, and no two markers
+// are so close that their kernels cannot be told apart, which would make the marker system
+// singular; the kept set does not depend on how finely the structural mesh is cut). Marker
+// positions and velocities are the linear (barycentric) interpolation of the node values of the
+// marker's element, so they are smooth in the nodes' motion however the sheet deforms, and a
+// marker's force is returned to the nodes with the same weights (the transpose), which conserves
+// the total force and moment.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cfd/immersed/vec3.hpp"
+
+namespace finverse::cfd {
+
+// The sheet's connectivity: dim 2, elements are segments {a, b, -1} in the (x, y) plane; dim 3,
+// triangles {a, b, c}. Node indices in [0, nodes).
+struct SheetTopology {
+  int dim = 3;
+  std::size_t nodes = 0;
+  std::vector<std::array<int, 3>> elements;
+};
+
+// The sheet's nodes at one instant (velocity empty: at rest).
+struct SheetState {
+  std::vector<Vec3> position, velocity;
+};
+
+// A moving sheet: its node state at time t (the topology does not change).
+using SheetMotion = std::function<SheetState(double t)>;
+
+// Force of the fluid on the sheet [N; per unit depth in 2-D]: per marker, per node (the markers'
+// forces returned by the transposed weights) and their sum.
+struct SheetLoads {
+  std::vector<Vec3> marker, nodal;
+  Vec3 total{0, 0, 0};
+};
+
+class SheetMarkers {
+ public:
+  SheetMarkers() = default;
+  // Markers on `rest` (the nodes' rest positions) no closer than `spacing`. Throws a one-line
+  // finverse::Error naming `what` and the element for a node index out of range or a degenerate
+  // element (length or area below 1e-12 of the sheet's extent).
+  SheetMarkers(const SheetTopology& topology, const std::vector<Vec3>& rest, double spacing, const std::string& what);
+
+  std::size_t size() const { return element_.size(); }
+  const SheetTopology& topology() const { return topo_; }
+  int element(std::size_t m) const { return element_[m]; }
+  // Per marker, node value -> marker value: sum_q weight[q] * value[node[q]] (q < dim).
+  const std::array<int, 3>& nodes(std::size_t m) const { return node_[m]; }
+  const std::array<double, 3>& weights(std::size_t m) const { return bary_[m]; }
+  double spacing() const { return spacing_; }
+
+  // Node values (positions, velocities) interpolated to the markers.
+  std::vector<Vec3> at_markers(const std::vector<Vec3>& node_values) const;
+  // Marker values (forces) returned to the nodes by the transposed weights.
+  std::vector<Vec3> to_nodes(const std::vector<Vec3>& marker_values) const;
+  // The sheet's length (2-D) or area (3-D) lumped to its nodes (a third of every triangle's area,
+  // half of every segment's length) at node positions x.
+  std::vector<double> node_measure(const std::vector<Vec3>& x) const;
+  // Element lengths or areas and unit normals at node positions x (2-D: the normal (-t_y, t_x) of
+  // the segment direction t = (b - a)/|b - a|; 3-D: the right-hand normal (b - a) x (c - a)).
+  void element_geometry(const std::vector<Vec3>& x, std::vector<double>& measure, std::vector<Vec3>& normal) const;
+
+ private:
+  SheetTopology topo_;
+  double spacing_ = 0;
+  std::vector<int> element_;
+  std::vector<std::array<int, 3>> node_;
+  std::vector<std::array<double, 3>> bary_;
+};
+
+}  // namespace finverse::cfd
