@@ -62,6 +62,10 @@ _CFD_CASES = {
     # the same section, grid and step; numbers in docs/studies/spanwise_plate_2d3d.md.
     "spanwise_plate_2d3d": ("heaving/pitching plate across a slab between slip walls: 3-D thin body vs 2-D section",
                             None, THREADS_2D, 500, _FORCES),
+    # Graded: C_D and C_L within 5 % of Dickson's measurements (issue 44, goal 3), the plate a
+    # zero-thickness sheet of a user's case file; numbers in docs/studies/thin_surface.md.
+    "plate_ar2_re100": ("flat plate AR 2 at 10 deg, Re 100, as a zero-thickness sheet (case: flow): C_D, C_L vs Dickson",
+                        None, THREADS, 3000, _FORCES),
     # Graded: the sheet's towed and fixed force histories within 0.5 % (issue 44, goal 2); the
     # closed body beside it; numbers in docs/studies/thin_surface.md.
     "sheet_towed_plate": ("plate towed through still fluid vs fixed in a stream (Re 100): zero-thickness sheet and closed body",

@@ -7,6 +7,18 @@ void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
   command.add_option("--thickness-cells", o.thickness_cells, "closed thin body thickness [cells]")
       ->capture_default_str();
   command
+      .add_option("--surface", o.surface,
+                  "how the flow sees the fin: closed (closed thin body, ghost cells) or sheet (zero-thickness "
+                  "mid-surface, docs/studies/thin_surface.md)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"closed", "sheet"}));
+  command.add_option("--kernel", o.flow.kernel, "sheet: regularized delta kernel (roma3, peskin4, smooth3, smooth4)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"roma3", "peskin4", "smooth3", "smooth4"}));
+  command.add_option("--marker-spacing", o.flow.marker_spacing, "sheet: marker spacing in core cell widths")
+      ->capture_default_str()
+      ->check(CLI::Range(0.25, 4.0));
+  command
       .add_option("--ramp-periods", o.ramp_periods,
                   "--motion: periods of the root's ramp from rest before its first frame")
       ->capture_default_str();

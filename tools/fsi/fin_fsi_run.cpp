@@ -305,6 +305,7 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
                 {"chord_m", c},
                 {"cells_per_chord", c / h},
                 {"thickness_cells", o.thickness_cells},
+                {"surface", o.surface},
                 {"core_margin", fo.core_margin},
                 {"wake", fo.wake},
                 {"domain", {fo.upstream, fo.downstream, fo.lateral, fo.spanwise}},
@@ -362,9 +363,16 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
   fem::CoupledStructure structure(model, so, wet);
   structure.save();
   SurfaceFlowStructureStep step(flow, structure, body, mid, X0, fo.rho, dt, Eigen::Vector3d::Zero(), c);
-  const Eigen::Matrix3Xd zero = Eigen::Matrix3Xd::Zero(3, nv);
+  if (o.surface != "closed" && o.surface != "sheet")
+    throw Error("--surface: '" + o.surface + "', expected closed or sheet");
+  std::optional<cfd::SheetForcingOptions> sheet;
+  if (o.surface == "sheet") {
+    sheet.emplace();
+    sheet->kernel = cfd::delta_kernel_from_name(fo.kernel);
+    sheet->spacing = fo.marker_spacing;
+  }
   try {
-    flow.immerse_deforming(step.body_state(X0, zero, zero));
+    step.immerse(X0, sheet);
     flow.initialise([U](double, double, double, double) { return std::array<double, 3>{U, 0, 0}; }, {}, t_start);
   } catch (const std::exception& e) {
     throw Error("fin fsi: setting up the body in the " + std::to_string(grid.nx()) + " x " + std::to_string(grid.ny()) +

@@ -39,6 +39,10 @@ namespace finverse::fsi {
 struct FinFsiOptions {
   cfd::io::FinFlowOptions flow;   // cells_per_chord 0: c / 16; output_interval 0: see above
   double thickness_cells = 2;     // closed thin body thickness [h]
+  // How the flow sees the fin: "closed" (the closed thin body, ghost cells) or "sheet" (the
+  // mid-surface as a zero-thickness sheet with flow.kernel and flow.marker_spacing;
+  // docs/studies/thin_surface.md).
+  std::string surface = "closed";
   double ramp_periods = 1;        // tracked motion only (the drive has its own)
   double ramp_time = 0;           // [s]; > 0: the tracked motion's ramp instead of ramp_periods T
   std::string acceleration = "iqn-ils";

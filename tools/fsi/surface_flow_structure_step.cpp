@@ -53,6 +53,31 @@ SurfaceLoadTransfer transfer_surface_loads(const cfd::ThinBody& body, const cfd:
   return t;
 }
 
+SurfaceLoadTransfer transfer_sheet_loads(const cfd::FlowSolver& flow, double rho, const Eigen::Matrix3Xd& nodes,
+                                         const Eigen::Vector3d& centre) {
+  const cfd::SheetMarkers* m = flow.sheet();
+  if (!m) throw Error("fsi: the flow has no sheet");
+  if (static_cast<std::size_t>(nodes.cols()) != m->topology().nodes)
+    throw Error("fsi: " + std::to_string(nodes.cols()) + " mid-surface positions for a sheet of " +
+                std::to_string(m->topology().nodes) + " nodes");
+  const cfd::SheetLoads L = flow.sheet_loads(rho);
+  SurfaceLoadTransfer t;
+  t.loads.resize(3, nodes.cols());
+  for (Eigen::Index k = 0; k < nodes.cols(); ++k) {
+    const auto& fk = L.nodal[static_cast<std::size_t>(k)];
+    t.loads.col(k) = Eigen::Vector3d(fk[0], fk[1], fk[2]);
+    t.node_force += t.loads.col(k);
+    t.node_moment += (nodes.col(k) - centre).cross(t.loads.col(k));
+  }
+  const std::vector<cfd::Vec3> X = m->at_markers(columns(nodes));
+  for (std::size_t q = 0; q < X.size(); ++q) {
+    const Eigen::Vector3d F(L.marker[q][0], L.marker[q][1], L.marker[q][2]);
+    t.flow_force += F;
+    t.flow_moment += (Eigen::Vector3d(X[q][0], X[q][1], X[q][2]) - centre).cross(F);
+  }
+  return t;
+}
+
 SurfaceFlowStructureStep::SurfaceFlowStructureStep(cfd::FlowSolver& flow, fem::CoupledStructure& structure,
                                                    const cfd::ThinBody& body, std::vector<std::array<int, 3>> mid,
                                                    Eigen::Matrix3Xd wet_reference, double rho, double dt,
@@ -67,6 +92,27 @@ SurfaceFlowStructureStep::SurfaceFlowStructureStep(cfd::FlowSolver& flow, fem::C
   if (!(dt > 0) || !(length > 0)) throw Error("fsi: the coupling time step and the length scale must be > 0");
   velocity_start_ = Eigen::Matrix3Xd::Zero(3, n);
   loads_ = Eigen::Matrix3Xd::Zero(3, n);
+}
+
+void SurfaceFlowStructureStep::immerse(const Eigen::Matrix3Xd& x0,
+                                       const std::optional<cfd::SheetForcingOptions>& sheet) {
+  const Eigen::Matrix3Xd zero = Eigen::Matrix3Xd::Zero(3, x0.cols());
+  if (sheet)
+    flow_.immerse_sheet(cfd::SheetTopology{3, static_cast<std::size_t>(body_.node_count), mid_}, columns(x0), *sheet);
+  else
+    flow_.immerse_deforming(body_state(x0, zero, zero));
+}
+
+void SurfaceFlowStructureStep::place(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, const Eigen::Matrix3Xd& a) {
+  if (flow_.sheet())
+    flow_.set_sheet_state(cfd::SheetState{columns(x), columns(v)});
+  else
+    flow_.set_body_state(body_state(x, v, a));
+}
+
+SurfaceLoadTransfer SurfaceFlowStructureStep::transfer(const Eigen::Matrix3Xd& x) const {
+  return flow_.sheet() ? transfer_sheet_loads(flow_, rho_, x, centre_)
+                       : transfer_surface_loads(body_, flow_.surface_forces(rho_), x, centre_);
 }
 
 InterfaceLayout SurfaceFlowStructureStep::layout() const {
@@ -108,12 +154,12 @@ Eigen::VectorXd SurfaceFlowStructureStep::evaluate(const Eigen::VectorXd& x) {
   const Eigen::Matrix3Xd acceleration = (V - velocity_start_) / dt_;
   double t_new = 0;
   try {
-    flow_.set_body_state(body_state(position, V, acceleration));
+    place(position, V, acceleration);
     t_new = flow_.step().time;
   } catch (const std::exception& e) {
     throw Error(where() + ": flow: " + e.what());
   }
-  const SurfaceLoadTransfer tr = transfer_surface_loads(body_, flow_.surface_forces(rho_), position, centre_);
+  const SurfaceLoadTransfer tr = transfer(position);
   loads_ = tr.loads;
   step_mismatch_ = std::max(step_mismatch_, tr.mismatch(length_));
 

@@ -7,14 +7,17 @@
 // any point: cfd/forces/nodal_loads.hpp), advances the structure and returns its wet [X; V].
 // Generic: driven nodes (a pitching leading edge, a fin's root) follow their prescribed motion
 // inside the structure model; this step only exchanges the wet surface.
+// The flow sees either the closed thin body around the mid-surface (ghost cells) or the mid-surface
+// itself as a zero-thickness sheet (FlowSolver::immerse_sheet; docs/studies/thin_surface.md),
+// chosen by immerse(); with the sheet the markers' forces return to the nodes directly.
 #pragma once
-
-#include <array>
-#include <string>
-#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "cfd/flow/flow_solver.hpp"
 #include "cfd/immersed/thin_body.hpp"
@@ -45,11 +48,15 @@ struct SurfaceLoadTransfer {
 // forces: per body triangle; nodes: 3 x node_count mid-surface positions at the same instant.
 SurfaceLoadTransfer transfer_surface_loads(const cfd::ThinBody& body, const cfd::SurfaceForces& forces,
                                            const Eigen::Matrix3Xd& nodes, const Eigen::Vector3d& centre);
+// The same for the flow's zero-thickness sheet: its last step's forces, the flow side's moment
+// from the markers' forces at the markers.
+SurfaceLoadTransfer transfer_sheet_loads(const cfd::FlowSolver& flow, double rho, const Eigen::Matrix3Xd& nodes,
+                                         const Eigen::Vector3d& centre);
 
 class SurfaceFlowStructureStep final : public CoupledStep {
  public:
-  // flow: set up, with immerse_deforming(place_thin_body(body, reference)) and initialise() done,
-  // fixed time step dt; structure: dim 3, its wet nodes are the mid-surface nodes 0..n-1 in order
+  // flow: set up with a fixed time step dt; immerse() then places the body in it (before the
+  // flow's initialise()); structure: dim 3, its wet nodes are the mid-surface nodes 0..n-1 in order
   // (n = body.node_count), time_step dt; mid: the mid-surface triangles; wet_reference: 3 x n;
   // rho: fluid density (the flow's pressure is kinematic); length: the moment mismatch's scale.
   // All referenced objects must outlive this one. Throws finverse::Error on mismatched sizes.
@@ -62,6 +69,14 @@ class SurfaceFlowStructureStep final : public CoupledStep {
   void restore() override;
   [[nodiscard]] Eigen::VectorXd evaluate(const Eigen::VectorXd& interface_motion) override;
   void accept(const Eigen::VectorXd& x_in, const Eigen::VectorXd& x_out) override;
+
+  // The body at the mid-surface positions x0 in the flow: the closed thin body, or with `sheet`
+  // the mid-surface as a zero-thickness sheet with those options.
+  void immerse(const Eigen::Matrix3Xd& x0, const std::optional<cfd::SheetForcingOptions>& sheet = std::nullopt);
+  // The body's state at the flow's next time level (positions, velocities, accelerations 3 x n).
+  void place(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, const Eigen::Matrix3Xd& a);
+  // The loads of the flow's last step on the nodes at positions x.
+  [[nodiscard]] SurfaceLoadTransfer transfer(const Eigen::Matrix3Xd& x) const;
 
   [[nodiscard]] InterfaceLayout layout() const;
   [[nodiscard]] const std::vector<SurfaceStepRecord>& records() const { return records_; }

@@ -3,6 +3,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <numbers>
@@ -101,8 +103,32 @@ FlowBcType side_type(const Reader& r, const YAML::Node& n, const std::string& ke
   return it->second;
 }
 
+// A flat plate's triangles (the flow case's `shape: plate`): `cells` elements along the chord and
+// as many along the span as keep them about square, each split in two.
+TriangulatedSurface flat_plate(std::array<double, 3> le, double chord, double span, double incidence_deg, int cells) {
+  if (!(chord > 0 && span > 0 && std::isfinite(incidence_deg)))
+    throw Error("plate: chord and span must be > 0, incidence finite");
+  const double a = incidence_deg * std::numbers::pi / 180;
+  const int nz = std::max(1, static_cast<int>(std::lround(cells * span / chord)));
+  TriangulatedSurface s;
+  for (int k = 0; k <= nz; ++k)
+    for (int i = 0; i <= cells; ++i) {
+      const double x = chord * i / cells, z = span * (static_cast<double>(k) / nz - 0.5);
+      s.points.push_back({le[0] + x * std::cos(a), le[1] - x * std::sin(a), le[2] + z});
+    }
+  const auto node = [&](int i, int k) { return k * (cells + 1) + i; };
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < cells; ++i) {
+      s.triangles.push_back({node(i, k), node(i + 1, k), node(i + 1, k + 1)});
+      s.triangles.push_back({node(i, k), node(i + 1, k + 1), node(i, k + 1)});
+    }
+  return s;
+}
+
 CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
-  r.only(n, at, {"name", "surface", "shape", "centre", "radius", "subdivisions", "lo", "hi", "scale", "translate"});
+  r.only(n, at,
+         {"name", "surface", "shape", "centre", "radius", "subdivisions", "lo", "hi", "scale", "translate",
+          "leading_edge", "chord", "span", "incidence", "cells"});
   CaseBody b;
   b.name = n["name"] ? r.scalar<std::string>(n["name"], at + ".name", "a name") : "body";
   if (n["surface"] && n["shape"]) r.fail(n, at, "give either surface: (a file) or shape:, not both");
@@ -122,8 +148,20 @@ CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
       if (!n["lo"] || !n["hi"]) r.fail(n, at, "a box needs lo: and hi:");
       b.surface = box_surface(r.numbers<3>(n["lo"], at + ".lo"), r.numbers<3>(n["hi"], at + ".hi"));
       b.source = "box";
+    } else if (shape == "plate") {
+      // A flat plate as a zero-thickness sheet: chord along x turned nose-up by `incidence`
+      // [degrees] about z through the leading edge's midpoint, span along z.
+      for (const char* k : {"leading_edge", "chord", "span", "incidence"})
+        if (!n[k])
+          r.fail(n, at, std::string("a plate needs leading_edge:, chord:, span:, incidence: (missing ") + k + ")");
+      const int cells = n["cells"] ? r.scalar<int>(n["cells"], at + ".cells", "an integer") : 16;
+      if (cells < 1 || cells > 4096) r.fail(n["cells"], at + ".cells", "expected 1..4096 elements along the chord");
+      b.surface = flat_plate(r.numbers<3>(n["leading_edge"], at + ".leading_edge"), r.number(n["chord"], at + ".chord"),
+                             r.number(n["span"], at + ".span"), r.number(n["incidence"], at + ".incidence"), cells);
+      b.sheet = true;
+      b.source = "flat plate (sheet)";
     } else {
-      r.fail(n["shape"], at + ".shape", "'" + shape + "', expected sphere or box");
+      r.fail(n["shape"], at + ".shape", "'" + shape + "', expected sphere, box or plate");
     }
   } else {
     r.fail(n, at, "expected surface: (a .stl, .obj, .vtp or mesh .h5 file) or shape:");
@@ -275,7 +313,17 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
   if (t["cfl"]) s.cfl = r.number(t["cfl"], "time.cfl");
   if (t["dt_max"]) s.dt_max = r.number(t["dt_max"], "time.dt_max");
   if (const YAML::Node sv = root["solver"]) {
-    r.only(sv, "solver", {"helmholtz_rtol", "poisson_rtol", "wall_momentum_balance", "cut_cells"});
+    r.only(sv, "solver",
+           {"helmholtz_rtol", "poisson_rtol", "wall_momentum_balance", "cut_cells", "kernel", "marker_spacing"});
+    if (sv["kernel"]) {
+      const std::string k = r.scalar<std::string>(sv["kernel"], "solver.kernel", "roma3, peskin4, smooth3 or smooth4");
+      try {
+        s.sheet.kernel = delta_kernel_from_name(k);
+      } catch (const Error&) {
+        r.fail(sv["kernel"], "solver.kernel", "'" + k + "', expected roma3, peskin4, smooth3 or smooth4");
+      }
+    }
+    if (sv["marker_spacing"]) s.sheet.spacing = r.number(sv["marker_spacing"], "solver.marker_spacing");
     if (sv["cut_cells"]) s.cut_cells = r.scalar<bool>(sv["cut_cells"], "solver.cut_cells", "true or false");
     if (sv["helmholtz_rtol"]) s.helmholtz_rtol = r.number(sv["helmholtz_rtol"], "solver.helmholtz_rtol");
     if (sv["poisson_rtol"]) s.poisson_rtol = r.number(sv["poisson_rtol"], "solver.poisson_rtol");
@@ -284,7 +332,23 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
           r.scalar<bool>(sv["wall_momentum_balance"], "solver.wall_momentum_balance", "true or false");
   }
   if (const YAML::Node o = root["outputs"]) {
-    r.only(o, "outputs", {"force_every", "reference_speed", "reference_area", "control_volume"});
+    r.only(o, "outputs", {"force_every", "reference_speed", "reference_area", "control_volume", "grade"});
+    if (const YAML::Node g = o["grade"]) {
+      if (!g.IsSequence()) r.fail(g, "outputs.grade", "expected a list of {metric, reference, tolerance, source}");
+      for (std::size_t i = 0; i < g.size(); ++i) {
+        const std::string at = "outputs.grade[" + std::to_string(i) + "]";
+        r.only(g[i], at, {"metric", "reference", "tolerance", "source"});
+        for (const char* k : {"metric", "reference", "tolerance"})
+          if (!g[i][k]) r.fail(g[i], at, std::string("missing ") + k);
+        FlowCaseSpec::Grade gr;
+        gr.metric = r.scalar<std::string>(g[i]["metric"], at + ".metric", "a metric name, e.g. plate_Cx");
+        gr.reference = r.number(g[i]["reference"], at + ".reference");
+        gr.tolerance = r.number(g[i]["tolerance"], at + ".tolerance");
+        if (!(gr.tolerance > 0)) r.fail(g[i]["tolerance"], at + ".tolerance", "expected a relative tolerance > 0");
+        if (g[i]["source"]) gr.source = r.scalar<std::string>(g[i]["source"], at + ".source", "text");
+        s.grades.push_back(gr);
+      }
+    }
     if (o["force_every"]) s.force_every = r.scalar<int>(o["force_every"], "outputs.force_every", "an integer");
     if (o["reference_speed"]) s.reference_speed = r.number(o["reference_speed"], "outputs.reference_speed");
     if (o["reference_area"]) s.reference_area = r.number(o["reference_area"], "outputs.reference_area");

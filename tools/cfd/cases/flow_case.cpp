@@ -114,6 +114,45 @@ FlowCaseResult run_plane(const FlowCaseSpec& s, const StretchedGrid& grid, FlowS
   return r;
 }
 
+// Zero-thickness sheets, fixed: the forces of the markers on each body's triangles.
+FlowCaseResult run_sheets(const FlowCaseSpec& s, const StretchedGrid& grid, FlowSolver& solver,
+                          const TriangulatedSurface& all, const std::vector<std::size_t>& first,
+                          const std::function<void(const StepStats&, double)>& progress,
+                          std::chrono::steady_clock::time_point t0) {
+  if (s.control_volume) throw Error(s.name + ": outputs.control_volume: not available with sheet bodies");
+  std::vector<Vec3> rest(all.points.begin(), all.points.end());
+  solver.immerse_sheet(SheetTopology{3, rest.size(), all.triangles}, rest, s.sheet, [rest](double) {
+    return SheetState{rest, {}};
+  });
+  const auto u0 = s.initial_velocity;
+  solver.initialise([u0](double, double, double, double) { return u0; });
+  FlowCaseResult r;
+  r.cells = {grid.nx(), grid.ny(), grid.nz()};
+  r.triangles = static_cast<long>(all.triangles.size());
+  r.surface_samples = static_cast<long>(solver.sheet()->size());
+  const double U = s.reference_speed;
+  const double scale = 2 / (U * U * s.reference_area);
+  march(solver, s, r, progress, [&](double t) {
+    const SheetLoads L = solver.sheet_loads(s.rho);
+    std::vector<std::array<double, 3>> bodies(first.size() - 1, {0, 0, 0});
+    for (std::size_t m = 0; m < L.marker.size(); ++m) {
+      const auto e = static_cast<std::size_t>(solver.sheet()->element(m));
+      const std::size_t b =
+          static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), e) - first.begin()) - 1;
+      for (int c = 0; c < 3; ++c) bodies[b][c] += L.marker[m][c];
+    }
+    r.time.push_back(t);
+    r.force.push_back(bodies);
+    // A sheet's force is the jump across it: pressure and shear are not told apart.
+    r.pressure.push_back(bodies);
+    r.viscous.push_back(std::vector<std::array<double, 3>>(bodies.size(), {0, 0, 0}));
+    return scale * bodies[0][0] / s.rho;
+  });
+  std::vector<ControlVolumeSample> none;
+  finish(s, none, r, t0);
+  return r;
+}
+
 }  // namespace
 
 StretchedGrid flow_case_grid(const FlowCaseSpec& s) {
@@ -161,6 +200,11 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
   solver.setup(grid, b, opt);
   std::vector<std::size_t> first;
   const TriangulatedSurface body = merged(s.bodies, first);
+  const std::size_t sheets = static_cast<std::size_t>(
+      std::count_if(s.bodies.begin(), s.bodies.end(), [](const CaseBody& c) { return c.sheet; }));
+  if (sheets > 0 && sheets < s.bodies.size())
+    throw Error(s.name + ": bodies: every body is a sheet or none is (closed bodies and sheets cannot be mixed yet)");
+  if (sheets > 0) return run_sheets(s, grid, solver, body, first, progress, t0);
   solver.immerse(body);
   const auto u0 = s.initial_velocity;
   solver.initialise([u0](double, double, double, double) { return u0; });

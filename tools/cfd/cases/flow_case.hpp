@@ -5,7 +5,8 @@
 // body, surface_file.hpp; 2-D: one polygon, given by its vertices, a two-column file or as a
 // circle), the time span, and what to record: the force on each body and its
 // coefficients C = F / (1/2 rho U^2 A) from the surface traction (DESIGN.md 5.1), and optionally
-// the independent control-volume force. The sphere at Re 100 of the validation set is such a case
+// the independent control-volume force. 3-D bodies may instead be zero-thickness sheets (a
+// built-in flat plate), forced with regularized kernels. The sphere at Re 100 of the validation set is such a case
 // (data/cases/cfd/sphere_re100_stl.yaml gives it as an STL file).
 #pragma once
 
@@ -29,7 +30,11 @@ struct SideCondition {
 
 struct CaseBody {
   std::string name;
-  TriangulatedSurface surface;                 // 3-D: closed, outward-oriented, in the domain's coordinates [m]
+  // 3-D: closed, outward-oriented, in the domain's coordinates [m]; a sheet: open, any orientation.
+  TriangulatedSurface surface;
+  // A zero-thickness surface (FlowSolver::immerse_sheet; docs/studies/thin_surface.md) instead of a
+  // closed body: every body of a case is a sheet or none is.
+  bool sheet = false;
   std::vector<std::array<double, 2>> outline;  // 2-D: the body's outline, a simple polygon [m]
   std::string source;                          // where it came from (file name or built-in shape), for the record
 };
@@ -56,6 +61,15 @@ struct FlowCaseSpec {
   double reference_speed = 1;          // U of the coefficients [m/s]
   double reference_area = 1;           // A of the coefficients [m^2]; 2-D: a length [m]
   bool control_volume = false;         // also the control-volume force (all bodies together)
+  SheetForcingOptions sheet;           // the sheet bodies' kernel and markers
+  // Coefficients graded against a reference (outputs.grade): the summary's metric name (e.g.
+  // plate_Cx), the reference value, the relative tolerance and where the value comes from.
+  struct Grade {
+    std::string metric;
+    double reference = 0, tolerance = 0;
+    std::string source;
+  };
+  std::vector<Grade> grades;
   std::array<double, 6> control_volume_box{};
 };
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/atomic_file.hpp"
+#include "core/error.hpp"
 
 namespace finverse::cfd::cases {
 
@@ -40,15 +41,27 @@ Summary flow_case_summary(const FlowCaseSpec& s, const FlowCaseResult& r) {
   Summary sum("validation", s.name,
               s.description.empty() ? "fin-cfd run: a flow case from a case file" : s.description);
   const double scale = coefficient_scale(s);
+  // A coefficient named in outputs.grade is graded against its reference, the others reported.
+  std::size_t graded = 0;
+  const auto coefficient = [&](const std::string& name, double value) {
+    for (const auto& g : s.grades)
+      if (g.metric == name) {
+        ++graded;
+        return sum.relative(name, value, g.reference, g.tolerance, g.source);
+      }
+    return sum.info(name, value);
+  };
   for (std::size_t b = 0; b < s.bodies.size(); ++b) {
     const auto& f = r.force.back()[b];
     const auto& p = r.pressure.back()[b];
     for (int c = 0; c < 3; ++c) {
-      sum.info(s.bodies[b].name + "_C" + kAxis[c], scale * f[c]);
+      coefficient(s.bodies[b].name + "_C" + kAxis[c], scale * f[c]);
       sum.info(s.bodies[b].name + "_C" + kAxis[c] + "_pressure", scale * p[c]);
       sum.info(s.bodies[b].name + "_F" + kAxis[c], f[c], s.dim == 2 ? "N/m" : "N");
     }
   }
+  if (graded != s.grades.size())
+    throw Error(s.name + ": outputs.grade names a metric that is not a body's coefficient (<body>_Cx, _Cy, _Cz)");
   if (!r.control_volume_force.empty())
     for (int c = 0; c < 3; ++c)
       sum.info(std::string("C") + kAxis[c] + "_control_volume", scale * r.control_volume_force.back()[c]);

@@ -268,6 +268,10 @@ void FlowSolver::initialise(const VelocityFunction& velocity, const std::functio
     conv_old_[static_cast<std::size_t>(c)].fill(0.0);
     copy_interior(u_[static_cast<std::size_t>(c)], ustar_[static_cast<std::size_t>(c)]);
   }
+  // A sheet: the initial field takes the sheet's velocity at its markers before the projection,
+  // as a closed body's initial field goes around it (not a load: an impulsive start's first step
+  // would otherwise stop the stream at the sheet within one step).
+  if (sheet_) force_initial_sheet(t0);
   double norm = norm2(p_);
   for (int c = 0; c < dim(); ++c) norm += norm2(u_[static_cast<std::size_t>(c)]);
   if (!std::isfinite(norm)) throw Error("flow solver: the initial velocity or pressure is not finite");

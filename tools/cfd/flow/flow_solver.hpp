@@ -415,6 +415,7 @@ class FlowSolver {
   // Zero-thickness sheet (sheet_step.cpp): forcing after the momentum predictor.
   void force_sheet(double dt, SheetState next);
   void add_sheet_impulse(double dt);
+  void force_initial_sheet(double t0);
   std::vector<Vec3> sheet_marker_position_;
   std::optional<RegularizedStencils> sheet_stencils_;  // of the last placement
   std::vector<Vec3> sheet_marker_velocity_;

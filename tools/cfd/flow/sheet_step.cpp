@@ -83,6 +83,23 @@ void FlowSolver::force_sheet(double dt, SheetState next) {
   add_sheet_impulse(dt);
 }
 
+// The initial field (in ustar_, before initialise()'s projection) forced to the sheet's velocity
+// at t0, with a unit step; the impulses are not kept as loads.
+void FlowSolver::force_initial_sheet(double t0) {
+  const std::string what = "flow solver: initial sheet at t = " + num(t0);
+  const std::vector<Vec3> X = sheet_->at_markers(sheet_state_.position);
+  sheet_marker_velocity_ = sheet_state_.velocity.empty() ? std::vector<Vec3>(X.size(), Vec3{0, 0, 0})
+                                                         : sheet_->at_markers(sheet_state_.velocity);
+  sheet_stencils_.emplace(grid_,
+                          std::array<bool, 3>{bnd_.periodic(0), bnd_.periodic(1), dim() == 3 && bnd_.periodic(2)}, X,
+                          sheet_opt_.kernel, what);
+  sheet_impulse_.assign(X.size(), Vec3{0, 0, 0});
+  add_sheet_impulse(1.0);
+  for (int c = 0; c < dim(); ++c) copy_interior(ustar_[static_cast<std::size_t>(c)], u_[static_cast<std::size_t>(c)]);
+  sheet_impulse_.assign(X.size(), Vec3{0, 0, 0});
+  sheet_stats_ = {};
+}
+
 // One forcing pass on ustar_: the impulses that bring u* to the sheet's velocity at every marker,
 // added to the step's impulses so far.
 void FlowSolver::add_sheet_impulse(double dt) {

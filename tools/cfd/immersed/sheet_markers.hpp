@@ -3,17 +3,17 @@
 // the sheet only through its markers (sheet_forcing.hpp): each marker gets the surface velocity,
 // the flow returns a force on it, and the markers' forces go back to the sheet's nodes.
 //
-// The markers are fixed in material coordinates, chosen once on the rest state: every element is
-// divided regularly into pieces no longer than spacing / 2 (candidate points at the vertices of
-// the subdivision, the nodes and edge points first), and the candidates are thinned greedily so
-// that no two markers are closer than `spacing` (every candidate then lies within `spacing` of a
-// marker, so the sheet is covered without gaps wider than about two spacings, and no two markers
-// are so close that their kernels cannot be told apart, which would make the marker system
-// singular; the kept set does not depend on how finely the structural mesh is cut). Marker
-// positions and velocities are the linear (barycentric) interpolation of the node values of the
-// marker's element, so they are smooth in the nodes' motion however the sheet deforms, and a
-// marker's force is returned to the nodes with the same weights (the transpose), which conserves
-// the total force and moment.
+// The markers are fixed in material coordinates, chosen once on the rest state. Every element is
+// divided regularly into pieces no longer than spacing / 2. The vertices of the subdivision (the
+// nodes and edge points first) are thinned greedily so that no two seeds are closer than
+// `spacing`: markers closer than their kernels can tell apart would make the marker system
+// singular, and the kept set does not depend on how finely the structural mesh is cut. Each
+// marker then stands for a patch of the sheet: the pieces' centroids (every element has at least
+// one) nearest to its seed. Its position and velocity are the area-weighted mean of the sheet's
+// (linear, barycentric) node values over the patch, so they are smooth in the nodes' motion
+// however the sheet deforms. Its force returns to the nodes with the same weights (the
+// transpose), spread over every node of its patch, so a structural mesh finer than the markers
+// gets a smooth load (no node loaded, its neighbour not), and the total force and moment are kept.
 #pragma once
 
 #include <array>
@@ -52,17 +52,20 @@ struct SheetLoads {
 class SheetMarkers {
  public:
   SheetMarkers() = default;
-  // Markers on `rest` (the nodes' rest positions) no closer than `spacing`. Throws a one-line
+  // Markers on `rest` (the nodes' rest positions), seeds no closer than `spacing`. Throws a one-line
   // finverse::Error naming `what` and the element for a node index out of range or a degenerate
   // element (length or area below 1e-12 of the sheet's extent).
   SheetMarkers(const SheetTopology& topology, const std::vector<Vec3>& rest, double spacing, const std::string& what);
 
   std::size_t size() const { return element_.size(); }
   const SheetTopology& topology() const { return topo_; }
+  // The element that holds the marker's seed.
   int element(std::size_t m) const { return element_[m]; }
-  // Per marker, node value -> marker value: sum_q weight[q] * value[node[q]] (q < dim).
-  const std::array<int, 3>& nodes(std::size_t m) const { return node_[m]; }
-  const std::array<double, 3>& weights(std::size_t m) const { return bary_[m]; }
+  // Per marker, node value -> marker value: sum over its entries e of weight[e] * value[node[e]].
+  std::size_t entries_begin(std::size_t m) const { return start_[m]; }
+  std::size_t entries_end(std::size_t m) const { return start_[m + 1]; }
+  int entry_node(std::size_t e) const { return node_[e]; }
+  double entry_weight(std::size_t e) const { return weight_[e]; }
   double spacing() const { return spacing_; }
 
   // Node values (positions, velocities) interpolated to the markers.
@@ -80,8 +83,9 @@ class SheetMarkers {
   SheetTopology topo_;
   double spacing_ = 0;
   std::vector<int> element_;
-  std::vector<std::array<int, 3>> node_;
-  std::vector<std::array<double, 3>> bary_;
+  std::vector<std::size_t> start_;  // entries of marker m: [start_[m], start_[m + 1])
+  std::vector<int> node_;
+  std::vector<double> weight_;
 };
 
 }  // namespace finverse::cfd

@@ -66,6 +66,11 @@ void add_pitching_plate_flags(CLI::App& command, PitchingPlateOptions& o) {
   command.add_option("--cells-per-chord", o.cells_per_chord, "flow grid: L / h around the plate")
       ->capture_default_str();
   command.add_option("--thickness-cells", o.thickness_cells, "closed thin body thickness [h]")->capture_default_str();
+  command
+      .add_option("--surface", o.surface,
+                  "how the flow sees the plate: closed (closed thin body) or sheet (zero-thickness mid-surface)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"closed", "sheet"}));
   command.add_option("--stretch-ratio", o.stretch_ratio, "cell-width ratio outside the uniform box")
       ->capture_default_str();
   command.add_option("--downstream", o.downstream, "domain length behind the trailing edge [L]")->capture_default_str();

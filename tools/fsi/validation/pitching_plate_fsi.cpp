@@ -197,7 +197,9 @@ PitchingPlateCaseResult run_pitching_plate_case(const PitchingPlateOptions& o, d
   fem::CoupledStructure structure(pm.model, so, wet);
   structure.save();
   SurfaceFlowStructureStep step(flow, structure, body, mid, X0, 1.0, dt, Eigen::Vector3d::Zero(), 1.0);
-  flow.immerse_deforming(step.body_state(X0, zero, zero));
+  std::optional<cfd::SheetForcingOptions> sheet;
+  if (o.surface == "sheet") sheet.emplace();
+  step.immerse(X0, sheet);
   flow.initialise([](double, double, double, double) { return std::array<double, 3>{1, 0, 0}; });
 
   CouplingOptions co;
@@ -219,12 +221,12 @@ PitchingPlateCaseResult run_pitching_plate_case(const PitchingPlateOptions& o, d
     double residual = 0;
     if (rigid) {
       try {
-        flow.set_body_state(step.body_state(x, v, a));
+        step.place(x, v, a);
         flow.step();
       } catch (const std::exception& e) {
         throw Error("pitching plate (" + tag + "), step " + std::to_string(s) + ": flow: " + e.what());
       }
-      const SurfaceLoadTransfer tr = transfer_surface_loads(body, flow.surface_forces(1.0), x, Eigen::Vector3d::Zero());
+      const SurfaceLoadTransfer tr = step.transfer(x);
       res.transfer_mismatch = std::max(res.transfer_mismatch, tr.mismatch(1.0));
       fx.push_back(tr.flow_force.x());
       fy.push_back(tr.flow_force.y());
@@ -362,6 +364,7 @@ PitchingPlateRun run_pitching_plate(const PitchingPlateOptions& o) {
                     {"shell_grid", {o.nx, o.nz}},
                     {"cells_per_chord", o.cells_per_chord},
                     {"thin_body_thickness", o.thickness_cells / o.cells_per_chord},
+                    {"surface", o.surface},
                     {"stretch_ratio", o.stretch_ratio},
                     {"domain", {-o.upstream, 1 + o.downstream, o.half_height, o.half_width}},
                     {"steps_per_period", o.steps_per_period},

@@ -32,6 +32,9 @@ struct PitchingPlateOptions {
   // Plate in the x-z plane: x in [0, L], z in [-W/2, W/2]. Flow grid: uniform h = L / cells_per_chord around the plate's path, stretched outside.
   int cells_per_chord = 16;
   double thickness_cells = 2;          // closed thin body thickness [h]
+  // "closed" (the closed thin body, ghost cells) or "sheet" (the zero-thickness mid-surface with
+  // the default kernel and markers; docs/studies/thin_surface.md).
+  std::string surface = "closed";
   double stretch_ratio = 1.15;
   double upstream = 2, downstream = 5, half_height = 2, half_width = 2;  // domain [L]
   double box_half_height = 0.45;       // uniform box |y| <= this [L]
