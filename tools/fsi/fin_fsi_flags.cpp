@@ -12,6 +12,10 @@ void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
                   "mid-surface, docs/studies/thin_surface.md)")
       ->capture_default_str()
       ->check(CLI::IsMember({"closed", "sheet"}));
+  command
+      .add_option("--stream-ramp-periods", o.stream_ramp_periods,
+                  "the stream starts from rest and ramps up over this many periods (0: impulsive start)")
+      ->capture_default_str();
   command.add_option("--kernel", o.flow.kernel, "sheet: regularized delta kernel (roma3, peskin4, smooth3, smooth4)")
       ->capture_default_str()
       ->check(CLI::IsMember({"roma3", "peskin4", "smooth3", "smooth4"}));

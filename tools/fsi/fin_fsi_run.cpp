@@ -306,6 +306,7 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
                 {"cells_per_chord", c / h},
                 {"thickness_cells", o.thickness_cells},
                 {"surface", o.surface},
+                {"stream_ramp_periods", o.stream_ramp_periods},
                 {"core_margin", fo.core_margin},
                 {"wake", fo.wake},
                 {"domain", {fo.upstream, fo.downstream, fo.lateral, fo.spanwise}},
@@ -335,6 +336,12 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
   cfd::FlowBoundary b;
   b[cfd::Side::XLo].type = cfd::FlowBcType::Inlet;
   b[cfd::Side::XLo].speed = U;
+  if (!(o.stream_ramp_periods >= 0)) throw Error("--stream-ramp-periods: expected >= 0");
+  if (o.stream_ramp_periods > 0) {
+    if (std::abs(t_start) > 1e-12 * T)
+      throw Error("--stream-ramp-periods: the run starts at t = " + num(t_start) + " s; the ramp needs t = 0");
+    b[cfd::Side::XLo].ramp_time = o.stream_ramp_periods * T;
+  }
   b[cfd::Side::XHi].type = cfd::FlowBcType::ConvectiveOutlet;
   for (cfd::Side s : {cfd::Side::YLo, cfd::Side::YHi, cfd::Side::ZLo, cfd::Side::ZHi}) b[s].type = cfd::FlowBcType::Slip;
   cfd::FlowOptions fopt;
@@ -373,7 +380,8 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
   }
   try {
     step.immerse(X0, sheet);
-    flow.initialise([U](double, double, double, double) { return std::array<double, 3>{U, 0, 0}; }, {}, t_start);
+    const double U0 = o.stream_ramp_periods > 0 ? 0.0 : U;  // a ramped stream starts from rest
+    flow.initialise([U0](double, double, double, double) { return std::array<double, 3>{U0, 0, 0}; }, {}, t_start);
   } catch (const std::exception& e) {
     throw Error("fin fsi: setting up the body in the " + std::to_string(grid.nx()) + " x " + std::to_string(grid.ny()) +
                 " x " + std::to_string(grid.nz()) + " grid: " + e.what());

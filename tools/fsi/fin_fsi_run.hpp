@@ -43,6 +43,11 @@ struct FinFsiOptions {
   // mid-surface as a zero-thickness sheet with flow.kernel and flow.marker_spacing;
   // docs/studies/thin_surface.md).
   std::string surface = "closed";
+  // > 0: the stream starts from rest and its inflow ramps up as (1 - cos(pi t / ramp)) / 2 over
+  // this many periods T (the flow's time 0 must be the run's start); 0: an impulsive start. A
+  // sheet's impulsive start loads the fin with the momentum of the fluid in its kernel width
+  // (docs/studies/thin_surface.md).
+  double stream_ramp_periods = 0;
   double ramp_periods = 1;        // tracked motion only (the drive has its own)
   double ramp_time = 0;           // [s]; > 0: the tracked motion's ramp instead of ramp_periods T
   std::string acceleration = "iqn-ils";
