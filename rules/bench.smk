@@ -380,6 +380,28 @@ rule bench_fsi:
 # the current config: `snakemake -c2 results/bench/pipeline.json` times the default case (its loads
 # take about 50 min), `... --configfile config/cases/tiny.yaml` the tiny one; each run overwrites it
 # (parameters.case says which). Stages already built are not rerun: their files time the last run.
+# A thin body's step cost (issue 44's benchmark): the heaving/pitching plate of thin_plate_loads at
+# c/20 as a zero-thickness sheet and as the closed two-cell body, against the same grid and step
+# with no body, in one run (fin-cfd thin_surface_bench; numbers in docs/studies/thin_surface.md).
+register_bench("thin_surface", "a flow step with a thin body (sheet, closed body) against the same grid with no body")
+
+rule bench_thin_surface:
+    input:
+        exe=EXE("fin-cfd"),
+    output:
+        json="results/bench/thin_surface.json",
+    log:
+        "results/logs/bench/thin_surface.log",
+    threads: THREADS
+    resources:
+        mem_mb=1500,
+    params:
+        coarse="--coarse" if COARSE else "",
+    shell:
+        "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} {params.coarse} thin_surface_bench --out {output.json}"
+        " > {log} 2>&1 " + METRIC_MISSED_IS_A_RESULT
+
+
 register_bench("pipeline", "wall and CPU time of each pipeline stage on the case (synth to report), slowest stage named")
 
 rule bench_pipeline:

@@ -5,6 +5,7 @@
 //   fin-cfd dfg_2d2 --cells-per-diameter 32          fin-cfd <case> --help lists its options)
 //   fin-cfd fin --mesh mesh.h5 --motion motion.h5 --out loads.h5 [--reynolds 1000] ...
 //   fin-cfd thin_plate --mesh plate_mesh.h5 --motion plate_motion.h5
+//   fin-cfd thin_surface_bench --out results/bench/thin_surface.json   a thin body's step cost
 //   fin-cfd [--coarse] run data/cases/cfd/dfg_2d2.yaml [--t-end 2]     a case file (cases/case_file.hpp):
 //   fin-cfd run data/cases/cfd/sphere_re100_stl.yaml                   a validation case or a user's flow
 //
@@ -28,6 +29,7 @@
 #include "cfd/validation/cases.hpp"
 #include "cfd/validation/fin_loads_check.hpp"
 #include "cfd/validation/thin_plate_case.hpp"
+#include "cfd/validation/thin_surface_bench.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -163,6 +165,39 @@ int run_plate(const PlateArgs& a, const CLI::App& app, bool coarse) {
   return kExitOk;
 }
 
+// fin-cfd thin_surface_bench: a step of the plate as a sheet and as the closed body against the
+// same grid with no body (thin_surface_bench.hpp); results/bench/thin_surface.json.
+struct BenchArgs {
+  fs::path out;
+  double periods = 0.25;
+  int cells_per_chord = 20;
+};
+
+int run_thin_surface_bench(const BenchArgs& a, bool coarse) {
+  const auto b = val::run_thin_surface_bench(coarse ? 0.05 : a.periods, coarse ? 10 : a.cells_per_chord);
+  Summary s("bench", "thin_surface",
+            "time step of the heaving/pitching plate (thin_plate_loads, Re 100) as a zero-thickness sheet and as the "
+            "closed two-cell body against the same grid and step with no body, one run");
+  const double sheet = b.sheet_s_per_step / b.empty_s_per_step, closed = b.closed_s_per_step / b.empty_s_per_step;
+  if (coarse)
+    s.info("sheet_step_over_empty_step", sheet);
+  else
+    s.at_most("sheet_step_over_empty_step", sheet, 1.2, "issue 44 benchmark: a flow step with the fin <= 1.2x no body");
+  s.info("closed_step_over_empty_step", closed);
+  s.info("sheet_seconds_per_step", b.sheet_s_per_step, "s");
+  s.info("closed_seconds_per_step", b.closed_s_per_step, "s");
+  s.info("empty_seconds_per_step", b.empty_s_per_step, "s");
+  s.info("steps", static_cast<double>(b.steps));
+  s.info("cells", static_cast<double>(b.cells));
+  s.parameters() = {
+      {"periods", coarse ? 0.05 : a.periods}, {"cells_per_chord", coarse ? 10 : a.cells_per_chord}, {"coarse", coarse}};
+  s.set_timing(0, cli::threads_in_use());
+  s.write(a.out);
+  log::info("thin surface bench: step with the sheet " + fmt("%.3g", sheet) + "x, closed body " + fmt("%.3g", closed) +
+            "x the step with no body (" + std::to_string(b.cells) + " cells, " + std::to_string(b.steps) + " steps)");
+  return s.pass() ? kExitOk : kExitDifferent;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -190,6 +225,15 @@ int main(int argc, char** argv) {
   plate->add_option("--motion", plate_args.motion, "output motion.h5")->required();
   plate->add_option("--thickness", plate_args.thickness, "closed-body thickness / chord")->capture_default_str();
   plate->add_option("--frames", plate_args.frames, "samples per period")->capture_default_str();
+  BenchArgs bench_args;
+  auto* bench = app.add_subcommand("thin_surface_bench", "a thin body's step cost: sheet and closed body vs no body");
+  bench->add_option("--out", bench_args.out, "output JSON (results/bench/thin_surface.json)")->required();
+  bench->add_option("--periods", bench_args.periods, "plate periods timed")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 10.0));
+  bench->add_option("--cells-per-chord", bench_args.cells_per_chord, "h = c / N")
+      ->capture_default_str()
+      ->check(CLI::Range(8, 200));
   fs::path case_file;
   auto* run = app.add_subcommand("run", "a case file: a validation case or a user's flow (data/cases/cfd/README.md)");
   run->add_option("file", case_file, "the case file (YAML)")->required()->check(CLI::ExistingFile);
@@ -213,6 +257,7 @@ int main(int argc, char** argv) {
     if (*run) return cfd::cases::run_flow_case_file(case_file, options.coarse, out_dir);
     if (*fin) return run_fin(fin_args, app);
     if (*plate) return run_plate(plate_args, app, options.coarse);
+    if (*bench) return run_thin_surface_bench(bench_args, options.coarse);
     options.out_dir = out_dir;
     for (const auto& [sc, c] : subcommands)
       if (*sc) return val::run_case(*c, options);
