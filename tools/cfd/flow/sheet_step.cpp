@@ -6,21 +6,17 @@
 // usual slip of the method, which vanishes with dt at a fixed grid.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "cfd/flow/flow_solver.hpp"
 #include "core/error.hpp"
+#include "core/printf_format.hpp"
 
 namespace finverse::cfd {
 
 namespace {
 
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
+std::string num(double v) { return printf_format("%.6g", v); }
 
 // The sheet state's sizes and values: a one-line error naming t.
 void check_sheet_state(const SheetState& s, std::size_t nodes, double t) {

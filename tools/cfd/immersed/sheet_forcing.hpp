@@ -1,25 +1,9 @@
-// Direct forcing of a zero-thickness immersed surface (DESIGN.md section 5.1; the choice and its
-// measurements: docs/studies/thin_surface.md). The sheet's markers (sheet_markers.hpp) act on the
-// flow through a regularized delta kernel (delta_kernel.hpp): the velocity at marker m is the
-// interpolation I_m u = sum_i W_im u_i, and a marker impulse g_m spreads back to the cells as
-// u_i += dt W_im g_m / V_i (the same weights: the spreading is the adjoint of the interpolation in
-// the volume-weighted inner product, so momentum given to the fluid is sum_m g_m exactly).
-//
-// After the momentum predictor, the impulses are the solution of
-//
-//     M g = (U_B - I u*) / dt,      M_mn = sum_i W_im W_in / V_i,
-//
-// so the forced u* takes exactly the sheet's velocity U_B at every marker (Uhlmann 2005, J.
-// Comput. Phys. 209:448, with the marker-to-marker coupling that his single pass neglects solved
-// exactly instead of by a few multi-direct-forcing sweeps, Breugem 2012, J. Comput. Phys.
-// 231:4469; the same operator as the regularization in Taira & Colonius's IB projection method,
-// 2007, J. Comput. Phys. 225:2118, without its pressure coupling). M is symmetric positive
-// definite for markers about a cell apart and is solved by Jacobi-preconditioned CG, one solve
-// per velocity component. The force of the fluid on the sheet is -rho g_m per marker; both
-// sides of the sheet act on the same markers, so g_m is already the jump across it, the load the
-// shell needs. Every quantity is a continuous function of the markers' positions and velocities
-// (the kernels are continuous; no cell changes kind), which is what removes the force impulses of
-// the closed-body ghost-cell method (docs/studies/fin_load_noise.md).
+// Direct forcing of a zero-thickness immersed surface (DESIGN.md 5.1; Uhlmann 2005, with the
+// markers' coupling of Breugem 2012 solved exactly). After the momentum predictor the impulses g
+// solve M g = (U_B - I u*) / dt, M = I S (interpolation times its adjoint spreading), by Jacobi-PCG,
+// so u* equals the sheet's velocity at every marker and no marker volume enters. -rho g is the
+// jump across the sheet, the shell's load; all of it is continuous in the markers' positions, as
+// no cell changes kind. Why this method and its measurements: docs/studies/thin_surface.md.
 #pragma once
 
 #include <array>

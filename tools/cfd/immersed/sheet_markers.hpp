@@ -1,19 +1,9 @@
-// Lagrangian markers on a zero-thickness immersed surface (a "sheet"; DESIGN.md section 5.1): the
-// fin's mid-surface triangles in 3-D, a plate's or flag's mid-line segments in 2-D. The flow sees
-// the sheet only through its markers (sheet_forcing.hpp): each marker gets the surface velocity,
-// the flow returns a force on it, and the markers' forces go back to the sheet's nodes.
-//
-// The markers are fixed in material coordinates, chosen once on the rest state. Every element is
-// divided regularly into pieces no longer than spacing / 2. The vertices of the subdivision (the
-// nodes and edge points first) are thinned greedily so that no two seeds are closer than
-// `spacing`: markers closer than their kernels can tell apart would make the marker system
-// singular, and the kept set does not depend on how finely the structural mesh is cut. Each
-// marker then stands for a patch of the sheet: the pieces' centroids (every element has at least
-// one) nearest to its seed. Its position and velocity are the area-weighted mean of the sheet's
-// (linear, barycentric) node values over the patch, so they are smooth in the nodes' motion
-// however the sheet deforms. Its force returns to the nodes with the same weights (the
-// transpose), spread over every node of its patch, so a structural mesh finer than the markers
-// gets a smooth load (no node loaded, its neighbour not), and the total force and moment are kept.
+// Lagrangian markers on a zero-thickness surface (a sheet: triangles in 3-D, segments in 2-D).
+// Chosen once on the rest state: seeds thinned to at least `spacing` apart (closer markers make
+// the marker system singular), each standing for the patch of the sheet nearest to it. Position
+// and velocity are the patch's area-weighted mean of the nodes' values, and the marker's force
+// returns to the patch's nodes by the transpose, so force and moment are kept and a mesh finer
+// than the markers is loaded on every node. Measurements: docs/studies/thin_surface.md.
 #pragma once
 
 #include <array>
