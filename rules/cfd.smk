@@ -70,6 +70,10 @@ _CFD_CASES = {
     # closed body beside it; numbers in docs/studies/thin_surface.md.
     "sheet_towed_plate": ("plate towed through still fluid vs fixed in a stream (Re 100): zero-thickness sheet and closed body",
                           None, THREADS_2D, 300, _FORCES),
+    # Reported: a moving body as a user's case file (issue 44, deliverable 4); its mean C_x is
+    # within 1 % of the same plate through fin-cfd fin --surface sheet (docs/studies/thin_surface.md).
+    "heaving_pitching_plate": ("heaving/pitching plate as a sheet moved by its case file's motion: section (Re 100): C_T, reported",
+                               None, THREADS, 1000, _FORCES),
 }
 
 for _case, (_description, _ref, _threads, _mem_mb, _outputs) in _CFD_CASES.items():

@@ -10,6 +10,8 @@
 #include <numbers>
 #include <sstream>
 
+#include "cfd/cases/case_reader.hpp"
+#include "cfd/cases/motion_section.hpp"
 #include "cfd/cases/surface_file.hpp"
 #include "cfd/immersed/immersed_polygon.hpp"
 #include "cfd/immersed/surface_shapes.hpp"
@@ -20,46 +22,6 @@ namespace finverse::cfd::cases {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Reader {
-  fs::path file;
-  [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& what) const {
-    const int line = n.Mark().line;
-    throw Error(file.string() + (line >= 0 ? ":" + std::to_string(line + 1) : std::string()) + ": " + key + ": " +
-                what);
-  }
-  template <class T>
-  T scalar(const YAML::Node& n, const std::string& key, const char* expected) const {
-    if (!n.IsScalar()) fail(n, key, std::string("expected ") + expected);
-    try {
-      return n.as<T>();
-    } catch (const YAML::Exception&) {
-      fail(n, key, "'" + n.Scalar() + "', expected " + expected);
-    }
-  }
-  double number(const YAML::Node& n, const std::string& key) const { return scalar<double>(n, key, "a number"); }
-  template <std::size_t N>
-  std::array<double, N> numbers(const YAML::Node& n, const std::string& key) const {
-    if (!n.IsSequence() || n.size() != N) fail(n, key, "expected a list of " + std::to_string(N) + " numbers");
-    std::array<double, N> a{};
-    for (std::size_t i = 0; i < N; ++i) a[i] = number(n[i], key);
-    return a;
-  }
-  fs::path path(const YAML::Node& n, const std::string& key) const {
-    const fs::path p = scalar<std::string>(n, key, "a file name");
-    return p.is_absolute() ? p : (file.parent_path() / p).lexically_normal();
-  }
-  // Every key of `map` must be one of `known`: a misspelt key must not be silently ignored.
-  void only(const YAML::Node& map, const std::string& where, std::initializer_list<const char*> known) const {
-    if (!map.IsMap()) fail(map, where, "expected a section of keys");
-    for (const auto& kv : map) {
-      const std::string k = kv.first.as<std::string>();
-      bool ok = false;
-      for (const char* q : known) ok = ok || k == q;
-      if (!ok) fail(kv.first, where.empty() ? k : where + "." + k, "unknown key");
-    }
-  }
-};
 
 // A validation case's options: every scalar leaf as a flag, coarse: applied on request.
 void collect_flags(const Reader& r, const YAML::Node& map, const std::string& where,
@@ -128,7 +90,7 @@ TriangulatedSurface flat_plate(std::array<double, 3> le, double chord, double sp
 CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
   r.only(n, at,
          {"name", "surface", "shape", "centre", "radius", "subdivisions", "lo", "hi", "scale", "translate",
-          "leading_edge", "chord", "span", "incidence", "cells"});
+          "leading_edge", "chord", "span", "incidence", "cells", "motion"});
   CaseBody b;
   b.name = n["name"] ? r.scalar<std::string>(n["name"], at + ".name", "a name") : "body";
   if (n["surface"] && n["shape"]) r.fail(n, at, "give either surface: (a file) or shape:, not both");
@@ -169,6 +131,7 @@ CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
   if (n["scale"] || n["translate"])
     transform(b.surface, n["scale"] ? r.number(n["scale"], at + ".scale") : 1.0,
               n["translate"] ? r.numbers<3>(n["translate"], at + ".translate") : std::array<double, 3>{0, 0, 0});
+  if (n["motion"]) b.motion = motion_section(r, n["motion"], at + ".motion", 3);
   return b;
 }
 
@@ -183,10 +146,32 @@ YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
   return out;
 }
 
+// A plane flow's flat plate as a zero-thickness sheet: the mid-line from the leading edge, turned
+// nose-up by `incidence` [degrees], in `cells` segments.
+void plane_plate(const Reader& r, const YAML::Node& n, const std::string& at, CaseBody& b) {
+  for (const char* k : {"leading_edge", "chord", "incidence"})
+    if (!n[k]) r.fail(n, at, std::string("a plate needs leading_edge:, chord:, incidence: (missing ") + k + ")");
+  const auto le = r.numbers<2>(n["leading_edge"], at + ".leading_edge");
+  const double chord = r.number(n["chord"], at + ".chord");
+  const double a = r.number(n["incidence"], at + ".incidence") * std::numbers::pi / 180;
+  const int cells = n["cells"] ? r.scalar<int>(n["cells"], at + ".cells", "an integer") : 16;
+  if (cells < 1 || cells > 4096) r.fail(n["cells"], at + ".cells", "expected 1..4096 elements along the chord");
+  if (!(chord > 0) || !std::isfinite(a)) r.fail(n, at, "a plate needs chord > 0 and a finite incidence");
+  for (int k = 0; k <= cells; ++k) {
+    const double x = chord * k / cells;
+    b.surface.points.push_back({le[0] + x * std::cos(a), le[1] - x * std::sin(a), 0});
+    if (k < cells) b.surface.triangles.push_back({k, k + 1, -1});
+  }
+  b.sheet = true;
+  b.source = "flat plate (sheet)";
+}
+
 // A plane flow's body: its outline as vertices, a two-column file (x y per line, # comments), or
 // a circle (a regular polygon with its vertices on the circle).
 CaseBody plane_body(const Reader& r, const YAML::Node& n, const std::string& at) {
-  r.only(n, at, {"name", "outline", "outline_file", "shape", "centre", "radius", "vertices", "scale", "translate"});
+  r.only(n, at,
+         {"name", "outline", "outline_file", "shape", "centre", "radius", "semi_axes", "angle", "vertices", "scale",
+          "translate", "leading_edge", "chord", "incidence", "cells", "motion"});
   CaseBody b;
   b.name = n["name"] ? r.scalar<std::string>(n["name"], at + ".name", "a name") : "body";
   if (n["outline"]) {
@@ -209,20 +194,38 @@ CaseBody plane_body(const Reader& r, const YAML::Node& n, const std::string& at)
     if (b.outline.size() < 3) throw Error(p.string() + ": an outline needs at least 3 vertices");
     b.source = p.filename().string();
   } else if (n["shape"]) {
-    const std::string shape = r.scalar<std::string>(n["shape"], at + ".shape", "circle");
-    if (shape != "circle") r.fail(n["shape"], at + ".shape", "'" + shape + "', expected circle (a plane flow)");
-    if (!n["radius"] || !n["centre"]) r.fail(n, at, "a circle needs centre: and radius:");
-    const auto c = r.numbers<2>(n["centre"], at + ".centre");
-    const int vertices = n["vertices"] ? r.scalar<int>(n["vertices"], at + ".vertices", "an integer") : 256;
-    const Polygon circle = Polygon::circle(c[0], c[1], r.number(n["radius"], at + ".radius"), vertices);
-    b.outline = circle.vertices();
-    b.source = "circle, " + std::to_string(vertices) + " vertices";
+    const std::string shape = r.scalar<std::string>(n["shape"], at + ".shape", "circle, ellipse or plate");
+    if (shape == "plate") {
+      plane_plate(r, n, at, b);
+    } else if (shape == "circle" || shape == "ellipse") {
+      const bool circle = shape == "circle";
+      if (!n["centre"] || !n[circle ? "radius" : "semi_axes"])
+        r.fail(n, at, circle ? "a circle needs centre: and radius:" : "an ellipse needs centre: and semi_axes:");
+      const auto c = r.numbers<2>(n["centre"], at + ".centre");
+      const auto ab = circle ? std::array<double, 2>{r.number(n["radius"], at + ".radius"), 0.0}
+                             : r.numbers<2>(n["semi_axes"], at + ".semi_axes");
+      const int vertices = n["vertices"] ? r.scalar<int>(n["vertices"], at + ".vertices", "an integer") : 256;
+      if (vertices < 8 || vertices > 100000) r.fail(n["vertices"], at + ".vertices", "expected 8..100000 vertices");
+      if (!(ab[0] > 0) || !(circle || ab[1] > 0)) r.fail(n, at, "expected a radius or semi-axes > 0");
+      const double a = ab[0], e = circle ? ab[0] : ab[1];
+      const double tilt = n["angle"] ? r.number(n["angle"], at + ".angle") * std::numbers::pi / 180 : 0.0;
+      for (int k = 0; k < vertices; ++k) {
+        const double s = 2 * std::numbers::pi * k / vertices, x = a * std::cos(s), y = e * std::sin(s);
+        b.outline.push_back(
+            {c[0] + x * std::cos(tilt) - y * std::sin(tilt), c[1] + x * std::sin(tilt) + y * std::cos(tilt)});
+      }
+      b.source = shape + ", " + std::to_string(vertices) + " vertices";
+    } else {
+      r.fail(n["shape"], at + ".shape", "'" + shape + "', expected circle, ellipse or plate (a plane flow)");
+    }
   } else {
-    r.fail(n, at, "a plane flow's body needs outline:, outline_file: or shape: circle");
+    r.fail(n, at, "a plane flow's body needs outline:, outline_file: or shape: circle, ellipse or plate");
   }
   const double scale = n["scale"] ? r.number(n["scale"], at + ".scale") : 1.0;
   const auto shift = n["translate"] ? r.numbers<2>(n["translate"], at + ".translate") : std::array<double, 2>{0, 0};
   for (auto& v : b.outline) v = {scale * v[0] + shift[0], scale * v[1] + shift[1]};
+  for (auto& v : b.surface.points) v = {scale * v[0] + shift[0], scale * v[1] + shift[1], 0};
+  if (n["motion"]) b.motion = motion_section(r, n["motion"], at + ".motion", 2);
   return b;
 }
 
@@ -259,8 +262,8 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
     if (!g["core"][axes[a]]) r.fail(g["core"], std::string("grid.core.") + axes[a], "missing");
     const auto dx = r.numbers<2>(d[axes[a]], std::string("domain.") + axes[a]);
     const auto cx = r.numbers<2>(g["core"][axes[a]], std::string("grid.core.") + axes[a]);
-    if (!(dx[0] < cx[0] && cx[0] < cx[1] && cx[1] < dx[1]))
-      r.fail(g["core"][axes[a]], std::string("grid.core.") + axes[a], "expected a core strictly inside the domain");
+    if (!(dx[0] <= cx[0] && cx[0] < cx[1] && cx[1] <= dx[1]))
+      r.fail(g["core"][axes[a]], std::string("grid.core.") + axes[a], "expected a core inside the domain");
     s.domain[2 * a] = dx[0];
     s.domain[2 * a + 1] = dx[1];
     s.core[2 * a] = cx[0];
@@ -332,7 +335,11 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
           r.scalar<bool>(sv["wall_momentum_balance"], "solver.wall_momentum_balance", "true or false");
   }
   if (const YAML::Node o = root["outputs"]) {
-    r.only(o, "outputs", {"force_every", "reference_speed", "reference_area", "control_volume", "grade"});
+    r.only(o, "outputs", {"force_every", "reference_speed", "reference_area", "control_volume", "grade", "mean_from"});
+    if (o["mean_from"]) {
+      s.mean_from = r.number(o["mean_from"], "outputs.mean_from");
+      if (!(s.mean_from >= 0)) r.fail(o["mean_from"], "outputs.mean_from", "expected a time >= 0 [s]");
+    }
     if (const YAML::Node g = o["grade"]) {
       if (!g.IsSequence()) r.fail(g, "outputs.grade", "expected a list of {metric, reference, tolerance, source}");
       for (std::size_t i = 0; i < g.size(); ++i) {
@@ -365,6 +372,8 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
   if (!(s.h > 0)) r.fail(g["h"], "grid.h", "expected > 0");
   if (!(s.t_end > 0)) r.fail(t["t_end"], "time.t_end", "expected > 0");
   if (!(s.nu > 0)) r.fail(f["nu"], "fluid.nu", "expected > 0");
+  if (s.mean_from >= s.t_end)
+    r.fail(root["outputs"]["mean_from"], "outputs.mean_from", "expected a time before time.t_end");
   return s;
 }
 

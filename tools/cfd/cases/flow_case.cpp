@@ -6,11 +6,13 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 
 #include "cfd/forces/control_volume_force.hpp"
 #include "cfd/forces/surface_traction.hpp"
 #include "cfd/forces/surface_traction_3d.hpp"
 #include "cfd/immersed/immersed_polygon.hpp"
+#include "cfd/immersed/rigid_motion.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd::cases {
@@ -20,23 +22,73 @@ namespace {
 // Cell counts that are multiples of 8 keep three halvings for the multigrid.
 int round8(double n) { return std::max(8, 8 * static_cast<int>(std::lround(n / 8))); }
 
+// A core that fills a side (a periodic box) leaves no outer cells to round with: its own count
+// must then be a multiple of 8.
 Axis axis(double lo, double hi, double ulo, double uhi, double h, double ratio) {
   const int n = round8(Axis::stretched(lo, hi, ulo, uhi, h, ratio).size());
-  return Axis::stretched_count(lo, hi, ulo, uhi, n, ratio);
+  try {
+    return Axis::stretched_count(lo, hi, ulo, uhi, n, ratio);
+  } catch (const std::invalid_argument& e) {
+    if (ulo > lo && uhi < hi) throw Error(std::string("grid: ") + e.what());
+    throw Error(
+        "grid: the core [" + std::to_string(ulo) + ", " + std::to_string(uhi) + "] fills the domain, so its " +
+        "cell count (length / h) must be a multiple of 8 for the multigrid; it is not with h = " + std::to_string(h));
+  }
 }
 
 // All bodies as one closed surface (the solver immerses one; they are disjoint components) and
 // the triangle range of each.
-TriangulatedSurface merged(const std::vector<CaseBody>& bodies, std::vector<std::size_t>& first_triangle) {
+// (A plane sheet's segments {a, b, -1} keep their -1.)
+TriangulatedSurface merged(const std::vector<CaseBody>& bodies, std::vector<std::size_t>& first_triangle,
+                           std::vector<std::size_t>* first_node = nullptr) {
   TriangulatedSurface all;
   for (const CaseBody& b : bodies) {
     first_triangle.push_back(all.triangles.size());
+    if (first_node) first_node->push_back(all.points.size());
     const int offset = static_cast<int>(all.points.size());
     all.points.insert(all.points.end(), b.surface.points.begin(), b.surface.points.end());
-    for (const auto& t : b.surface.triangles) all.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    for (const auto& t : b.surface.triangles)
+      all.triangles.push_back({t[0] + offset, t[1] + offset, t[2] < 0 ? t[2] : t[2] + offset});
   }
   first_triangle.push_back(all.triangles.size());
+  if (first_node) first_node->push_back(all.points.size());
   return all;
+}
+
+bool any_moves(const std::vector<CaseBody>& bodies) {
+  return std::any_of(bodies.begin(), bodies.end(), [](const CaseBody& b) { return b.motion && b.motion->moves(); });
+}
+
+// The nodes of every body at time t, placed by its motion (fixed bodies: at rest).
+struct NodeKinematics {
+  std::vector<Vec3> position, velocity, acceleration;
+};
+NodeKinematics place_nodes(const std::vector<CaseBody>& bodies, const std::vector<Vec3>& rest,
+                           const std::vector<std::size_t>& first_node, double t) {
+  NodeKinematics k{rest, std::vector<Vec3>(rest.size(), Vec3{0, 0, 0}), std::vector<Vec3>(rest.size(), Vec3{0, 0, 0})};
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (!bodies[b].motion) continue;
+    const PrescribedRigidMotion& m = *bodies[b].motion;
+    const RigidPose pose = m.pose(t);
+    for (std::size_t i = first_node[b]; i < first_node[b + 1]; ++i) {
+      const PointKinematics q = m.point(pose, rest[i]);
+      k.position[i] = q.position;
+      k.velocity[i] = q.velocity;
+      k.acceleration[i] = q.acceleration;
+    }
+  }
+  return k;
+}
+
+// A pose table must cover the simulated time.
+void check_motion_span(const FlowCaseSpec& s) {
+  for (const CaseBody& b : s.bodies) {
+    if (!b.motion) continue;
+    if (const auto span = b.motion->span(); span && ((*span)[0] > 1e-12 || (*span)[1] < s.t_end - 1e-12))
+      throw Error(s.name + ": body " + b.name + ": the pose table covers t = " + std::to_string((*span)[0]) + " .. " +
+                  std::to_string((*span)[1]) + " s, not 0 .. time.t_end = " + std::to_string(s.t_end) +
+                  " s (or give motion.period)");
+  }
 }
 
 std::vector<std::array<double, 3>> per_body(const std::vector<std::array<double, 3>>& per_triangle,
@@ -81,12 +133,20 @@ void finish(const FlowCaseSpec& s, const std::vector<ControlVolumeSample>& cv, F
 FlowCaseResult run_plane(const FlowCaseSpec& s, const StretchedGrid& grid, FlowSolver& solver,
                          const std::function<void(const StepStats&, double)>& progress,
                          std::chrono::steady_clock::time_point t0) {
-  if (s.bodies.size() != 1) throw Error(s.name + ": a 2-D case takes one body (a polygon)");
+  if (s.bodies.size() != 1) throw Error(s.name + ": a 2-D case takes one closed body (a polygon)");
   const Polygon body(s.bodies[0].outline);
-  solver.immerse(body);
+  const bool moving = any_moves(s.bodies);
+  if (moving && s.control_volume) throw Error(s.name + ": outputs.control_volume: not available with a moving body");
+  if (moving) {
+    const PrescribedRigidMotion m = *s.bodies[0].motion;
+    solver.immerse(MovingBody{body, {m.pivot()[0], m.pivot()[1]}, [m](double t) { return m.plane_state(t); }});
+  } else {
+    solver.immerse(body);
+  }
   const auto u0 = s.initial_velocity;
   solver.initialise([u0](double, double, double, double) { return u0; });
-  const SurfaceTraction traction(grid, *solver.immersed(), body);
+  std::optional<SurfaceTraction> fixed_traction;
+  if (!moving) fixed_traction.emplace(grid, *solver.immersed(), body);
   std::optional<ControlVolumeForce> control_volume;
   const auto& cvb = s.control_volume_box;
   if (s.control_volume) control_volume.emplace(grid, *solver.immersed(), cvb[0], cvb[1], cvb[2], cvb[3]);
@@ -94,11 +154,21 @@ FlowCaseResult run_plane(const FlowCaseSpec& s, const StretchedGrid& grid, FlowS
   FlowCaseResult r;
   r.cells = {grid.nx(), grid.ny(), 1};
   r.ghost_cells = static_cast<long>(solver.immersed()->ghosts().size());
-  r.surface_samples = static_cast<long>(traction.samples().size());
+  if (fixed_traction) r.surface_samples = static_cast<long>(fixed_traction->samples().size());
   const double scale = 2 / (s.reference_speed * s.reference_speed * s.reference_area);
   const double nu = s.nu;
   march(solver, s, r, progress, [&](double t) {
-    const SurfaceLoads L = traction.evaluate(solver.u(0), solver.u(1), solver.p(), nu, 1.0);
+    SurfaceLoads L;
+    if (moving) {
+      // The traction's samples follow the body; the wall moves with the body's rigid velocity.
+      const MovingBody* mb = solver.moving_body();
+      const SurfaceTraction tr(grid, *solver.immersed(), solver.body_polygon());
+      L = tr.evaluate(solver.u(0), solver.u(1), solver.p(), nu, 1.0,
+                      [&](double x, double y) { return mb->velocity(solver.body_state(), x, y); });
+      r.surface_samples = static_cast<long>(tr.samples().size());
+    } else {
+      L = fixed_traction->evaluate(solver.u(0), solver.u(1), solver.p(), nu, 1.0);
+    }
     if (control_volume)
       cv.push_back(control_volume->evaluate(t, solver.u(0), solver.u(1), solver.face_velocity(), solver.p(), nu));
     const auto per_depth = [&](const std::array<double, 2>& f) {
@@ -121,13 +191,21 @@ FlowCaseResult run_sheets(const FlowCaseSpec& s, const StretchedGrid& grid, Flow
                           std::chrono::steady_clock::time_point t0) {
   if (s.control_volume) throw Error(s.name + ": outputs.control_volume: not available with sheet bodies");
   std::vector<Vec3> rest(all.points.begin(), all.points.end());
-  solver.immerse_sheet(SheetTopology{3, rest.size(), all.triangles}, rest, s.sheet, [rest](double) {
-    return SheetState{rest, {}};
-  });
+  SheetMotion motion = [rest](double) { return SheetState{rest, {}}; };
+  if (any_moves(s.bodies)) {
+    std::vector<std::size_t> first_node;
+    std::vector<std::size_t> unused;
+    merged(s.bodies, unused, &first_node);
+    motion = [&bodies = s.bodies, rest, first_node](double t) {
+      NodeKinematics k = place_nodes(bodies, rest, first_node, t);
+      return SheetState{std::move(k.position), std::move(k.velocity)};
+    };
+  }
+  solver.immerse_sheet(SheetTopology{s.dim, rest.size(), all.triangles}, rest, s.sheet, motion);
   const auto u0 = s.initial_velocity;
   solver.initialise([u0](double, double, double, double) { return u0; });
   FlowCaseResult r;
-  r.cells = {grid.nx(), grid.ny(), grid.nz()};
+  r.cells = {grid.nx(), grid.ny(), s.dim == 3 ? grid.nz() : 1};
   r.triangles = static_cast<long>(all.triangles.size());
   r.surface_samples = static_cast<long>(solver.sheet()->size());
   const double U = s.reference_speed;
@@ -191,24 +269,39 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
   opt.helmholtz_rtol = s.helmholtz_rtol;
   opt.poisson.rtol = s.poisson_rtol;
   opt.viscous_wall_pressure = s.wall_momentum_balance;
+  check_motion_span(s);
   FlowSolver solver;
-  if (s.dim == 2) {
-    opt.cut_cell_continuity_fixed = s.cut_cells;
-    solver.setup(grid, b, opt);
-    return run_plane(s, grid, solver, progress, t0);
-  }
-  solver.setup(grid, b, opt);
-  std::vector<std::size_t> first;
-  const TriangulatedSurface body = merged(s.bodies, first);
   const std::size_t sheets = static_cast<std::size_t>(
       std::count_if(s.bodies.begin(), s.bodies.end(), [](const CaseBody& c) { return c.sheet; }));
   if (sheets > 0 && sheets < s.bodies.size())
     throw Error(s.name + ": bodies: every body is a sheet or none is (closed bodies and sheets cannot be mixed yet)");
+  std::vector<std::size_t> first, first_node;
+  const TriangulatedSurface body = merged(s.bodies, first, &first_node);
+  if (s.dim == 2) {
+    opt.cut_cell_continuity_fixed = s.cut_cells && !any_moves(s.bodies);
+    solver.setup(grid, b, opt);
+    if (sheets > 0) return run_sheets(s, grid, solver, body, first, progress, t0);
+    return run_plane(s, grid, solver, progress, t0);
+  }
+  solver.setup(grid, b, opt);
   if (sheets > 0) return run_sheets(s, grid, solver, body, first, progress, t0);
-  solver.immerse(body);
+  const bool moving = any_moves(s.bodies);
+  if (moving && s.control_volume) throw Error(s.name + ": outputs.control_volume: not available with moving bodies");
+  if (moving) {
+    const std::vector<Vec3> rest(body.points.begin(), body.points.end());
+    solver.immerse(SurfaceMotion([&bodies = s.bodies, rest, first_node, body](double t) {
+      NodeKinematics k = place_nodes(bodies, rest, first_node, t);
+      SurfaceState st{body, std::move(k.velocity), std::move(k.acceleration)};
+      for (std::size_t i = 0; i < rest.size(); ++i) st.surface.points[i] = k.position[i];
+      return st;
+    }));
+  } else {
+    solver.immerse(body);
+  }
   const auto u0 = s.initial_velocity;
   solver.initialise([u0](double, double, double, double) { return u0; });
-  const SurfaceTraction3D traction(grid, *solver.immersed(), *solver.body_surface());
+  std::optional<SurfaceTraction3D> fixed_traction;
+  if (!moving) fixed_traction.emplace(grid, *solver.immersed(), *solver.body_surface());
   std::optional<ControlVolumeForce> control_volume;
   if (s.control_volume) control_volume.emplace(grid, *solver.immersed(), s.control_volume_box);
   std::vector<ControlVolumeSample> cv;
@@ -217,12 +310,15 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
   r.cells = {grid.nx(), grid.ny(), grid.nz()};
   r.ghost_cells = static_cast<long>(solver.immersed()->ghosts().size());
   r.triangles = static_cast<long>(body.triangles.size());
-  r.surface_samples = static_cast<long>(traction.samples().size());
+  if (fixed_traction) r.surface_samples = static_cast<long>(fixed_traction->samples().size());
   const double U = s.reference_speed;
   const double scale = 2 / (U * U * s.reference_area);
   march(solver, s, r, progress, [&](double t) {
-    // Per unit density (the solver's pressure is kinematic); times rho below.
-    const SurfaceForces F = traction.evaluate(solver.u(0), solver.u(1), solver.u(2), solver.p(), opt.nu, 1.0);
+    // Per unit density (the solver's pressure is kinematic); times rho below. A moving body's
+    // traction is sampled where the body is now.
+    const SurfaceForces F =
+        moving ? solver.surface_forces(1.0)
+               : fixed_traction->evaluate(solver.u(0), solver.u(1), solver.u(2), solver.p(), opt.nu, 1.0);
     if (control_volume)
       cv.push_back(control_volume->evaluate(t, solver.u(0), solver.u(1), solver.u(2), solver.face_velocity(),
                                             solver.p(), opt.nu));

@@ -12,11 +12,13 @@
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cfd/flow/flow_solver.hpp"
 #include "cfd/flow/velocity_boundary.hpp"
+#include "cfd/immersed/prescribed_rigid_motion.hpp"
 #include "cfd/immersed/triangulated_surface.hpp"
 
 namespace finverse::cfd::cases {
@@ -35,8 +37,12 @@ struct CaseBody {
   // A zero-thickness surface (FlowSolver::immerse_sheet; docs/studies/thin_surface.md) instead of a
   // closed body: every body of a case is a sheet or none is.
   bool sheet = false;
-  std::vector<std::array<double, 2>> outline;  // 2-D: the body's outline, a simple polygon [m]
+  // 2-D sheets: the mid-line's nodes (z = 0) and segments {a, b, -1}, in `surface`.
+  std::vector<std::array<double, 2>> outline;  // 2-D closed body: its outline, a simple polygon [m]
   std::string source;                          // where it came from (file name or built-in shape), for the record
+  // A prescribed rigid motion from the placement above (at t = 0 when the motion is zero there);
+  // none: fixed.
+  std::optional<PrescribedRigidMotion> motion;
 };
 
 struct FlowCaseSpec {
@@ -61,6 +67,9 @@ struct FlowCaseSpec {
   double reference_speed = 1;          // U of the coefficients [m/s]
   double reference_area = 1;           // A of the coefficients [m^2]; 2-D: a length [m]
   bool control_volume = false;         // also the control-volume force (all bodies together)
+  // Moving bodies: the time-mean and amplitude ((max - min) / 2) of every coefficient over the
+  // force evaluations at t >= mean_from (a whole number of periods; < 0: not reported).
+  double mean_from = -1;
   SheetForcingOptions sheet;           // the sheet bodies' kernel and markers
   // Coefficients graded against a reference (outputs.grade): the summary's metric name (e.g.
   // plate_Cx), the reference value, the relative tolerance and where the value comes from.

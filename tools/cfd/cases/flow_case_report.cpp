@@ -1,6 +1,7 @@
 // Force history and summary of a flow case; see flow_case_report.hpp.
 #include "cfd/cases/flow_case_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -15,6 +16,32 @@ const char* const kAxis[] = {"x", "y", "z"};
 double coefficient_scale(const FlowCaseSpec& s) {
   return 2 / (s.rho * s.reference_speed * s.reference_speed * s.reference_area);
 }
+
+// Time-mean (trapezoidal in time) and amplitude ((max - min) / 2) of each body's coefficients over
+// the force evaluations at t >= mean_from, reported as <body>_C<axis>_mean and _amplitude.
+template <class Report>
+void window_statistics(const FlowCaseSpec& s, const FlowCaseResult& r, Report&& report) {
+  const double scale = coefficient_scale(s);
+  std::size_t k0 = 0;
+  while (k0 < r.time.size() && r.time[k0] < s.mean_from - 1e-12) ++k0;
+  if (r.time.size() < k0 + 2)
+    throw Error(s.name +
+                ": outputs.mean_from: fewer than two force evaluations after t = " + std::to_string(s.mean_from));
+  for (std::size_t b = 0; b < s.bodies.size(); ++b)
+    for (int c = 0; c < 3; ++c) {
+      double integral = 0, lo = scale * r.force[k0][b][c], hi = lo;
+      for (std::size_t k = k0 + 1; k < r.time.size(); ++k) {
+        const double a = scale * r.force[k - 1][b][c], v = scale * r.force[k][b][c];
+        integral += 0.5 * (a + v) * (r.time[k] - r.time[k - 1]);
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+      const std::string name = s.bodies[b].name + "_C" + kAxis[c];
+      report(name + "_mean", integral / (r.time.back() - r.time[k0]));
+      report(name + "_amplitude", 0.5 * (hi - lo));
+    }
+}
+
 }  // namespace
 
 void write_force_history(const std::filesystem::path& csv, const FlowCaseSpec& s, const FlowCaseResult& r) {
@@ -60,6 +87,7 @@ Summary flow_case_summary(const FlowCaseSpec& s, const FlowCaseResult& r) {
       sum.info(s.bodies[b].name + "_F" + kAxis[c], f[c], s.dim == 2 ? "N/m" : "N");
     }
   }
+  if (s.mean_from >= 0) window_statistics(s, r, coefficient);
   if (graded != s.grades.size())
     throw Error(s.name + ": outputs.grade names a metric that is not a body's coefficient (<body>_Cx, _Cy, _Cz)");
   if (!r.control_volume_force.empty())

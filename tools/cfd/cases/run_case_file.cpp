@@ -52,8 +52,10 @@ std::vector<std::string> expand_case_file(
 int run_flow_case_file(const fs::path& file, bool coarse, const fs::path& out_dir) {
   const CaseFile cf = read_case_file(file, coarse);
   const auto& spec = cf.flow;
-  // Expected steps: dt ~ cfl h / (1.6 U), the fastest flow past a bluff body.
-  const double steps = 1.6 * spec.t_end / (spec.cfl * spec.h / spec.reference_speed);
+  // Expected steps: dt ~ cfl h / (1.6 U), the fastest flow past a bluff body, or time.dt_max.
+  double dt = spec.cfl * spec.h / (1.6 * spec.reference_speed);
+  if (spec.dt_max > 0) dt = std::min(dt, spec.dt_max);
+  const double steps = spec.t_end / dt;
   log::Progress progress(spec.name + " step", static_cast<std::size_t>(std::ceil(steps)));
   const auto r = run_flow_case(spec, [&](const StepStats& st, double cx) {
     progress.update(static_cast<std::size_t>(st.step), "t " + fmt("%.4f", st.time) + "  C_x " + fmt("%.4f", cx) +

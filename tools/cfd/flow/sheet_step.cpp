@@ -6,6 +6,7 @@
 // usual slip of the method, which vanishes with dt at a fixed grid.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "cfd/flow/flow_solver.hpp"
@@ -42,9 +43,15 @@ void FlowSolver::immerse_sheet(const SheetTopology& topology, const std::vector<
                 "-D grid");
   if (!(options.spacing > 0 && options.spacing <= 4))
     throw Error("flow solver: sheet marker spacing " + num(options.spacing) + " cells, expected in (0, 4]");
-  // The markers' spacing in metres: the grid's finest cell, where the sheet sits.
-  double h = grid_.axis(0).min_width();
-  for (int d = 1; d < dim(); ++d) h = std::min(h, grid_.axis(d).min_width());
+  // The markers' spacing in metres: the finest cell where the sheet sits at rest (a fine cell
+  // elsewhere, e.g. at a box's edge, must not crowd the markers: M turns near-singular).
+  double h = std::numeric_limits<double>::infinity();
+  for (const Vec3& x : rest)
+    for (int d = 0; d < dim(); ++d) {
+      const Axis& a = grid_.axis(d);
+      if (x[d] >= a.lo() && x[d] <= a.hi()) h = std::min(h, a.width_at(x[d]));
+    }
+  if (!std::isfinite(h)) throw Error("flow solver: sheet: no node inside the domain at rest");
   sheet_.emplace(topology, rest, options.spacing * h, "flow solver: sheet");
   sheet_opt_ = options;
   sheet_motion_ = std::move(motion);
