@@ -43,6 +43,16 @@ void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
       .add_option("--structure-max-iterations", o.structure_max_iterations, "structure Newton iterations per sub-step")
       ->capture_default_str();
   command.add_option("--substeps", o.substeps, "structure sub-steps per coupling step")->capture_default_str();
+  command.add_option("--checkpoint", o.checkpoint, "checkpoint file, replaced atomically (empty: none)");
+  command.add_option("--checkpoint-every", o.checkpoint_every, "steps between checkpoints (0: after the last only)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command.add_option("--restart", o.restart, "continue from a checkpoint written with the same options")
+      ->check(CLI::ExistingFile);
+  command.add_option("--paraview", o.paraview_dir, "ParaView series of the fin and the flow into this folder");
+  command.add_option("--paraview-every", o.paraview_every, "every k-th fsi.h5 frame in the ParaView series")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   command.add_option("--rayleigh-mass", o.rayleigh_mass, "structure damping a_M [1/s]; < 0: the materials file's")
       ->capture_default_str();
   command

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <memory>
 #include <numbers>
 
 #include "cfd/flow/flow_solver.hpp"
@@ -19,6 +20,8 @@
 #include "fem/io/fin_model.hpp"
 #include "fem/root_drive.hpp"
 #include "fsi/acceleration_factory.hpp"
+#include "fsi/coupled_run.hpp"
+#include "fsi/fsi_paraview.hpp"
 #include "fsi/implicit_coupling.hpp"
 #include "fsi/surface_flow_structure_step.hpp"
 
@@ -80,40 +83,35 @@ std::vector<int> ray_tips(const stage::Mesh& mesh) {
   return nodes;
 }
 
-}  // namespace
+// Everything the fin's run needs before the flow exists: the mesh (with rest-shape effects), its
+// mid-surface and area, the flow scales, the driven structure, the time span, the grid and step.
+struct FinSetup {
+  stage::Mesh shaped;                 // the rest shape with the rest-shape effects
+  const stage::Mesh* mesh = nullptr;  // the input mesh, or `shaped`
+  fem::io::Effects effects;
+  fem::FinLayout effect_layout;
+  Eigen::Matrix3Xd X0;
+  std::vector<std::array<int, 3>> mid;
+  double area = 0, c = 0, U = 0, nu = 0, h = 0;
+  fem::Model model;
+  double T = 0, t_start = 0, t_end = 0, t_first_output = 0, interval = 0;
+  bool periodic = true;
+  Envelope env;
+  nlohmann::json drive_config;
+  cfd::StretchedGrid grid;
+  long m_sub = 1, steps = 0, out_first = 0, period_steps = 0;
+  double dt = 0;
+  FinFsiResult result;  // the scales and the effective parameters
+};
 
-nlohmann::json FinFsiResult::summary() const {
-  return {{"ct_mean_last_period", ct_mean},
-          {"ct_peak_last_period", ct_peak},
-          {"cl_amplitude_last_period", cl_amplitude},
-          {"te_peak_to_peak_over_chord_mean", te_peak_to_peak_mean},
-          {"te_peak_to_peak_over_chord_min", te_peak_to_peak_min},
-          {"te_peak_to_peak_over_chord_max", te_peak_to_peak_max},
-          {"coupling_iterations_mean", iterations_mean},
-          {"coupling_iterations_max", iterations_max},
-          {"steps", steps},
-          {"steps_at_cap", steps_at_cap},
-          {"transfer_mismatch_max", transfer_mismatch},
-          {"wall_seconds", wall_seconds},
-          {"h_m", h},
-          {"dt_s", dt},
-          {"T_s", period},
-          {"frequency_hz", frequency},
-          {"U_m_s", U},
-          {"chord_m", chord},
-          {"grid", grid},
-          {"cells", cells},
-          {"config", config}};
-}
-
-FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
-  const auto wall0 = std::chrono::steady_clock::now();
+// The mesh, its mid-surface and the flow scales (as fin-cfd fin); checks the flags.
+void read_mesh_and_scales(const FinFsiInputs& in, const FinFsiOptions& o, FinSetup& s) {
   if (in.drive.has_value() == in.motion.has_value())
     throw Error("fin fsi: expected exactly one of --root-drive and --motion");
   const std::string& mn = in.mesh_name;
-  fem::io::Effects effects;
-  fem::FinLayout effect_layout;
-  stage::Mesh shaped;  // the rest shape with the rest-shape effects
+  fem::io::Effects& effects = s.effects;
+  fem::FinLayout& effect_layout = s.effect_layout;
+  stage::Mesh& shaped = s.shaped;
   if (!in.effects.empty()) {
     try {
       effects = fem::make_effects(in.effects, in.effects_name);
@@ -126,17 +124,19 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
     if (in.build_model && shaped.points.data != in.mesh.points.data)
       throw Error(in.effects_name + ": a rest-shape effect needs the structure built from the mesh (a materials file)");
   }
-  const stage::Mesh& mesh = effects.empty() ? in.mesh : shaped;
+  s.mesh = effects.empty() ? &in.mesh : &shaped;
+  const stage::Mesh& mesh = *s.mesh;
   if (mesh.points.rank() != 2 || mesh.points.dim(1) != 3 || mesh.points.dim(0) < 3)
     throw Error(mn + ": /points: expected [nv, 3] with nv >= 3");
   const auto nv = static_cast<Eigen::Index>(mesh.points.dim(0));
-  Eigen::Matrix3Xd X0(3, nv);
+  Eigen::Matrix3Xd& X0 = s.X0;
+  X0.resize(3, nv);
   for (Eigen::Index i = 0; i < nv; ++i)
     for (int d = 0; d < 3; ++d) X0(d, i) = mesh.points(static_cast<std::size_t>(i), static_cast<std::size_t>(d));
-  std::vector<std::array<int, 3>> mid;
+  std::vector<std::array<int, 3>>& mid = s.mid;
   for (std::size_t e = 0; e < (mesh.triangles.shape.empty() ? 0 : mesh.triangles.dim(0)); ++e)
     mid.push_back({mesh.triangles(e, 0), mesh.triangles(e, 1), mesh.triangles(e, 2)});
-  double area = 0;
+  double& area = s.area;
   for (const auto& t : mid) {
     for (int a : t)
       if (a < 0 || a >= nv) throw Error(mn + ": /triangles names node " + std::to_string(a) + " outside the mesh");
@@ -146,34 +146,50 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
 
   // Flow scales (as fin-cfd fin).
   const cfd::io::FinFlowOptions& fo = o.flow;
-  double c = fo.chord > 0 ? fo.chord : mesh.chord.value_or(0.0);
+  double& c = s.c;
+  c = fo.chord > 0 ? fo.chord : mesh.chord.value_or(0.0);
   if (!(c > 0)) c = X0.row(0).maxCoeff() - X0.row(0).minCoeff();
   if (!(c > 0)) throw Error("fin fsi: chord: not given and the rest mesh has no x extent");
   if (!(fo.reynolds > 0)) throw Error("--reynolds: " + num(fo.reynolds) + ", expected > 0");
   if (!(fo.rho > 0)) throw Error("--rho: " + num(fo.rho) + ", expected > 0");
-  const double U = fo.speed > 0 ? fo.speed : free_stream_speed(fo.reynolds, c, fo.viscosity);
+  double& U = s.U;
+  U = fo.speed > 0 ? fo.speed : free_stream_speed(fo.reynolds, c, fo.viscosity);
   if (!(U > 0)) throw Error("--speed / --viscosity: free-stream speed " + num(U) + " m/s, expected > 0");
-  const double nu = U * c / fo.reynolds;
-  const double h = c / (fo.cells_per_chord > 0 ? fo.cells_per_chord : 16.0);
+  s.nu = U * c / fo.reynolds;
+  s.h = c / (fo.cells_per_chord > 0 ? fo.cells_per_chord : 16.0);
   if (!(o.thickness_cells > 0)) throw Error("--thickness-cells: expected > 0");
   if (!(fo.periods >= 1)) throw Error("--periods: " + num(fo.periods) + ", expected >= 1");
   if (!(fo.output_periods >= 0 && fo.output_periods <= fo.periods))
     throw Error("--output-periods: " + num(fo.output_periods) + ", expected 0 .. --periods");
   if (o.max_iterations < 1) throw Error("--max-iterations: expected >= 1");
+}
 
-  // Structure and root drive.
-  fem::Model model;
+// The structure with its root drive (the analytic drive, or the tracked root motion with a smooth
+// start) and candidate effects; the swept envelope and fastest node speed for the grid and step.
+void drive_structure(const FinFsiInputs& in, const FinFsiOptions& o, FinSetup& s) {
+  const std::string& mn = in.mesh_name;
+  const cfd::io::FinFlowOptions& fo = o.flow;
+  const stage::Mesh& mesh = *s.mesh;
+  const Eigen::Matrix3Xd& X0 = s.X0;
+  const Eigen::Index nv = X0.cols();
+  const double c = s.c, U = s.U;
+  fem::io::Effects& effects = s.effects;
+  fem::FinLayout& effect_layout = s.effect_layout;
+  fem::Model& model = s.model;
   try {
     model = in.build_model ? in.build_model() : std::move(fem::io::build_fin_model(mesh, in.materials, mn).model);
   } catch (const std::exception& e) {
     throw Error(std::string("fin fsi: building the structure: ") + e.what());
   }
   if (model.node_count() != nv) throw Error("fin fsi: the structure has another node count than " + mn);
-  double T = 0, t_start = 0, t_end = 0, t_first_output = 0, interval = fo.output_interval;
-  bool periodic = true;
-  Envelope env = empty_envelope();
+  double &T = s.T, &t_start = s.t_start, &t_end = s.t_end, &t_first_output = s.t_first_output;
+  double& interval = s.interval;
+  interval = fo.output_interval;
+  bool& periodic = s.periodic;
+  Envelope& env = s.env;
+  env = empty_envelope();
   for (Eigen::Index i = 0; i < nv; ++i) env.add(X0.col(i));
-  nlohmann::json drive_config;
+  nlohmann::json& drive_config = s.drive_config;
   if (in.drive) {
     const double f = in.drive->frequency(U, c);
     T = 1 / f;
@@ -272,24 +288,37 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
   const long per_period = std::lround(T / interval);
   if (periodic && (per_period < 1 || std::abs(per_period * interval - T) > 1e-6 * interval))
     throw Error("--output-interval: " + num(interval) + " s does not divide the period T = " + num(T) + " s");
+}
 
-  // Grid, time step, outputs.
-  const cfd::StretchedGrid grid = cfd::io::fin_flow_grid(env.lo, env.hi, c, h, fo);
+// The grid around the swept envelope, the fixed time step, the output steps and the run's
+// effective parameters.
+void grid_time_and_config(const FinFsiInputs& in, const FinFsiOptions& o, FinSetup& s) {
+  const cfd::io::FinFlowOptions& fo = o.flow;
+  const double c = s.c, U = s.U, nu = s.nu, h = s.h, T = s.T, t_start = s.t_start, t_end = s.t_end;
+  const double t_first_output = s.t_first_output, interval = s.interval;
+  const bool periodic = s.periodic;
+  const Envelope& env = s.env;
+  const nlohmann::json& drive_config = s.drive_config;
+  s.grid = cfd::io::fin_flow_grid(env.lo, env.hi, c, h, fo);
+  const cfd::StretchedGrid& grid = s.grid;
   if (!(fo.cfl > 0)) throw Error("--cfl: expected > 0");
   const double dt_cfl = fo.cfl * h / (U + 2 * env.max_speed);
-  const long m_sub = std::max(1L, static_cast<long>(std::ceil(interval / dt_cfl - 1e-9)));
-  const double dt = interval / static_cast<double>(m_sub);
-  const long steps = std::lround((t_end - t_start) / dt);
+  long& m_sub = s.m_sub;
+  m_sub = std::max(1L, static_cast<long>(std::ceil(interval / dt_cfl - 1e-9)));
+  s.dt = interval / static_cast<double>(m_sub);
+  const double dt = s.dt;
+  s.steps = std::lround((t_end - t_start) / dt);
+  const long steps = s.steps;
   if (steps < 1) throw Error("fin fsi: the run is shorter than one time step");
   // Outputs at steps n > out_first (multiples of m_sub): the last output_periods periods, or a
   // non-periodic motion's frames.
-  const long out_first = periodic ? steps - (fo.output_periods > 0 ? std::lround(fo.output_periods * T / dt) : steps)
-                                  : std::lround((t_first_output - t_start) / dt) - 1;
-  const long period_steps = std::min(steps, std::lround(T / dt));
+  s.out_first = periodic ? steps - (fo.output_periods > 0 ? std::lround(fo.output_periods * T / dt) : steps)
+                         : std::lround((t_first_output - t_start) / dt) - 1;
+  s.period_steps = std::min(steps, std::lround(T / dt));
 
   const double so_rayleigh_mass = o.rayleigh_mass >= 0 ? o.rayleigh_mass : in.materials.rayleigh_mass;
   const double so_rayleigh_stiffness = o.rayleigh_stiffness >= 0 ? o.rayleigh_stiffness : in.materials.rayleigh_stiffness;
-  FinFsiResult res;
+  FinFsiResult& res = s.result;
   res.h = h;
   res.dt = dt;
   res.period = T;
@@ -331,31 +360,128 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
                 {"rayleigh_mass", so_rayleigh_mass},
                 {"rayleigh_stiffness", so_rayleigh_stiffness},
                 {"drive", drive_config}};
+}
 
-  const cfd::ThinBody body = cfd::build_thin_body(mid, static_cast<int>(nv), o.thickness_cells * h, mn + " (fsi thin body)");
+// The fin's part of the coupled run (coupled_run.hpp): per step the force on the fin, the rays'
+// tip excursions and the transfer mismatch; an fsi.h5 frame at every output step (the last
+// output_periods, or a non-periodic motion's frames) with a flow snapshot when ParaView is asked.
+class FinCase final : public CoupledCase {
+ public:
+  FinCase(const FinSetup& s, const FinFsiOptions& o, SurfaceFlowStructureStep& step,
+          const fem::CoupledStructure& structure, const cfd::FlowSolver& flow, FsiOutput& output)
+      : s_(s), o_(o), step_(step), structure_(structure), flow_(flow), output_(output), tips_(ray_tips(*s.mesh)) {}
+
+  std::unique_ptr<FsiParaView> paraview;
+  long frames = 0;  // fsi.h5 frames so far
+
+  void after_step(long n, const StepStatistics& st) override {
+    const fem::DynamicState& x = structure_.state();
+    const Eigen::Index nv = s_.X0.cols();
+    for (Eigen::Index i = 0; i < nv; ++i)
+      if (!x.configuration.position[static_cast<std::size_t>(i)].allFinite())
+        throw Error("the structure's node " + std::to_string(i) + " is not finite (blow-up)");
+    const SurfaceStepRecord& rec = step_.records().back();
+    for (int d = 0; d < 3; ++d) force_.push_back(rec.force(d));
+    for (const int tip : tips_) tip_y_.push_back(x.configuration.position[static_cast<std::size_t>(tip)].y());
+    mismatch_.push_back(rec.transfer_mismatch);
+    if (n > s_.out_first && n % s_.m_sub == 0) {
+      // The fin's nodes are all wet: its loads are the nodes' forces (no moments).
+      Eigen::VectorXd nodal = Eigen::VectorXd::Zero(6 * nv);
+      const Eigen::Matrix3Xd& loads = step_.wet_loads();
+      for (Eigen::Index i = 0; i < nv; ++i) nodal.segment<3>(6 * i) = loads.col(i);
+      output_.add(x, nodal, {rec.force(0), rec.force(1), rec.force(2)}, st.iterations, st.absolute_residual,
+                  st.residual);
+      ++frames;
+      if (paraview) paraview->at_frame(frames, x.time, s_.dt, flow_);
+    }
+  }
+  [[nodiscard]] RunHistory history() const override {
+    return {{"force", force_}, {"tip_y", tip_y_}, {"transfer_mismatch", mismatch_}};
+  }
+  void restore_history(RunHistory h) override {
+    const std::size_t n = h["transfer_mismatch"].size();
+    if (h["force"].size() != 3 * n || h["tip_y"].size() != tips_.size() * n)
+      throw Error("fin fsi: the checkpoint's per-step force and ray tips do not fit " + std::to_string(tips_.size()) +
+                  " rays over " + std::to_string(n) + " steps");
+    force_ = std::move(h["force"]);
+    tip_y_ = std::move(h["tip_y"]);
+    mismatch_ = std::move(h["transfer_mismatch"]);
+    frames = static_cast<long>(output_.frames());
+  }
+  [[nodiscard]] std::string progress_line(long n, const StepStatistics& st) const override {
+    const fem::DynamicState& x = structure_.state();
+    const double q = 0.5 * o_.flow.rho * s_.U * s_.U * s_.area;
+    double ymax = 0;  // the fin's largest lateral excursion, to see a blow-up coming
+    for (const auto& p : x.configuration.position) ymax = std::max(ymax, std::abs(p.y()));
+    return "fin-fsi fin: step " + std::to_string(n) + "/" + std::to_string(s_.steps) + " t " + num(x.time, "%.5f") +
+           " s: " + std::to_string(st.iterations) + " it, residual " + num(st.residual, "%.2e") +
+           (st.converged ? "" : " (cap)") + ", C_T " + num(-force_[force_.size() - 3] / q, "%.4f") + ", max |y| " +
+           num(ymax / s_.c, "%.3f") + " c";
+  }
+
+  // The last period's (its steps') thrust, lateral force and the rays' tip excursions.
+  void last_period(FinFsiResult& res) const {
+    const double q = 0.5 * o_.flow.rho * s_.U * s_.U * s_.area;
+    const std::size_t steps = mismatch_.size(), first = steps - static_cast<std::size_t>(s_.period_steps);
+    double sx = 0, peak = -1e300, ymin = 1e300, ymax = -1e300;
+    std::vector<double> lo(tips_.size(), 1e300), hi(tips_.size(), -1e300);
+    for (std::size_t k = first; k < steps; ++k) {
+      const double fx = force_[3 * k], fy = force_[3 * k + 1];
+      sx += fx;
+      peak = std::max(peak, -fx / q);
+      ymin = std::min(ymin, fy / q);
+      ymax = std::max(ymax, fy / q);
+      for (std::size_t r = 0; r < tips_.size(); ++r) {
+        lo[r] = std::min(lo[r], tip_y_[k * tips_.size() + r]);
+        hi[r] = std::max(hi[r], tip_y_[k * tips_.size() + r]);
+      }
+    }
+    res.ct_mean = -sx / static_cast<double>(steps - first) / q;
+    res.ct_peak = peak;
+    res.cl_amplitude = (ymax - ymin) / 2;
+    if (!tips_.empty()) {
+      res.te_peak_to_peak_min = 1e300;
+      for (std::size_t r = 0; r < tips_.size(); ++r) {
+        const double p = (hi[r] - lo[r]) / s_.c;
+        res.te_peak_to_peak_mean += p / static_cast<double>(tips_.size());
+        res.te_peak_to_peak_min = std::min(res.te_peak_to_peak_min, p);
+        res.te_peak_to_peak_max = std::max(res.te_peak_to_peak_max, p);
+      }
+    }
+    for (const double m : mismatch_) res.transfer_mismatch = std::max(res.transfer_mismatch, m);
+  }
+
+ private:
+  const FinSetup& s_;
+  const FinFsiOptions& o_;
+  SurfaceFlowStructureStep& step_;
+  const fem::CoupledStructure& structure_;
+  const cfd::FlowSolver& flow_;
+  FsiOutput& output_;
+  std::vector<int> tips_;
+  std::vector<double> force_, tip_y_, mismatch_;  // per step: 3, tips, 1
+};
+
+// The flow: inlet (impulsive, or ramped from rest), convective outlet, slip sides.
+cfd::FlowBoundary fin_boundary(const FinFsiOptions& o, const FinSetup& s) {
   cfd::FlowBoundary b;
   b[cfd::Side::XLo].type = cfd::FlowBcType::Inlet;
-  b[cfd::Side::XLo].speed = U;
+  b[cfd::Side::XLo].speed = s.U;
   if (!(o.stream_ramp_periods >= 0)) throw Error("--stream-ramp-periods: expected >= 0");
   if (o.stream_ramp_periods > 0) {
-    if (std::abs(t_start) > 1e-12 * T)
-      throw Error("--stream-ramp-periods: the run starts at t = " + num(t_start) + " s; the ramp needs t = 0");
-    b[cfd::Side::XLo].ramp_time = o.stream_ramp_periods * T;
+    if (std::abs(s.t_start) > 1e-12 * s.T)
+      throw Error("--stream-ramp-periods: the run starts at t = " + num(s.t_start) + " s; the ramp needs t = 0");
+    b[cfd::Side::XLo].ramp_time = o.stream_ramp_periods * s.T;
   }
   b[cfd::Side::XHi].type = cfd::FlowBcType::ConvectiveOutlet;
-  for (cfd::Side s : {cfd::Side::YLo, cfd::Side::YHi, cfd::Side::ZLo, cfd::Side::ZHi}) b[s].type = cfd::FlowBcType::Slip;
-  cfd::FlowOptions fopt;
-  fopt.nu = nu;
-  fopt.dt = dt;
-  fopt.cfl_limit = fo.cfl_limit;
-  fopt.helmholtz_rtol = 1e-8;
-  fopt.poisson.rtol = fo.poisson_rtol;
-  fopt.cut_cell_continuity_3d = fo.cut_cells;
-  cfd::FlowSolver flow;
-  flow.setup(grid, b, fopt);
+  for (cfd::Side side : {cfd::Side::YLo, cfd::Side::YHi, cfd::Side::ZLo, cfd::Side::ZHi})
+    b[side].type = cfd::FlowBcType::Slip;
+  return b;
+}
 
+fem::CoupledStructureOptions structure_options(const FinFsiInputs& in, const FinFsiOptions& o, const FinSetup& s) {
   fem::CoupledStructureOptions so;
-  so.dynamics.time_step = dt;
+  so.dynamics.time_step = s.dt;
   so.dynamics.spectral_radius = o.spectral_radius;
   so.dynamics.residual_tolerance = o.structure_tolerance;
   so.dynamics.max_iterations = o.structure_max_iterations;
@@ -364,12 +490,72 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
   so.dynamics.rayleigh_mass = o.rayleigh_mass >= 0 ? o.rayleigh_mass : in.materials.rayleigh_mass;
   so.dynamics.rayleigh_stiffness = o.rayleigh_stiffness >= 0 ? o.rayleigh_stiffness : in.materials.rayleigh_stiffness;
   so.dim = 3;
-  so.start_time = t_start;
+  so.start_time = s.t_start;
+  return so;
+}
+
+// fsi.h5's arrays from the run's frames, with the period and the effects.
+stage::Fsi fin_fsi_file(const FsiOutput& output, const FinSetup& s) {
+  if (output.frames() == 0)
+    throw Error("fin fsi: no output time in the run (--periods, --output-periods, --output-interval)");
+  stage::Fsi f = output.to_stage();
+  if (s.periodic) f.period = s.T;
+  if (!s.effects.empty()) f.effects = fem::effects_to_json(s.effects).dump();
+  return f;
+}
+
+}  // namespace
+
+nlohmann::json FinFsiResult::summary() const {
+  return {{"ct_mean_last_period", ct_mean},
+          {"ct_peak_last_period", ct_peak},
+          {"cl_amplitude_last_period", cl_amplitude},
+          {"te_peak_to_peak_over_chord_mean", te_peak_to_peak_mean},
+          {"te_peak_to_peak_over_chord_min", te_peak_to_peak_min},
+          {"te_peak_to_peak_over_chord_max", te_peak_to_peak_max},
+          {"coupling_iterations_mean", iterations_mean},
+          {"coupling_iterations_max", iterations_max},
+          {"steps", steps},
+          {"steps_at_cap", steps_at_cap},
+          {"transfer_mismatch_max", transfer_mismatch},
+          {"wall_seconds", wall_seconds},
+          {"h_m", h},
+          {"dt_s", dt},
+          {"T_s", period},
+          {"frequency_hz", frequency},
+          {"U_m_s", U},
+          {"chord_m", chord},
+          {"grid", grid},
+          {"cells", cells},
+          {"config", config}};
+}
+
+FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  FinSetup s;
+  read_mesh_and_scales(in, o, s);
+  drive_structure(in, o, s);
+  grid_time_and_config(in, o, s);
+  const cfd::io::FinFlowOptions& fo = o.flow;
+  const Eigen::Index nv = s.X0.cols();
+
+  // Set up: flow, structure, the coupled step around the fin's mid-surface, the coupling.
+  const cfd::ThinBody body =
+      cfd::build_thin_body(s.mid, static_cast<int>(nv), o.thickness_cells * s.h, in.mesh_name + " (fsi thin body)");
+  cfd::FlowOptions fopt;
+  fopt.nu = s.nu;
+  fopt.dt = s.dt;
+  fopt.cfl_limit = fo.cfl_limit;
+  fopt.helmholtz_rtol = 1e-8;
+  fopt.poisson.rtol = fo.poisson_rtol;
+  fopt.cut_cell_continuity_3d = fo.cut_cells;
+  cfd::FlowSolver flow;
+  flow.setup(s.grid, fin_boundary(o, s), fopt);
   std::vector<int> wet(static_cast<std::size_t>(nv));
   for (int j = 0; j < nv; ++j) wet[static_cast<std::size_t>(j)] = j;
-  fem::CoupledStructure structure(model, so, wet);
+  fem::CoupledStructure structure(s.model, structure_options(in, o, s), wet);
   structure.save();
-  SurfaceFlowStructureStep step(flow, structure, body, mid, X0, fo.rho, dt, Eigen::Vector3d::Zero(), c);
+  SurfaceFlowStructureStep step(flow, structure, body, s.mid, s.X0, fo.rho, s.dt, Eigen::Vector3d::Zero(), s.c);
   if (o.surface != "closed" && o.surface != "sheet")
     throw Error("--surface: '" + o.surface + "', expected closed or sheet");
   std::optional<cfd::SheetForcingOptions> sheet;
@@ -379,142 +565,65 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
     sheet->spacing = fo.marker_spacing;
   }
   try {
-    step.immerse(X0, sheet);
-    const double U0 = o.stream_ramp_periods > 0 ? 0.0 : U;  // a ramped stream starts from rest
-    flow.initialise([U0](double, double, double, double) { return std::array<double, 3>{U0, 0, 0}; }, {}, t_start);
+    step.immerse(s.X0, sheet);
+    const double U0 = o.stream_ramp_periods > 0 ? 0.0 : s.U;  // a ramped stream starts from rest
+    flow.initialise([U0](double, double, double, double) { return std::array<double, 3>{U0, 0, 0}; }, {}, s.t_start);
   } catch (const std::exception& e) {
-    throw Error("fin fsi: setting up the body in the " + std::to_string(grid.nx()) + " x " + std::to_string(grid.ny()) +
-                " x " + std::to_string(grid.nz()) + " grid: " + e.what());
+    throw Error("fin fsi: setting up the body in the " + std::to_string(s.grid.nx()) + " x " +
+                std::to_string(s.grid.ny()) + " x " + std::to_string(s.grid.nz()) + " grid: " + e.what());
   }
-
   CouplingOptions co;
   co.convergence.relative_tolerance = o.tolerance;
-  co.convergence.absolute_tolerance = o.absolute_tolerance * c;
+  co.convergence.absolute_tolerance = o.absolute_tolerance * s.c;
   co.max_iterations = o.max_iterations;
   co.divergence_iterations = 0;
   co.accept_at_cap = !o.strict;
   const InterfaceLayout layout = step.layout();
-  ImplicitCoupling coupling(layout, Eigen::VectorXd::Zero(layout.size()), make_acceleration(o.acceleration, layout, o.omega),
-                            co, t_start);
+  ImplicitCoupling coupling(layout, Eigen::VectorXd::Zero(layout.size()),
+                            make_acceleration(o.acceleration, layout, o.omega), co, s.t_start);
 
+  // The run: restart, steps, checkpoints (coupled_run.hpp).
+  std::vector<Eigen::Vector3d> reference(static_cast<std::size_t>(nv));
+  for (Eigen::Index i = 0; i < nv; ++i) reference[static_cast<std::size_t>(i)] = s.X0.col(i);
+  FsiOutput output(reference, {}, fo.rho, s.U, s.area);
+  CoupledRunOptions ro;
+  ro.name = "fin fsi";
+  ro.steps = s.steps;
+  ro.dt = s.dt;
+  ro.checkpoint = o.checkpoint;
+  ro.checkpoint_every = o.checkpoint_every;
+  ro.restart = o.restart;
+  ro.progress = o.progress;
+  FinFsiResult& res = s.result;
+  CoupledRun run(flow, structure, step, coupling, output, res.config, ro);
+  FinCase fin(s, o, step, structure, flow, output);
+  const long first = run.restart(fin);
+  if (!o.paraview_dir.empty())
+    fin.paraview = std::make_unique<FsiParaView>(o.paraview_dir, o.paraview_every, first > 0);
   if (o.progress)
-    o.progress("fin-fsi fin: grid " + std::to_string(grid.nx()) + " x " + std::to_string(grid.ny()) + " x " +
-               std::to_string(grid.nz()) + " (h = c/" + num(c / h) + "), " + std::to_string(nv) + " nodes, T = " +
-               num(T) + " s, dt = T/" + std::to_string(period_steps) + ", " + std::to_string(steps) + " steps, U = " +
-               num(U) + " m/s");
-  const std::vector<int> tips = ray_tips(mesh);
-  std::vector<double> fx, fy, tip_lo(tips.size(), 1e300), tip_hi(tips.size(), -1e300);
-  std::vector<double> time, points, velocity, nodal, total, residual, relative;
-  std::vector<std::int32_t> iterations;
+    o.progress("fin-fsi fin: grid " + std::to_string(s.grid.nx()) + " x " + std::to_string(s.grid.ny()) + " x " +
+               std::to_string(s.grid.nz()) + " (h = c/" + num(s.c / s.h) + "), " + std::to_string(nv) +
+               " nodes, T = " + num(s.T) + " s, dt = T/" + std::to_string(s.period_steps) + ", " +
+               std::to_string(s.steps) + " steps, U = " + num(s.U) + " m/s" +
+               (first > 0 ? ", restarted after step " + std::to_string(first) : ""));
+  run.run(fin);
+
+  // Results: the last period, the coupling's statistics, fsi.h5, the structure's ParaView series.
+  res.steps = s.steps;
   double it_sum = 0;
-  const long every = std::max(1L, steps / 100);
-  for (long n = 1; n <= steps; ++n) {
-    StepStatistics st;
-    try {
-      st = coupling.advance(step, dt);
-    } catch (const std::exception& e) {
-      throw Error("fin fsi: step " + std::to_string(n) + " of " + std::to_string(steps) + " (t = " +
-                  num(t_start + static_cast<double>(n) * dt) + " s): " + e.what());
-    }
-    const fem::DynamicState& s = structure.state();
-    for (Eigen::Index i = 0; i < nv; ++i)
-      if (!s.configuration.position[static_cast<std::size_t>(i)].allFinite())
-        throw Error("fin fsi: step " + std::to_string(n) + ": the structure's node " + std::to_string(i) +
-                    " is not finite (blow-up)");
-    const SurfaceStepRecord& rec = step.records().back();
-    res.transfer_mismatch = std::max(res.transfer_mismatch, rec.transfer_mismatch);
+  for (const StepStatistics& st : run.statistics()) {
     it_sum += st.iterations;
     res.iterations_max = std::max(res.iterations_max, st.iterations);
     res.steps_at_cap += st.converged ? 0 : 1;
-    if (n > steps - period_steps) {
-      fx.push_back(rec.force.x());
-      fy.push_back(rec.force.y());
-      for (std::size_t k = 0; k < tips.size(); ++k) {
-        const double y = s.configuration.position[static_cast<std::size_t>(tips[k])].y();
-        tip_lo[k] = std::min(tip_lo[k], y);
-        tip_hi[k] = std::max(tip_hi[k], y);
-      }
-    }
-    if (n > out_first && n % m_sub == 0) {
-      time.push_back(s.time);
-      const Eigen::Matrix3Xd& loads = step.wet_loads();
-      for (Eigen::Index i = 0; i < nv; ++i)
-        for (int d = 0; d < 3; ++d) {
-          points.push_back(s.configuration.position[static_cast<std::size_t>(i)](d));
-          velocity.push_back(s.velocity(6 * i + d));
-          nodal.push_back(loads(d, i));
-        }
-      for (int d = 0; d < 3; ++d) total.push_back(rec.force(d));
-      iterations.push_back(st.iterations);
-      residual.push_back(st.absolute_residual);
-      relative.push_back(st.residual);
-    }
-    if (o.progress && (n % every == 0 || n == steps)) {
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-      const double q = 0.5 * fo.rho * U * U * area;
-      double ymax = 0;  // the fin's largest lateral excursion, to see a blow-up coming
-      for (Eigen::Index i = 0; i < nv; ++i)
-        ymax = std::max(ymax, std::abs(s.configuration.position[static_cast<std::size_t>(i)].y()));
-      o.progress("fin-fsi fin: step " + std::to_string(n) + "/" + std::to_string(steps) + " t " +
-                 num(s.time, "%.5f") + " s: " + std::to_string(st.iterations) + " it, residual " +
-                 num(st.residual, "%.2e") + (st.converged ? "" : " (cap)") + ", C_T " + num(-rec.force.x() / q, "%.4f") +
-                 ", max |y| " + num(ymax / c, "%.3f") + " c, wall " + num(wall, "%.0f") + " s, ETA " +
-                 num(wall / static_cast<double>(n) * static_cast<double>(steps - n), "%.0f") + " s");
-    }
   }
-  res.steps = steps;
-  res.iterations_mean = it_sum / static_cast<double>(steps);
-
-  // The last period.
-  const double q = 0.5 * fo.rho * U * U * area;
-  double sx = 0, peak = -1e300, ymin = 1e300, ymax = -1e300;
-  for (std::size_t k = 0; k < fx.size(); ++k) {
-    sx += fx[k];
-    peak = std::max(peak, -fx[k] / q);
-    ymin = std::min(ymin, fy[k] / q);
-    ymax = std::max(ymax, fy[k] / q);
+  res.iterations_mean = it_sum / static_cast<double>(s.steps);
+  fin.last_period(res);
+  res.fsi = fin_fsi_file(output, s);
+  if (fin.paraview) {
+    std::vector<std::int32_t> tri;
+    for (const auto& t : s.mid) tri.insert(tri.end(), t.begin(), t.end());
+    fin.paraview->write_structure(NdArray<std::int32_t>({s.mid.size(), 3}, tri), reference, output);
   }
-  res.ct_mean = -sx / static_cast<double>(fx.size()) / q;
-  res.ct_peak = peak;
-  res.cl_amplitude = (ymax - ymin) / 2;
-  if (!tips.empty()) {
-    res.te_peak_to_peak_min = 1e300;
-    for (std::size_t k = 0; k < tips.size(); ++k) {
-      const double p = (tip_hi[k] - tip_lo[k]) / c;
-      res.te_peak_to_peak_mean += p / static_cast<double>(tips.size());
-      res.te_peak_to_peak_min = std::min(res.te_peak_to_peak_min, p);
-      res.te_peak_to_peak_max = std::max(res.te_peak_to_peak_max, p);
-    }
-  }
-
-  // fsi.h5.
-  const std::size_t nt = time.size(), N = static_cast<std::size_t>(nv);
-  if (nt == 0) throw Error("fin fsi: no output time in the run (--periods, --output-periods, --output-interval)");
-  stage::Fsi& f = res.fsi;
-  f.time = NdArray<double>({nt}, time);
-  f.points = NdArray<double>({nt, N, 3}, points);
-  f.velocity = NdArray<double>({nt, N, 3}, velocity);
-  f.nodal_force = NdArray<double>({nt, N, 3}, nodal);
-  f.force_total = NdArray<double>({nt, 3}, total);
-  f.thrust = NdArray<double>({nt});
-  f.lateral = NdArray<double>({nt});
-  f.vertical = NdArray<double>({nt});
-  for (std::size_t k = 0; k < nt; ++k) {
-    f.thrust.data[k] = -total[3 * k] / q;
-    f.lateral.data[k] = total[3 * k + 1] / q;
-    f.vertical.data[k] = total[3 * k + 2] / q;
-  }
-  f.coupling_iterations = NdArray<std::int32_t>({nt}, iterations);
-  f.coupling_residual = NdArray<double>({nt}, residual);
-  f.coupling_relative_residual = NdArray<double>({nt}, relative);
-  f.reference_points = NdArray<double>({N, 3});
-  for (std::size_t i = 0; i < N; ++i)
-    for (std::size_t d = 0; d < 3; ++d) f.reference_points.data[3 * i + d] = X0(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(i));
-  f.rho = fo.rho;
-  f.U = U;
-  f.reference_area = area;
-  if (periodic) f.period = T;
-  if (!effects.empty()) f.effects = fem::effects_to_json(effects).dump();
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return res;
 }

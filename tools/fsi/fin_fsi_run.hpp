@@ -11,28 +11,28 @@
 // of motion.h5's frames; inlet / convective outlet / slip sides; the stream impulsive at the start.
 // Time: the drive starts at t = 0 from rest with its own cosine ramp; a tracked motion starts one
 // ramp (ramp_periods T, or ramp_time) before its first frame, blended from rest to the root's
-// first-frame position and velocity (quintic Hermite). A periodic motion (attribute T, whole periods; tiled over the run)
-// and the drive run `periods` periods (the ramp included) and write the last `output_periods` at
-// the output interval (the motion's frame spacing shortened to divide T, or T / 100 for the drive
-// unless given); a non-periodic motion runs to its last frame and writes its frames. The
-// fixed dt is a whole fraction of it with (U + 2 v_max) dt / h <= cfl, v_max the drive's fastest
-// node speed.
-// Failures (a coupling that diverges, the cap under strict, the flow's CFL guard, a structure that
-// does not converge or turns non-finite) end in one finverse::Error naming the step.
+// first-frame position and velocity (quintic Hermite). A periodic motion (attribute T, whole periods; tiled over the
+// run) and the drive run `periods` periods (the ramp included) and write the last `output_periods` at the output
+// interval (the motion's frame spacing shortened to divide T, or T / 100 for the drive unless given); a non-periodic
+// motion runs to its last frame and writes its frames. The fixed dt is a whole fraction of it with (U + 2 v_max) dt / h
+// <= cfl, v_max the drive's fastest node speed. Failures (a coupling that diverges, the cap under strict, the flow's
+// CFL guard, a structure that does not converge or turns non-finite) end in one finverse::Error naming the step and the
+// last good checkpoint. The run is the coupled run every case uses (coupled_run.hpp): checkpoints, a restart that
+// continues bit for bit, and ParaView series.
 #pragma once
 
+#include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "cfd/io/fin_flow_case.hpp"
 #include "core/stage_files.hpp"
-#include "fem/model.hpp"
 #include "fem/io/material_spec.hpp"
 #include "fem/io/root_drive_file.hpp"
+#include "fem/model.hpp"
 
 namespace finverse::fsi {
 
@@ -64,6 +64,15 @@ struct FinFsiOptions {
   int substeps = 2;                   // structure sub-steps per coupling step
   // Rayleigh damping C = a_M M + a_K K of the structure; < 0: the materials file's.
   double rayleigh_mass = -1, rayleigh_stiffness = -1;
+  // Checkpoints (coupled_run.hpp): to `checkpoint` every checkpoint_every steps (0: only after the
+  // last) and after the last step; `restart` continues from one written with the same options.
+  std::filesystem::path checkpoint;
+  long checkpoint_every = 0;
+  std::filesystem::path restart;
+  // ParaView series (fsi_paraview.hpp) of the structure and the flow at every paraview_every-th
+  // fsi.h5 frame (empty: none).
+  std::filesystem::path paraview_dir;
+  long paraview_every = 1;
   std::function<void(const std::string&)> progress;
 };
 

@@ -52,6 +52,9 @@ class CoupledStep {
   // The step converged with input x_in and output x_out (the participants hold the state of that
   // evaluation): the place for outputs of the step.
   virtual void accept(const Eigen::VectorXd& /*x_in*/, const Eigen::VectorXd& /*x_out*/) {}
+  // A restart (coupled_run.hpp): the last accepted input x_in before it, which accept() would have
+  // kept (the wall's velocity at the next step's start); nothing is stepped or recorded.
+  virtual void resume(const Eigen::VectorXd& /*x_in*/) {}
 };
 
 enum class Predictor { ConstantVelocity, Linear, Constant };

@@ -192,4 +192,9 @@ void SurfaceFlowStructureStep::accept(const Eigen::VectorXd& x_in, const Eigen::
   records_.push_back(current_);
 }
 
+void SurfaceFlowStructureStep::resume(const Eigen::VectorXd& x_in) {
+  const Eigen::Index n = body_.node_count;
+  velocity_start_ = Eigen::Map<const Eigen::Matrix3Xd>(x_in.data() + 3 * n, 3, n);
+}
+
 }  // namespace finverse::fsi

@@ -69,6 +69,7 @@ class SurfaceFlowStructureStep final : public CoupledStep {
   void restore() override;
   [[nodiscard]] Eigen::VectorXd evaluate(const Eigen::VectorXd& interface_motion) override;
   void accept(const Eigen::VectorXd& x_in, const Eigen::VectorXd& x_out) override;
+  void resume(const Eigen::VectorXd& x_in) override;
 
   // The body at the mid-surface positions x0 in the flow: the closed thin body, or with `sheet`
   // the mid-surface as a zero-thickness sheet with those options.

@@ -10,7 +10,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <string>
 
+#include "../scratch_dir.hpp"
 #include "core/error.hpp"
 #include "fem/io/root_drive_file.hpp"
 #include "fsi/fin_fsi_run.hpp"
@@ -194,6 +197,54 @@ TEST(FinFsi, RefusesNoDriveOrTwoDrives) {
   FinFsiInputs both = inputs();
   both.motion = stage::Motion{};
   EXPECT_THROW(run_fin_fsi(both, options()), Error);
+}
+
+// The fin's run is the coupled run every case uses (coupled_run.hpp): a restart from the
+// checkpoint of step 3 gives the uninterrupted run's fsi.h5 arrays bit for bit, for the closed body
+// and for the sheet; ParaView series of the fin and the flow are written; a restart with other
+// options, or from the last step's checkpoint, is refused.
+TEST(FinFsi, RestartFromACheckpointContinuesBitForBit) {
+  test::ScratchDir dir;
+  for (const std::string surface : {"closed", "sheet"}) {
+    const FinFsiInputs in = inputs();
+    FinFsiOptions o = options();
+    o.surface = surface;
+    o.checkpoint = dir / (surface + ".h5");
+    o.checkpoint_every = 1;
+    // The progress line of a step comes after its checkpoint: keep step 3's.
+    long seen = 0;
+    o.progress = [&](const std::string& line) {
+      if (line.find(" it, residual") != std::string::npos && ++seen == 3)
+        std::filesystem::copy_file(o.checkpoint, dir / (surface + "_3.h5"),
+                                   std::filesystem::copy_options::overwrite_existing);
+    };
+    const FinFsiResult whole = run_fin_fsi(in, o);
+    ASSERT_GE(whole.steps, 5);
+    FinFsiOptions resumed = options();
+    resumed.surface = surface;
+    resumed.restart = dir / (surface + "_3.h5");
+    resumed.paraview_dir = dir / (surface + "_paraview");
+    const FinFsiResult rest = run_fin_fsi(in, resumed);
+    EXPECT_EQ(rest.fsi.time.data, whole.fsi.time.data) << surface;
+    EXPECT_EQ(rest.fsi.points.data, whole.fsi.points.data) << surface;
+    EXPECT_EQ(rest.fsi.nodal_force.data, whole.fsi.nodal_force.data) << surface;
+    EXPECT_EQ(rest.fsi.thrust.data, whole.fsi.thrust.data) << surface;
+    EXPECT_EQ(rest.ct_mean, whole.ct_mean) << surface;
+    EXPECT_EQ(rest.iterations_mean, whole.iterations_mean) << surface;
+    EXPECT_TRUE(std::filesystem::exists(resumed.paraview_dir / "structure.pvd")) << surface;
+    EXPECT_TRUE(std::filesystem::exists(resumed.paraview_dir / "flow.pvd")) << surface;
+    FinFsiOptions other = resumed;
+    other.tolerance = 2e-3;
+    try {
+      (void)run_fin_fsi(in, other);
+      ADD_FAILURE() << "a restart with another tolerance ran";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("relative_tolerance"), std::string::npos) << e.what();
+    }
+    FinFsiOptions done = resumed;
+    done.restart = o.checkpoint;  // written after the last step
+    EXPECT_THROW((void)run_fin_fsi(in, done), Error);
+  }
 }
 
 }  // namespace

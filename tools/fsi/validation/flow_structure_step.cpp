@@ -129,4 +129,9 @@ void FlowStructureStep::accept(const Eigen::VectorXd& x_in, const Eigen::VectorX
   records_.push_back(current_);
 }
 
+void FlowStructureStep::resume(const Eigen::VectorXd& x_in) {
+  const Eigen::Index n = body_.wet_nodes();
+  velocity_start_ = Eigen::Map<const Eigen::Matrix2Xd>(x_in.data() + 2 * n, 2, n);
+}
+
 }  // namespace finverse::fsi::validation

@@ -49,6 +49,7 @@ class FlowStructureStep final : public CoupledStep {
   void restore() override;
   [[nodiscard]] Eigen::VectorXd evaluate(const Eigen::VectorXd& interface_motion) override;
   void accept(const Eigen::VectorXd& x_in, const Eigen::VectorXd& x_out) override;
+  void resume(const Eigen::VectorXd& x_in) override;
 
   [[nodiscard]] InterfaceLayout layout() const;
   [[nodiscard]] const std::vector<StepRecord>& records() const { return records_; }

@@ -6,25 +6,25 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <set>
-
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "cfd/validation/cylinder_channel.hpp"
 #include "cfd/validation/turek_hron_cfd.hpp"
 #include "core/error.hpp"
-#include "core/sha256.hpp"
 #include "core/printf_format.hpp"
+#include "core/sha256.hpp"
 #include "fem/coupled_structure.hpp"
 #include "fem/errors.hpp"
 #include "fem/validation/turek_hron_csm.hpp"
 #include "fsi/aitken.hpp"
 #include "fsi/constant_relaxation.hpp"
+#include "fsi/coupled_run.hpp"
+#include "fsi/fsi_checkpoint.hpp"
+#include "fsi/fsi_output.hpp"
+#include "fsi/fsi_paraview.hpp"
 #include "fsi/iqn_ils.hpp"
 #include "fsi/validation/flag_flow_body.hpp"
-#include "fsi/validation/fsi_checkpoint.hpp"
-#include "fsi/validation/fsi_output.hpp"
-#include "fsi/validation/fsi_paraview.hpp"
 
 namespace finverse::fsi::validation {
 
@@ -117,6 +117,91 @@ void grade_energy_balance(Summary& s, const std::vector<double>& t, const TurekH
             "|W_I - dE| / sum |W_I,step| over the last period (issue 32, validation 4)");
 }
 
+// The flag's part of the coupled run (coupled_run.hpp): per step the forces, point A and the
+// flag's energy; fsi.h5 frames every output_every steps (and the last); flow snapshots.
+class FlagCase final : public CoupledCase {
+ public:
+  FlagCase(TurekHronFsiRun& run, FlowStructureStep& step, fem::CoupledStructure& structure, FsiOutput& output,
+           const fem::validation::TurekHronFlag& flag, const std::vector<fem::Vec3>& reference, double dt, int every)
+      : run_(run),
+        step_(step),
+        structure_(structure),
+        output_(output),
+        flag_(flag),
+        reference_(reference),
+        dt_(dt),
+        every_(every) {}
+
+  std::unique_ptr<FsiParaView> paraview;
+  const cfd::FlowSolver* flow = nullptr;
+
+  void after_step(long n, const StepStatistics& st) override {
+    const StepRecord& rec = step_.records().back();
+    run_.records.push_back(rec);
+    const auto a = static_cast<std::size_t>(flag_.point_a);
+    const fem::Vec3 ua = structure_.state().configuration.position[a] - reference_[a];
+    run_.ux_a.push_back(ua.x());
+    run_.uy_a.push_back(ua.y());
+    run_.energy.push_back(structure_.kinetic_energy() + structure_.strain_energy());
+    last_ = st;
+    if (n % every_ == 0) add_frame(st);
+    output_.add_probes(structure_.state());
+    if (paraview && n % every_ == 0) paraview->at_frame(n / every_, rec.time, dt_, *flow);
+  }
+  // The last step's frame off the interval comes after the checkpoint, which holds the frames of
+  // the uninterrupted run only.
+  void after_last_step(long n) override {
+    if (n % every_ != 0) add_frame(last_);
+  }
+  [[nodiscard]] RunHistory history() const override {
+    std::vector<double> records;
+    for (const StepRecord& r : run_.records)
+      records.insert(records.end(), {static_cast<double>(r.step), r.time, r.force[0], r.force[1], r.flag_force[0],
+                                     r.flag_force[1], r.power, r.interface_work, r.transfer_mismatch});
+    return {{"records", records}, {"ux_a", run_.ux_a}, {"uy_a", run_.uy_a}, {"energy", run_.energy}};
+  }
+  void restore_history(RunHistory h) override {
+    const std::vector<double>& records = h["records"];
+    const std::size_t n = h["ux_a"].size();
+    if (records.size() != 9 * n || h["uy_a"].size() != n || h["energy"].size() != n)
+      throw Error("turek_hron_fsi: the checkpoint's per-step records and probe history do not fit one another");
+    for (std::size_t k = 0; k < records.size(); k += 9) {
+      const double* r = records.data() + k;
+      run_.records.push_back({static_cast<long>(r[0]), r[1], {r[2], r[3]}, {r[4], r[5]}, r[6], r[7], r[8]});
+    }
+    run_.ux_a = std::move(h["ux_a"]);
+    run_.uy_a = std::move(h["uy_a"]);
+    run_.energy = std::move(h["energy"]);
+  }
+  [[nodiscard]] std::string progress_line(long n, const StepStatistics& st) const override {
+    const StepRecord& rec = run_.records.back();
+    return "step " + std::to_string(n) + " t " + printf_format("%.4f", rec.time) + ": " +
+           std::to_string(st.iterations) + " it" + (st.converged ? "" : " (cap: best iterate)") + ", residual " +
+           printf_format("%.2e", st.residual) + ", drag " + printf_format("%.4f", rec.force[0]) + " lift " +
+           printf_format("%.4f", rec.force[1]) + " N/m, A (" + printf_format("%.4e", run_.ux_a.back()) + ", " +
+           printf_format("%.4e", run_.uy_a.back()) + ") m, power " + printf_format("%.3e", rec.power) + " W/m";
+  }
+
+ private:
+  void add_frame(const StepStatistics& st) {
+    const StepRecord& rec = run_.records.back();
+    const auto n_wet = static_cast<Eigen::Index>(flag_.wet_nodes.size());
+    const Eigen::VectorXd load = Eigen::Map<const Eigen::VectorXd>(step_.wet_loads().data(), 2 * n_wet);
+    output_.add(structure_.state(), structure_.scatter(load), {rec.force[0], rec.force[1], 0.0}, st.iterations,
+                st.absolute_residual, st.residual);
+  }
+
+  TurekHronFsiRun& run_;
+  FlowStructureStep& step_;
+  fem::CoupledStructure& structure_;
+  FsiOutput& output_;
+  const fem::validation::TurekHronFlag& flag_;
+  const std::vector<fem::Vec3>& reference_;
+  double dt_;
+  int every_;
+  StepStatistics last_;
+};
+
 }  // namespace
 
 TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
@@ -202,61 +287,21 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
   if (steps < 1) throw Error("turek_hron_fsi: t_end must be at least one time step");
   if (opt.checkpoint_every < 0) throw Error("turek_hron_fsi: expected checkpoint_every >= 0");
   const nlohmann::json config = run_config(opt, h, hc, dt, t_end);
-  if (!opt.restart.empty()) {
-    std::set<std::string> may_differ = {"t_end"};
-    if (opt.restart_new_coupling)
-      may_differ.insert({"acceleration", "omega0", "relative_tolerance", "absolute_tolerance", "max_iterations",
-                         "accept_at_cap", "divergence_iterations"});
-    const nlohmann::json stored = check_fsi_checkpoint_config(opt.restart, config, may_differ);
-    FsiRunState r = read_fsi_checkpoint(opt.restart, flow);
-    if (r.coupling_input.size() != layout.size() || r.coupling_state.size() != layout.size())
-      throw Error("turek_hron_fsi: --restart " + opt.restart.string() + " holds an interface of " +
-                  std::to_string(r.coupling_state.size()) + " values, this flag has " + std::to_string(layout.size()));
-    if (r.steps >= steps)
-      throw Error("turek_hron_fsi: --restart " + opt.restart.string() + " ends at step " + std::to_string(r.steps) +
-                  " (t = " + printf_format("%.6g", r.time) + " s): t_end must lie beyond it");
-    // FlowStructureStep keeps the flow wall's V^n, the accepted input's velocity block, which it
-    // takes from accept(); give it that through one throw-away structure step (the structure is
-    // then put back to the checkpoint's state).
-    structure.advance(dt, Eigen::VectorXd::Zero(2 * n_wet));
-    step.accept(r.coupling_input, r.coupling_input);
-    structure.restart(r.structure, r.integrator, r.interface_load);
-    coupling.restart(r.coupling_state, r.coupling_previous, r.coupling_input, r.time, r.steps);
-    if (stored.value("acceleration", "") == opt.acceleration) coupling.acceleration().restore_carried_state(r.acceleration);
-    output.restore_frames(r.frames);
-    run.records = std::move(r.records);
-    run.statistics = std::move(r.statistics);
-    run.ux_a = std::move(r.ux_a);
-    run.uy_a = std::move(r.uy_a);
-    run.energy = std::move(r.energy);
-    run.first_step = r.steps;
-  }
-  const auto save_checkpoint = [&] {
-    FsiRunState r;
-    r.coupling_state = coupling.state();
-    r.coupling_previous = coupling.previous_state();
-    r.coupling_input = coupling.accepted_input();
-    r.time = coupling.time();
-    r.steps = coupling.steps();
-    r.structure = structure.state();
-    r.integrator = structure.integrator().snapshot();
-    r.interface_load = structure.interface_load();
-    r.acceleration = coupling.acceleration().carried_state();
-    r.records = run.records;
-    r.statistics = run.statistics;
-    for (StepStatistics& st : r.statistics) st.residual_history.clear();
-    r.ux_a = run.ux_a;
-    r.uy_a = run.uy_a;
-    r.energy = run.energy;
-    r.frames = output.saved_frames();
-    write_fsi_checkpoint(opt.checkpoint, flow, config, r);
-  };
-  // The last good checkpoint, named in a failure's message.
-  std::string last_checkpoint = opt.restart.empty() ? "" : opt.restart.string() + " (step " + std::to_string(run.first_step) + ")";
-  const auto failed = [&](const std::string& what) {
-    if (!last_checkpoint.empty()) return what + "; last good checkpoint " + last_checkpoint;
-    return opt.checkpoint.empty() ? what : what + "; no checkpoint written yet";
-  };
+  CoupledRunOptions ro;
+  ro.name = "fsi";
+  ro.steps = steps;
+  ro.dt = dt;
+  ro.checkpoint = opt.checkpoint;
+  ro.checkpoint_every = opt.checkpoint_every;
+  ro.restart = opt.restart;
+  ro.may_differ = {"t_end"};
+  if (opt.restart_new_coupling)
+    ro.may_differ.insert({"acceleration", "omega0", "relative_tolerance", "absolute_tolerance", "max_iterations",
+                          "accept_at_cap", "divergence_iterations"});
+  ro.progress = opt.progress;
+  CoupledRun coupled(flow, structure, step, coupling, output, config, ro);
+  FlagCase flag_case(run, step, structure, output, flag, X0, dt, opt.output_every);
+  run.first_step = coupled.restart(flag_case);
   if (opt.hold_flag_rigid) {
     // The benchmark's reference cost: the same flow with the flag frozen in its current shape.
     const Eigen::VectorXd xs = structure.wet_positions();
@@ -280,57 +325,14 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
     run.summary.parameters()["hold_flag_rigid"] = true;
     return run;
   }
-  std::unique_ptr<FsiParaView> paraview;
   if (!opt.paraview_dir.empty())
-    paraview = std::make_unique<FsiParaView>(opt.paraview_dir, opt.paraview_every, !opt.restart.empty());
-  const auto loop0 = std::chrono::steady_clock::now();
-  for (long n = run.first_step + 1; n <= steps; ++n) {
-    StepStatistics st;
-    try {
-      st = coupling.advance(step, dt);
-    } catch (const CouplingDiverged& e) {
-      throw CouplingDiverged(failed(e.what()), e.statistics);
-    } catch (const CouplingNotConverged& e) {
-      throw CouplingNotConverged(failed(e.what()), e.statistics);
-    } catch (const std::exception& e) {
-      throw Error(failed(e.what()));
-    }
-    const StepRecord& rec = step.records().back();
-    run.records.push_back(rec);
-    const fem::Vec3 ua = structure.state().configuration.position[static_cast<std::size_t>(flag.point_a)] -
-                         X0[static_cast<std::size_t>(flag.point_a)];
-    run.statistics.push_back(st);
-    run.ux_a.push_back(ua.x());
-    run.uy_a.push_back(ua.y());
-    run.energy.push_back(structure.kinetic_energy() + structure.strain_energy());
-    const auto add_frame = [&] {
-      const Eigen::VectorXd load = Eigen::Map<const Eigen::VectorXd>(step.wet_loads().data(), 2 * n_wet);
-      output.add(structure.state(), structure.scatter(load), {rec.force[0], rec.force[1], 0.0}, st.iterations,
-                 st.absolute_residual, st.residual);
-    };
-    if (n % opt.output_every == 0) add_frame();
-    output.add_probes(structure.state());
-    if (paraview && n % opt.output_every == 0) paraview->at_frame(n / opt.output_every, rec.time, dt, flow);
-    if (!opt.checkpoint.empty() && (n == steps || (opt.checkpoint_every > 0 && n % opt.checkpoint_every == 0))) {
-      save_checkpoint();
-      last_checkpoint = opt.checkpoint.string() + " (step " + std::to_string(n) + ")";
-    }
-    // The last step's frame off the interval comes after the checkpoint, which holds the frames of
-    // the uninterrupted run only.
-    if (n == steps && n % opt.output_every != 0) add_frame();
-    if (opt.progress) {
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-      const double eta = wall / static_cast<double>(n - run.first_step) * static_cast<double>(steps - n);
-      opt.progress("step " + std::to_string(n) + "/" + std::to_string(steps) + " t " + printf_format("%.4f", rec.time) +
-                   ": " + std::to_string(st.iterations) + " it" + (st.converged ? "" : " (cap: best iterate)") +
-                   ", residual " + printf_format("%.2e", st.residual) + ", drag " + printf_format("%.4f", rec.force[0]) +
-                   " lift " + printf_format("%.4f", rec.force[1]) + " N/m, A (" + printf_format("%.4e", ua.x()) + ", " +
-                   printf_format("%.4e", ua.y()) + ") m, power " + printf_format("%.3e", rec.power) + " W/m, ETA " +
-                   printf_format("%.0f", eta) + " s");
-    }
-  }
+    flag_case.paraview = std::make_unique<FsiParaView>(opt.paraview_dir, opt.paraview_every, !opt.restart.empty());
+  flag_case.flow = &flow;
+  coupled.run(flag_case);
+  run.statistics = coupled.statistics();
   run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  const double loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop0).count();
+  const double loop_seconds = coupled.loop_seconds();
+  std::unique_ptr<FsiParaView>& paraview = flag_case.paraview;
 
   // Grading.
   const std::string source = "Turek & Hron 2006 (" + opt.reference.filename().string() + ", /cases/" + name + ")";

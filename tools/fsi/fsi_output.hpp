@@ -2,25 +2,25 @@
 // CONTRACTS.md; issue 32 "Outputs"): per output step the time, every structure node's position and
 // velocity, the hydrodynamic force on each node, the total force on the body with its coefficients,
 // and the coupling's iterations and final residuals (absolute and relative); besides, the reference
-// positions and, at every step, the displacement of a few probe nodes (e.g. point A). A 2-D run (the plane-strain flag) stores z = 0
-// and forces per metre depth [N/m]; its reference area is then D x 1 m. The file is written to a
-// temporary and renamed (stage::write, core/atomic_file.hpp): nothing half-written under the final
-// name. frames()/restore_frames(): the frames so far as named arrays, for a run's checkpoint
-// (fsi_checkpoint.hpp), so that a restarted run writes the uninterrupted run's file.
+// positions and, at every step, the displacement of a few probe nodes (e.g. point A). A 2-D run (the plane-strain flag)
+// stores z = 0 and forces per metre depth [N/m]; its reference area is then D x 1 m. The file is written to a temporary
+// and renamed (stage::write, core/atomic_file.hpp): nothing half-written under the final name.
+// frames()/restore_frames(): the frames so far as named arrays, for a run's checkpoint (fsi_checkpoint.hpp), so that a
+// restarted run writes the uninterrupted run's file.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "core/provenance.hpp"
+#include "core/stage_files.hpp"
 #include "fem/generalized_alpha.hpp"
 
-namespace finverse::fsi::validation {
+namespace finverse::fsi {
 
 class FsiOutput {
  public:
@@ -38,6 +38,8 @@ class FsiOutput {
   void add_probes(const fem::DynamicState& state);
   // Atomic write (temporary + rename); throws finverse::Error.
   void write(const std::filesystem::path& path, const Provenance& provenance) const;
+  // The frames as fsi.h5's arrays (for a caller that adds its own attributes before writing).
+  [[nodiscard]] stage::Fsi to_stage() const;
 
   [[nodiscard]] std::size_t frames() const { return time_.size(); }
   // Everything added so far, as named flat arrays, and back (throws finverse::Error when the sizes
@@ -57,4 +59,4 @@ class FsiOutput {
   std::vector<double> probe_time_, probe_displacement_;
 };
 
-}  // namespace finverse::fsi::validation
+}  // namespace finverse::fsi

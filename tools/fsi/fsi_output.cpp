@@ -1,17 +1,21 @@
 // fsi.h5 frames of a coupled run; see fsi_output.hpp.
-#include "fsi/validation/fsi_output.hpp"
+#include "fsi/fsi_output.hpp"
 
 #include <string>
 
 #include "core/error.hpp"
 #include "core/stage_files.hpp"
 
-namespace finverse::fsi::validation {
+namespace finverse::fsi {
 
-FsiOutput::FsiOutput(const std::vector<Eigen::Vector3d>& reference, std::vector<int> probes, double rho,
-                     double speed, double reference_area)
-    : nodes_(static_cast<int>(reference.size())), reference_(reference), probes_(std::move(probes)), rho_(rho),
-      speed_(speed), area_(reference_area) {
+FsiOutput::FsiOutput(const std::vector<Eigen::Vector3d>& reference, std::vector<int> probes, double rho, double speed,
+                     double reference_area)
+    : nodes_(static_cast<int>(reference.size())),
+      reference_(reference),
+      probes_(std::move(probes)),
+      rho_(rho),
+      speed_(speed),
+      area_(reference_area) {
   if (nodes_ < 1 || !(rho > 0) || !(speed > 0) || !(reference_area > 0))
     throw Error("fsi output: expected nodes >= 1 and positive rho, speed and reference area");
   for (const int p : probes_)
@@ -46,6 +50,11 @@ void FsiOutput::add(const fem::DynamicState& s, const Eigen::VectorXd& f, const 
 
 void FsiOutput::write(const std::filesystem::path& path, const Provenance& provenance) const {
   if (time_.empty()) throw Error("fsi output: no frames to write to " + path.string());
+  stage::Fsi out = to_stage();
+  stage::write(path, out, provenance);
+}
+
+stage::Fsi FsiOutput::to_stage() const {
   const std::size_t nt = time_.size(), nv = static_cast<std::size_t>(nodes_);
   stage::Fsi out;
   out.time = NdArray<double>({nt}, time_);
@@ -67,7 +76,8 @@ void FsiOutput::write(const std::filesystem::path& path, const Provenance& prove
   out.coupling_relative_residual = NdArray<double>({nt}, relative_);
   out.reference_points = NdArray<double>({nv, 3});
   for (std::size_t i = 0; i < nv; ++i)
-    for (std::size_t c = 0; c < 3; ++c) out.reference_points.data[3 * i + c] = reference_[i](static_cast<Eigen::Index>(c));
+    for (std::size_t c = 0; c < 3; ++c)
+      out.reference_points.data[3 * i + c] = reference_[i](static_cast<Eigen::Index>(c));
   if (!probes_.empty() && !probe_time_.empty()) {
     const std::size_t np = probes_.size(), ns = probe_time_.size();
     out.probe_nodes = NdArray<std::int32_t>({np}, std::vector<std::int32_t>(probes_.begin(), probes_.end()));
@@ -77,7 +87,7 @@ void FsiOutput::write(const std::filesystem::path& path, const Provenance& prove
   out.rho = rho_;
   out.U = speed_;
   out.reference_area = area_;
-  stage::write(path, out, provenance);
+  return out;
 }
 
 std::vector<std::string> FsiOutput::array_names() {
@@ -114,8 +124,8 @@ void FsiOutput::restore_frames(const Arrays& a) {
       residual.size() != nt || relative.size() != nt || iterations.size() != nt ||
       probe.size() != 3 * ns * probes_.size())
     throw Error("fsi output: saved frames do not fit " + std::to_string(nodes_) + " nodes and " +
-                std::to_string(probes_.size()) + " probes (" + std::to_string(nt) + " frames, " +
-                std::to_string(ns) + " probe samples)");
+                std::to_string(probes_.size()) + " probes (" + std::to_string(nt) + " frames, " + std::to_string(ns) +
+                " probe samples)");
   time_ = std::move(time);
   points_ = std::move(points);
   velocity_ = std::move(velocity);
@@ -128,4 +138,4 @@ void FsiOutput::restore_frames(const Arrays& a) {
   probe_displacement_ = std::move(probe);
 }
 
-}  // namespace finverse::fsi::validation
+}  // namespace finverse::fsi

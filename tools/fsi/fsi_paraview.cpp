@@ -1,5 +1,5 @@
 // ParaView series of a coupled run; see fsi_paraview.hpp.
-#include "fsi/validation/fsi_paraview.hpp"
+#include "fsi/fsi_paraview.hpp"
 
 #include <array>
 #include <string>
@@ -8,7 +8,7 @@
 #include "core/error.hpp"
 #include "core/vtk_output.hpp"
 
-namespace finverse::fsi::validation {
+namespace finverse::fsi {
 
 FsiParaView::FsiParaView(std::filesystem::path dir, long every, bool restarting)
     : dir_(std::move(dir)), every_(every), flow_(dir_ / "flow.pvd", every, restarting) {
@@ -16,7 +16,9 @@ FsiParaView::FsiParaView(std::filesystem::path dir, long every, bool restarting)
   std::filesystem::create_directories(dir_);
 }
 
-void FsiParaView::at_frame(long f, double t, double dt, const cfd::FlowSolver& flow) { flow_.at_output(f, t, dt, flow); }
+void FsiParaView::at_frame(long f, double t, double dt, const cfd::FlowSolver& flow) {
+  flow_.at_output(f, t, dt, flow);
+}
 
 void FsiParaView::write_structure(const fem::Model& model, const FsiOutput& output) const {
   // Q9 node order: corners 0-3 counter-clockwise, mid-sides 4 (0-1) .. 7 (3-0), centre 8; the four
@@ -30,11 +32,16 @@ void FsiParaView::write_structure(const fem::Model& model, const FsiOutput& outp
     for (const auto& t : kSplit)
       for (const int k : t) tri.push_back(nodes[static_cast<std::size_t>(k)]);
   }
-  const NdArray<std::int32_t> triangles({tri.size() / 3, 3}, tri);
+  const auto& reference = model.reference_state().position;
+  write_structure(NdArray<std::int32_t>({tri.size() / 3, 3}, tri),
+                  std::vector<Eigen::Vector3d>(reference.begin(), reference.end()), output);
+}
+
+void FsiParaView::write_structure(const NdArray<std::int32_t>& triangles, const std::vector<Eigen::Vector3d>& reference,
+                                  const FsiOutput& output) const {
   const FsiOutput::Arrays a = output.saved_frames();
   const std::vector<double>& time = a.at("output_time");
-  const std::size_t nv = static_cast<std::size_t>(model.node_count()), block = 3 * nv;
-  const auto& reference = model.reference_state().position;
+  const std::size_t nv = reference.size(), block = 3 * nv;
   std::vector<double> times;
   std::vector<vtkio::SurfaceFrame> frames;
   for (std::size_t f = static_cast<std::size_t>(every_) - 1; f < time.size(); f += static_cast<std::size_t>(every_)) {
@@ -58,4 +65,4 @@ void FsiParaView::write_structure(const fem::Model& model, const FsiOutput& outp
   vtkio::write_surface_series(structure_pvd(), times, triangles, frames);
 }
 
-}  // namespace finverse::fsi::validation
+}  // namespace finverse::fsi

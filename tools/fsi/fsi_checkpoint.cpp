@@ -1,17 +1,17 @@
 // Checkpoints of a coupled run; see fsi_checkpoint.hpp.
-#include "fsi/validation/fsi_checkpoint.hpp"
+#include "fsi/fsi_checkpoint.hpp"
 
 #include <map>
 
 #include "cfd/io/flow_checkpoint.hpp"
 #include "core/error.hpp"
 
-namespace finverse::fsi::validation {
+namespace finverse::fsi {
 
 namespace {
 
 constexpr const char* kKind = "fin-fsi coupled run";
-constexpr std::size_t kRecordValues = 9, kStatisticsValues = 6;
+constexpr std::size_t kStatisticsValues = 6;
 
 std::vector<double> values(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
@@ -19,13 +19,13 @@ Eigen::VectorXd vector(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
 
-// The names of the `run` arrays, besides the acceleration's and the frames'.
+// The names of the `run` arrays, besides the acceleration's, the case's history and the frames'.
 const std::vector<std::string>& run_names() {
-  static const std::vector<std::string> names = {
-      "coupling_state", "coupling_previous", "coupling_input", "coupling_counters",  //
-      "structure_position", "structure_rotation", "structure_velocity", "structure_acceleration",
-      "structure_time", "structure_old_terms", "structure_scalars", "structure_load",  //
-      "records", "statistics", "ux_a", "uy_a", "energy"};
+  static const std::vector<std::string> names = {"coupling_state",         "coupling_previous",  "coupling_input",
+                                                 "coupling_counters",  //
+                                                 "structure_position",     "structure_rotation", "structure_velocity",
+                                                 "structure_acceleration", "structure_time",     "structure_old_terms",
+                                                 "structure_scalars",      "structure_load",     "statistics"};
   return names;
 }
 
@@ -52,18 +52,17 @@ void write_fsi_checkpoint(const std::filesystem::path& path, const cfd::FlowSolv
   add("structure_old_terms", values(s.integrator.old_terms));
   add("structure_scalars", {s.integrator.force_scale, s.integrator.initialized ? 1.0 : 0.0});
   add("structure_load", values(s.interface_load));
-  std::vector<double> records, statistics;
-  for (const StepRecord& r : s.records)
-    records.insert(records.end(), {static_cast<double>(r.step), r.time, r.force[0], r.force[1], r.flag_force[0],
-                                   r.flag_force[1], r.power, r.interface_work, r.transfer_mismatch});
+  std::vector<double> statistics;
   for (const StepStatistics& t : s.statistics)
     statistics.insert(statistics.end(), {static_cast<double>(t.step), t.time, static_cast<double>(t.iterations),
                                          t.residual, t.absolute_residual, t.converged ? 1.0 : 0.0});
-  add("records", std::move(records));
   add("statistics", std::move(statistics));
-  add("ux_a", s.ux_a);
-  add("uy_a", s.uy_a);
-  add("energy", s.energy);
+  nlohmann::json history = nlohmann::json::array();
+  for (const auto& [name, v] : s.history) {
+    history.push_back(name);
+    add("history_" + name, v);
+  }
+  c["checkpoint_history_arrays"] = history;
   // The acceleration's arrays under their own names, listed in the config (HDF5 names are free).
   nlohmann::json carried = nlohmann::json::array();
   for (const auto& [name, v] : s.acceleration) {
@@ -76,7 +75,7 @@ void write_fsi_checkpoint(const std::filesystem::path& path, const cfd::FlowSolv
 }
 
 nlohmann::json check_fsi_checkpoint_config(const std::filesystem::path& path, const nlohmann::json& config,
-                                 const std::set<std::string>& may_differ) {
+                                           const std::set<std::string>& may_differ) {
   nlohmann::json stored;
   try {
     stored = nlohmann::json::parse(cfd::checkpoint_config(path));
@@ -102,15 +101,15 @@ FsiRunState read_fsi_checkpoint(const std::filesystem::path& path, cfd::FlowSolv
   for (const std::string& n : run_names()) run.push_back({n, {}});
   const std::vector<std::string> carried = config.value("checkpoint_acceleration_arrays", std::vector<std::string>{});
   for (const std::string& n : carried) run.push_back({"acceleration_" + n, {}});
+  const std::vector<std::string> history = config.value("checkpoint_history_arrays", std::vector<std::string>{});
+  for (const std::string& n : history) run.push_back({"history_" + n, {}});
   const std::vector<std::string> frame_names = FsiOutput::array_names();
   for (const std::string& n : frame_names) run.push_back({n, {}});
   cfd::read_checkpoint(path, flow, &run);
   std::map<std::string, std::vector<double>> a;
   for (cfd::StateArray& r : run) a[r.name] = std::move(r.values);
 
-  const auto bad = [&](const std::string& what) {
-    return Error("fsi restart: " + path.string() + ": " + what);
-  };
+  const auto bad = [&](const std::string& what) { return Error("fsi restart: " + path.string() + ": " + what); };
   FsiRunState s;
   s.coupling_state = vector(a["coupling_state"]);
   s.coupling_previous = vector(a["coupling_previous"]);
@@ -134,16 +133,8 @@ FsiRunState read_fsi_checkpoint(const std::filesystem::path& path, cfd::FlowSolv
   s.integrator.force_scale = a["structure_scalars"][0];
   s.integrator.initialized = a["structure_scalars"][1] != 0;
   s.interface_load = vector(a["structure_load"]);
-  const std::vector<double>&records = a["records"], &statistics = a["statistics"];
-  if (records.size() % kRecordValues != 0 || statistics.size() % kStatisticsValues != 0 ||
-      records.size() / kRecordValues != statistics.size() / kStatisticsValues ||
-      a["ux_a"].size() != statistics.size() / kStatisticsValues || a["uy_a"].size() != a["ux_a"].size() ||
-      a["energy"].size() != a["ux_a"].size())
-    throw bad("the per-step records, statistics and probe history do not fit one another");
-  for (std::size_t k = 0; k < records.size(); k += kRecordValues) {
-    const double* r = records.data() + k;
-    s.records.push_back({static_cast<long>(r[0]), r[1], {r[2], r[3]}, {r[4], r[5]}, r[6], r[7], r[8]});
-  }
+  const std::vector<double>& statistics = a["statistics"];
+  if (statistics.size() % kStatisticsValues != 0) throw bad("run/statistics must hold 6 values per step");
   for (std::size_t k = 0; k < statistics.size(); k += kStatisticsValues) {
     const double* t = statistics.data() + k;
     StepStatistics st;
@@ -155,12 +146,10 @@ FsiRunState read_fsi_checkpoint(const std::filesystem::path& path, cfd::FlowSolv
     st.converged = t[5] != 0;
     s.statistics.push_back(st);
   }
-  s.ux_a = a["ux_a"];
-  s.uy_a = a["uy_a"];
-  s.energy = a["energy"];
+  for (const std::string& n : history) s.history[n] = std::move(a["history_" + n]);
   for (const std::string& n : carried) s.acceleration[n] = a["acceleration_" + n];
   for (const std::string& n : frame_names) s.frames[n] = a[n];
   return s;
 }
 
-}  // namespace finverse::fsi::validation
+}  // namespace finverse::fsi

@@ -5,27 +5,30 @@
 // predictor, the accepted iteration's input, whose velocity is the flow wall's V^n), the structure's
 // generalized-alpha state (positions, rotations, velocities, accelerations, the integrator's
 // old-step terms and force scale, the interface load F_I^n), the acceleration's carried history
-// (IQN-ILS's reused columns, Aitken's omega), and what the run has recorded so far (per-step
-// records and coupling statistics, the probe history, the fsi.h5 frames). The run's options are
+// (IQN-ILS's reused columns, Aitken's omega), and what the run has recorded so far (the coupling
+// statistics of every step, the fsi.h5 frames and probe history, and the case's own per-step
+// series, e.g. the flag's drag and point A, the fin's force and ray tips). The run's options are
 // stored as JSON (root attribute `config`); a restart compares them key by key.
 #pragma once
 
+#include <Eigen/Core>
 #include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-#include <nlohmann/json.hpp>
-
 #include "cfd/flow/flow_solver.hpp"
 #include "fem/generalized_alpha.hpp"
 #include "fsi/acceleration.hpp"
+#include "fsi/fsi_output.hpp"
 #include "fsi/implicit_coupling.hpp"
-#include "fsi/validation/flow_structure_step.hpp"
-#include "fsi/validation/fsi_output.hpp"
 
-namespace finverse::fsi::validation {
+namespace finverse::fsi {
+
+// A case's per-step series by name (flat arrays; the case knows their layout).
+using RunHistory = std::map<std::string, std::vector<double>>;
 
 // The run's state at the end of an accepted step, besides the flow.
 struct FsiRunState {
@@ -36,9 +39,8 @@ struct FsiRunState {
   fem::GeneralizedAlpha::Snapshot integrator;
   Eigen::VectorXd interface_load;
   Acceleration::CarriedState acceleration;
-  std::vector<StepRecord> records;
   std::vector<StepStatistics> statistics;  // without the residual histories
-  std::vector<double> ux_a, uy_a, energy;
+  RunHistory history;
   FsiOutput::Arrays frames;
 };
 
@@ -50,9 +52,9 @@ void write_fsi_checkpoint(const std::filesystem::path& path, const cfd::FlowSolv
 // `config` (keys in `may_differ` excepted), or when the file is not a coupled run's checkpoint;
 // returns the stored options.
 nlohmann::json check_fsi_checkpoint_config(const std::filesystem::path& path, const nlohmann::json& config,
-                                 const std::set<std::string>& may_differ);
+                                           const std::set<std::string>& may_differ);
 
 // The flow is restored into `flow` (set up exactly as the writer's); the rest is returned.
 FsiRunState read_fsi_checkpoint(const std::filesystem::path& path, cfd::FlowSolver& flow);
 
-}  // namespace finverse::fsi::validation
+}  // namespace finverse::fsi
