@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "cfd/validation/cylinder_channel.hpp"
@@ -16,6 +16,7 @@
 #include "fem/static_solver.hpp"
 #include "fem/validation/hessenthaler_flap.hpp"
 #include "fsi/acceleration_factory.hpp"
+#include "fsi/coupled_run.hpp"
 #include "fsi/implicit_coupling.hpp"
 #include "fsi/validation/flag_flow_body.hpp"
 #include "fsi/validation/flow_structure_step.hpp"
@@ -29,6 +30,65 @@ double number(const nlohmann::json& j, const char* pointer, const std::filesyste
   if (!j.contains(p) || !j[p].is_number()) throw Error(path.string() + ": expected a number at " + pointer);
   return j[p].get<double>();
 }
+
+}  // namespace
+
+namespace {
+
+// The flap's part of the coupled run (coupled_run.hpp): per step the tip's deflection and the
+// flow's load summed over equal stations along the flap; every 50th step a progress line.
+class FlapCase final : public CoupledCase {
+ public:
+  FlapCase(const FlowStructureStep& step, const fem::CoupledStructure& structure, int tip_node, double tip_y0,
+           std::vector<int> bin_of, int bins, double dt, long steps, std::function<void(const std::string&)> progress)
+      : step_(step),
+        structure_(structure),
+        tip_node_(tip_node),
+        tip_y0_(tip_y0),
+        bin_of_(std::move(bin_of)),
+        bins_(bins),
+        dt_(dt),
+        steps_(steps),
+        progress_(std::move(progress)) {}
+
+  std::vector<Eigen::Matrix2Xd> binned_loads;
+  std::vector<double> time, tip;
+  nlohmann::json tip_history = nlohmann::json::array();
+
+  void after_step(long n, const StepStatistics& st) override {
+    const double uy = structure_.state().configuration.position[static_cast<std::size_t>(tip_node_)].y() - tip_y0_;
+    time.push_back(static_cast<double>(n) * dt_);
+    tip.push_back(uy);
+    Eigen::Matrix2Xd per_bin = Eigen::Matrix2Xd::Zero(2, bins_);
+    for (std::size_t k = 0; k < bin_of_.size(); ++k)
+      per_bin.col(bin_of_[k]) += step_.wet_loads().col(static_cast<Eigen::Index>(k));
+    binned_loads.push_back(per_bin);
+    if (n % 50 == 0 || n == steps_) {
+      tip_history.push_back({static_cast<double>(n) * dt_, uy});
+      if (progress_) {
+        char line[160];
+        std::snprintf(line, sizeof line, "step %ld/%ld t %.4f s: tip %.3f mm, %d it", n, steps_,
+                      static_cast<double>(n) * dt_, uy * 1e3, st.iterations);
+        progress_(line);
+      }
+    }
+  }
+  // No checkpoints in this case: its series are not kept.
+  [[nodiscard]] RunHistory history() const override { return {}; }
+  void restore_history(RunHistory) override {}
+  [[nodiscard]] std::string progress_line(long, const StepStatistics&) const override { return {}; }
+
+ private:
+  const FlowStructureStep& step_;
+  const fem::CoupledStructure& structure_;
+  int tip_node_;
+  double tip_y0_;
+  std::vector<int> bin_of_;
+  int bins_;
+  double dt_;
+  long steps_;
+  std::function<void(const std::string&)> progress_;
+};
 
 }  // namespace
 
@@ -153,42 +213,33 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
   for (int k = 0; k < n_wet; ++k)
     bin_of[static_cast<std::size_t>(k)] =
         std::clamp(static_cast<int>(std::floor((wet_reference(0, k) - clamp) / flap.length * bins)), 0, bins - 1);
-  std::vector<Eigen::Matrix2Xd> binned_loads;
-  std::vector<double> time, tip;
-  long iterations = 0, at_cap = 0;
-  nlohmann::json history = nlohmann::json::array();
   // A step that fails (the flow blowing up) ends the run with what it has: the summary flags it.
+  FsiOutput output(std::vector<Eigen::Vector3d>(X0.begin(), X0.end()), {}, rho, 1.0, 1.0);
+  CoupledRunOptions ro;
+  ro.name = "hessenthaler_plane";
+  ro.steps = steps;
+  ro.dt = dt;
+  CoupledRun run(flow, structure, step, coupling, output, nlohmann::json::object(), ro);
+  FlapCase flap_case(step, structure, flag.point_a, X0[static_cast<std::size_t>(flag.point_a)].y(), bin_of, bins, dt,
+                     steps, o.progress);
   std::string failure;
   double failed_at = 0;
-  for (long n = 1; n <= steps; ++n) {
-    StepStatistics st;
-    try {
-      st = coupling.advance(step, dt);
-    } catch (const std::exception& e) {
-      failure = "step " + std::to_string(n) + ": " + e.what();
-      failed_at = n * dt;
-      if (o.progress) o.progress("FAILED at " + failure);
-      break;
-    }
+  try {
+    run.run(flap_case);
+  } catch (const std::exception& e) {
+    failure = e.what();
+    failed_at = static_cast<double>(flap_case.time.size() + 1) * dt;
+    if (o.progress) o.progress("FAILED at " + failure);
+  }
+  long iterations = 0, at_cap = 0;
+  for (const StepStatistics& st : run.statistics()) {
     iterations += st.iterations;
     at_cap += st.converged ? 0 : 1;
-    const std::size_t a = static_cast<std::size_t>(flag.point_a);
-    const double uy = structure.state().configuration.position[a].y() - X0[a].y();
-    time.push_back(n * dt);
-    tip.push_back(uy);
-    Eigen::Matrix2Xd per_bin = Eigen::Matrix2Xd::Zero(2, bins);
-    for (int k = 0; k < n_wet; ++k) per_bin.col(bin_of[static_cast<std::size_t>(k)]) += step.wet_loads().col(k);
-    binned_loads.push_back(per_bin);
-    if (n % 50 == 0 || n == steps) {
-      history.push_back({n * dt, uy});
-      if (o.progress) {
-        char line[160];
-        std::snprintf(line, sizeof line, "step %ld/%ld t %.4f s: tip %.3f mm, %d it", n, steps, n * dt, uy * 1e3,
-                      st.iterations);
-        o.progress(line);
-      }
-    }
   }
+  const std::vector<double>& time = flap_case.time;
+  const std::vector<double>& tip = flap_case.tip;
+  const std::vector<Eigen::Matrix2Xd>& binned_loads = flap_case.binned_loads;
+  const nlohmann::json& history = flap_case.tip_history;
 
   if (time.empty()) throw Error("hessenthaler_plane: the first step failed: " + failure);
   // The last fifth of the run (of what ran): mean and range of the tip.

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <functional>
 #include <memory>
-#include <numbers>
-
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "cfd/flow/flow_solver.hpp"
 #include "cfd/validation/case_support.hpp"
@@ -18,6 +18,7 @@
 #include "fem/coupled_structure.hpp"
 #include "fem/modal.hpp"
 #include "fem/validation/hybrid_plate_model.hpp"
+#include "fsi/coupled_run.hpp"
 #include "fsi/surface_flow_structure_step.hpp"
 #include "fsi/validation/turek_hron_fsi.hpp"
 
@@ -117,6 +118,62 @@ PitchingPlateModes pitching_plate_modes(const PitchingPlateOptions& o) {
   return p;
 }
 
+namespace {
+
+// The flexible plate's part of the coupled run (coupled_run.hpp): per step the force, the
+// mid-span trailing edge and, for the phase, where the rigid plate's would be.
+class PlateCase final : public CoupledCase {
+ public:
+  PlateCase(const SurfaceFlowStructureStep& step, const fem::CoupledStructure& structure, int te, double dt,
+            std::string tag, std::function<double(double)> rigid_te_at)
+      : step_(step),
+        structure_(structure),
+        te_(te),
+        dt_(dt),
+        tag_(std::move(tag)),
+        rigid_te_at_(std::move(rigid_te_at)) {}
+
+  std::vector<double> fx, fy, te_y, rigid_te, time;
+  double mismatch = 0;
+
+  void after_step(long n, const StepStatistics&) override {
+    const SurfaceStepRecord& rec = step_.records().back();
+    const double t = static_cast<double>(n) * dt_;
+    fx.push_back(rec.force.x());
+    fy.push_back(rec.force.y());
+    te_y.push_back(structure_.state().configuration.position[static_cast<std::size_t>(te_)].y());
+    rigid_te.push_back(rigid_te_at_(t));
+    time.push_back(t);
+    mismatch = std::max(mismatch, rec.transfer_mismatch);
+  }
+  [[nodiscard]] RunHistory history() const override {
+    return {{"fx", fx}, {"fy", fy}, {"te_y", te_y}, {"rigid_te", rigid_te}, {"time", time}};
+  }
+  void restore_history(RunHistory h) override {
+    fx = std::move(h["fx"]);
+    fy = std::move(h["fy"]);
+    te_y = std::move(h["te_y"]);
+    rigid_te = std::move(h["rigid_te"]);
+    time = std::move(h["time"]);
+  }
+  [[nodiscard]] std::string progress_line(long n, const StepStatistics& st) const override {
+    return tag_ + ": step " + std::to_string(n) + " t " + printf_format("%.4f", time.back()) + ": " +
+           std::to_string(st.iterations) + " it, residual " + printf_format("%.2e", st.residual) + ", F (" +
+           printf_format("%.4f", fx.back()) + ", " + printf_format("%.4f", fy.back()) + "), y_TE " +
+           printf_format("%.4f", te_y.back()) + " (rigid " + printf_format("%.4f", rigid_te.back()) + ")";
+  }
+
+ private:
+  const SurfaceFlowStructureStep& step_;
+  const fem::CoupledStructure& structure_;
+  int te_;
+  double dt_;
+  std::string tag_;
+  std::function<double(double)> rigid_te_at_;
+};
+
+}  // namespace
+
 PitchingPlateCaseResult run_pitching_plate_case(const PitchingPlateOptions& o, double stiffness, bool rigid) {
   check(o);
   const auto wall0 = std::chrono::steady_clock::now();
@@ -212,14 +269,13 @@ PitchingPlateCaseResult run_pitching_plate_case(const PitchingPlateOptions& o, d
   ImplicitCoupling coupling(layout, Eigen::VectorXd::Zero(layout.size()),
                             make_acceleration(o.acceleration, layout, o.omega), co);
   const std::string tag = rigid ? std::string("rigid") : "K " + printf_format("%g", stiffness);
-  for (long s = 1; s <= steps; ++s) {
-    const double t = static_cast<double>(s) * dt;
-    Eigen::Matrix3Xd x, v, a;
-    rigid_nodes(t, x, v, a);
-    rigid_te.push_back(x(1, te));
-    int iterations = 1;
-    double residual = 0;
-    if (rigid) {
+  if (rigid) {
+    // The flow alone around the prescribed rigid motion.
+    for (long s = 1; s <= steps; ++s) {
+      const double t = static_cast<double>(s) * dt;
+      Eigen::Matrix3Xd x, v, a;
+      rigid_nodes(t, x, v, a);
+      rigid_te.push_back(x(1, te));
       try {
         step.place(x, v, a);
         flow.step();
@@ -231,25 +287,42 @@ PitchingPlateCaseResult run_pitching_plate_case(const PitchingPlateOptions& o, d
       fx.push_back(tr.flow_force.x());
       fy.push_back(tr.flow_force.y());
       res.te_y.push_back(x(1, te));
-    } else {
-      const StepStatistics st = coupling.advance(step, dt);
-      iterations = st.iterations;
-      residual = st.residual;
-      res.steps_at_cap += st.converged ? 0 : 1;
-      const SurfaceStepRecord& rec = step.records().back();
-      res.transfer_mismatch = std::max(res.transfer_mismatch, rec.transfer_mismatch);
-      fx.push_back(rec.force.x());
-      fy.push_back(rec.force.y());
-      res.te_y.push_back(structure.state().configuration.position[static_cast<std::size_t>(te)].y());
+      res.time.push_back(t);
+      it_sum += 1;
+      res.coupling_iterations_max = 1;
+      if (o.progress)
+        o.progress(tag + ": step " + std::to_string(s) + " t " + printf_format("%.4f", t) + ": F (" +
+                   printf_format("%.4f", fx.back()) + ", " + printf_format("%.4f", fy.back()) + "), y_TE " +
+                   printf_format("%.4f", res.te_y.back()));
     }
-    res.time.push_back(t);
-    it_sum += iterations;
-    res.coupling_iterations_max = std::max(res.coupling_iterations_max, static_cast<double>(iterations));
-    if (o.progress)
-      o.progress(tag + ": step " + std::to_string(s) + " t " + printf_format("%.4f", t) + ": " + std::to_string(iterations) +
-                 " it, residual " + printf_format("%.2e", residual) + ", F (" + printf_format("%.4f", fx.back()) + ", " +
-                 printf_format("%.4f", fy.back()) + "), y_TE " + printf_format("%.4f", res.te_y.back()) + " (rigid " +
-                 printf_format("%.4f", rigid_te.back()) + ")");
+  } else {
+    // The coupled run every case uses (coupled_run.hpp); no fsi.h5 here.
+    std::vector<Eigen::Vector3d> reference(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) reference[static_cast<std::size_t>(j)] = X0.col(j);
+    FsiOutput output(reference, {}, 1.0, 1.0, W);
+    CoupledRunOptions ro;
+    ro.name = "pitching plate (" + tag + ")";
+    ro.steps = steps;
+    ro.dt = dt;
+    ro.progress = o.progress;
+    CoupledRun run(flow, structure, step, coupling, output, nlohmann::json::object(), ro);
+    PlateCase plate(step, structure, te, dt, tag, [&](double t) {
+      Eigen::Matrix3Xd x, v, a;
+      rigid_nodes(t, x, v, a);
+      return x(1, te);
+    });
+    run.run(plate);
+    for (const StepStatistics& st : run.statistics()) {
+      it_sum += st.iterations;
+      res.coupling_iterations_max = std::max(res.coupling_iterations_max, static_cast<double>(st.iterations));
+      res.steps_at_cap += st.converged ? 0 : 1;
+    }
+    fx = plate.fx;
+    fy = plate.fy;
+    rigid_te = plate.rigid_te;
+    res.te_y = plate.te_y;
+    res.time = plate.time;
+    res.transfer_mismatch = plate.mismatch;
   }
   res.coupling_iterations_mean = it_sum / static_cast<double>(steps);
 
