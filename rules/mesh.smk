@@ -125,11 +125,14 @@ rule truth_fsi:
     resources:
         mem_mb=2000,
     params:
+        # A checkpoint every 50 steps beside fsi.h5 (fsi.checkpoint.h5): a stopped truth continues with
+        # fin-fsi fin ... --restart results/<case>/truth/fsi.checkpoint.h5 (tools/fsi/coupled_run.hpp).
         flags=f"--reynolds {_FIN['reynolds']} {_TRUTH['flags']}"
         + (f" --effects {_TRUTH_OUT}/effects.json" if _TRUTH_EFFECTS else ""),
     shell:
         "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --materials {input.materials}"
-        " --root-drive {input.drive} --out {output.fsi} --summary {output.summary} {params.flags} 2> {log}"
+        " --root-drive {input.drive} --out {output.fsi} --summary {output.summary} --checkpoint-every 50"
+        " {params.flags} 2> {log}"
 
 
 def _synth_inputs(wildcards):

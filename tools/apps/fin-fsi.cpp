@@ -206,6 +206,9 @@ struct FinCommand {
       inputs.push_back(effects);
     }
     o.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+    // As fin-cfd fin: checkpoints go next to --out unless --checkpoint names the file.
+    if (o.checkpoint_every > 0 && o.checkpoint.empty())
+      o.checkpoint = std::filesystem::path(out).parent_path() / (std::filesystem::path(out).stem().string() + ".checkpoint.h5");
     fs::FinFsiResult r = fs::run_fin_fsi(in, o);
     nlohmann::json config = r.config;
     config["inputs"] = materials_config;
