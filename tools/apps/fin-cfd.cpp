@@ -55,7 +55,7 @@ struct FinArgs {
 };
 
 int run_fin(const FinArgs& a, const CLI::App& app) {
-  const auto in = cfd::io::read_fin_input(a.mesh, a.motion);
+  const auto in = cfd::io::read_fin_input(a.mesh, a.motion, a.flow.motion_harmonics);
   cfd::io::log_fin_input(in, a.mesh, a.motion);
   cfd::io::FinFlowStats st;
   cfd::io::FinCheckpointing ck;
@@ -126,6 +126,11 @@ void add_fin_options(CLI::App* f, FinArgs& a) {
   f->add_flag("--sheet-loads-mean", o.sheet_loads_mean,
               "sheet: loads at an output time are the mean over the output interval centred on it instead of the "
               "raw force of the step on it");
+  f->add_option("--motion-harmonics", o.motion_harmonics,
+                "keep a periodic motion to its first K harmonics (0: as sampled); the tracked motion's frame-rate "
+                "noise is acceleration a sheet feels as force")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
   f->add_option("--checkpoint-every", a.checkpoint_every, "write a checkpoint every N steps (0: never)")
       ->capture_default_str();
   f->add_option("--checkpoint", a.checkpoint, "checkpoint file (default: <out stem>.checkpoint.h5 next to --out)");

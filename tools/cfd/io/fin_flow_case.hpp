@@ -71,6 +71,9 @@ struct FinFlowOptions {
   // The sheet's loads at an output time: the one step on it (default), or the mean over the output
   // interval as for the closed body.
   bool sheet_loads_mean = false;
+  // > 0: the periodic motion kept to its first K harmonics before it moves the body (fin_input.hpp;
+  // read by the caller of read_fin_input, recorded here for the checkpoint's configuration).
+  int motion_harmonics = 0;
 };
 
 struct FinFlowStats {

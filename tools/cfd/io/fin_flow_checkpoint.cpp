@@ -80,6 +80,7 @@ nlohmann::json fin_flow_config(const FinFlowOptions& o, const FinInput& in) {
     opt["--marker-spacing"] = o.marker_spacing;
     opt["--sheet-loads-mean"] = o.sheet_loads_mean;
   }
+  if (o.motion_harmonics > 0) opt["--motion-harmonics"] = o.motion_harmonics;
   return {{"case", "fin"}, {"options", opt}, {"input", fin_input_fingerprint(in)}};
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cfd/immersed/periodic_low_pass.hpp"
 #include "core/error.hpp"
 #include "core/stage_identity.hpp"
 
@@ -89,7 +90,7 @@ ThinBody thin_body_from_mesh(const stage::Mesh& mesh, const std::string& name, d
 }
 
 FinInput make_fin_input(const stage::Mesh& mesh, const stage::Motion& motion, const std::string& mesh_name,
-                        const std::string& motion_name) {
+                        const std::string& motion_name, int motion_harmonics) {
   FinInput in;
   const std::size_t nv = mesh.points.dim(0);
   if (motion.points.rank() != 3 || motion.points.dim(1) != nv)
@@ -126,20 +127,26 @@ FinInput make_fin_input(const stage::Mesh& mesh, const stage::Motion& motion, co
       throw Error(motion_name + ": /points: the last frame lies a whole number of periods T after the first but differs "
                   "from it by up to " + std::to_string(worst) + " m (periodic data expected)");
   }
-  const std::vector<double> values(motion.points.data.begin(),
-                                   motion.points.data.begin() + static_cast<std::ptrdiff_t>(in.layout.frames * 3 * nv));
-  TimeSpline spline(std::vector<double>(motion.time.data.begin(),
-                                        motion.time.data.begin() + static_cast<std::ptrdiff_t>(in.layout.frames)),
-                    values, 3 * nv, in.layout.wrap, motion_name);
+  std::vector<double> values(motion.points.data.begin(),
+                             motion.points.data.begin() + static_cast<std::ptrdiff_t>(in.layout.frames * 3 * nv));
+  const std::vector<double> knots(motion.time.data.begin(),
+                                  motion.time.data.begin() + static_cast<std::ptrdiff_t>(in.layout.frames));
+  if (motion_harmonics > 0) {
+    if (!in.layout.wrap || !motion.period)
+      throw Error(motion_name + ": --motion-harmonics needs a periodic motion (" +
+                  (in.layout.note.empty() ? std::string("no attribute T") : in.layout.note) + ")");
+    values = periodic_low_pass(knots, values, 3 * nv, *motion.period, motion_harmonics, motion_name);
+  }
+  TimeSpline spline(knots, values, 3 * nv, in.layout.wrap, motion_name);
   in.motion = std::make_shared<const FinSurfaceMotion>(std::move(body), in.mid_triangles, std::move(spline));
   return in;
 }
 
-FinInput read_fin_input(const std::filesystem::path& mesh, const std::filesystem::path& motion) {
+FinInput read_fin_input(const std::filesystem::path& mesh, const std::filesystem::path& motion, int motion_harmonics) {
   const auto m = stage::read<stage::Mesh>(mesh);
   const auto q = stage::read<stage::Motion>(motion);
   check_made_from(motion, mesh);  // the motion carried onto this mesh, not another template's
-  return make_fin_input(m, q, mesh.string(), motion.string());
+  return make_fin_input(m, q, mesh.string(), motion.string(), motion_harmonics);
 }
 
 }  // namespace finverse::cfd::io

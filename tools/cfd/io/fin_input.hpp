@@ -36,11 +36,15 @@ struct FinInput {
   std::vector<double> frame_time;                  // motion.h5 /time
 };
 
-// From the stage structs (`mesh_name`, `motion_name` name them in messages).
+// From the stage structs (`mesh_name`, `motion_name` name them in messages). motion_harmonics > 0:
+// a periodic motion is kept to its first K harmonics before the spline (periodic_low_pass.hpp;
+// the tracked motion's frame-rate noise is acceleration the sheet feels as force); throws for a
+// non-periodic motion.
 FinInput make_fin_input(const stage::Mesh& mesh, const stage::Motion& motion, const std::string& mesh_name,
-                        const std::string& motion_name);
+                        const std::string& motion_name, int motion_harmonics = 0);
 // Reads and checks both files.
-FinInput read_fin_input(const std::filesystem::path& mesh, const std::filesystem::path& motion);
+FinInput read_fin_input(const std::filesystem::path& mesh, const std::filesystem::path& motion,
+                        int motion_harmonics = 0);
 
 // The closed thin body of mesh.h5 /ibm (connectivity, sources, signs, thickness, side convention),
 // validated; `rest_mismatch` receives the largest distance of a placed rest vertex from /ibm/points.
