@@ -35,6 +35,10 @@ heavy+='|CheckerboardCalibration.SimulatedRecordingGivesBackTheRig'
 # Variants of FinFsi.SmallFinRunsAndTheRootFollowsTheDrive (the same coupled fin step, 24-41 s
 # each under the sanitizers): a tracked drive and planted effects.
 heavy+='|FinFsi.TrackedRootMotionDrivesTheFin|FinFsi.EffectsAreAppliedToTheStructureAndRecorded'
+# Four small-fin runs (closed and sheet, each whole and restarted; the restart path itself runs
+# sanitized in FsiCheckpoint.*), and the 3-D towed sphere of the case-file motion (its 2-D
+# neighbours run sanitized).
+heavy+='|FinFsi.RestartFromACheckpointContinuesBitForBit|MovingCaseFile.TowedSphereFeelsTheForceOfTheFixedOne'
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan -j "$jobs" --output-on-failure --timeout 1800 -L unit -E "$heavy"
 echo "== all tests passed"
