@@ -202,6 +202,146 @@ class FlagCase final : public CoupledCase {
   StepStatistics last_;
 };
 
+// Grading against Turek & Hron (2006) and the run's own measures (coupling, energy, cost): the
+// summary of a finished run.
+struct RunFacts {
+  double D = 0, ubar = 0, t_end = 0, loop_seconds = 0, structure_energy = 0;
+  long steps = 0, flow_cells = 0;
+};
+
+Summary grade_turek_hron(const TurekHronFsiOptions& opt, const nlohmann::json& ref, const TurekHronFsiRun& run,
+                         const nlohmann::json& config, const RunFacts& f) {
+  const std::string& name = opt.case_name;
+  const double D = f.D, ubar = f.ubar, t_end = f.t_end, loop_seconds = f.loop_seconds;
+  const long steps = f.steps;
+  const std::string source = "Turek & Hron 2006 (" + opt.reference.filename().string() + ", /cases/" + name + ")";
+  Summary s("validation",
+            "fsi_turek_hron_" + std::string(name == "FSI1"   ? "fsi1"
+                                            : name == "FSI2" ? "fsi2"
+                                                             : "fsi3"),
+            "Turek-Hron " + name + ": elastic flag behind a cylinder, implicit partitioned coupling (" +
+                opt.acceleration + ")");
+  std::vector<double> t, drag, lift;
+  for (const StepRecord& r : run.records) {
+    t.push_back(r.time);
+    drag.push_back(r.force[0]);
+    lift.push_back(r.force[1]);
+  }
+  if (name == "FSI1") {
+    // Steady: the means over the last second. The forces carry one-step impulses whenever a cell
+    // changes kind as the flag settles (measured: lift 0.64-1.34 N/m over the last second at D/32),
+    // so the last sample alone is not the steady value.
+    const double t0 = t.back() - std::min(1.0, 0.5 * t.back());
+    const auto window = [&](const std::vector<double>& v, double& lo, double& hi) {
+      double sum = 0;
+      long n = 0;
+      lo = 1e300;
+      hi = -1e300;
+      for (std::size_t k = 0; k < t.size(); ++k)
+        if (t[k] >= t0 - 1e-12) {
+          sum += v[k];
+          ++n;
+          lo = std::min(lo, v[k]);
+          hi = std::max(hi, v[k]);
+        }
+      return sum / static_cast<double>(n);
+    };
+    double lo = 0, hi = 0;
+    s.relative("ux_A", window(run.ux_a, lo, hi), ref["ux_A"].get<double>(), 0.01, source, "m");
+    s.relative("uy_A", window(run.uy_a, lo, hi), ref["uy_A"].get<double>(), 0.01, source, "m");
+    s.info("uy_A_range_last_second", hi - lo, "m");
+    s.relative("drag", window(drag, lo, hi), ref["drag"].get<double>(), 0.01, source, "N/m");
+    s.info("drag_range_last_second", hi - lo, "N/m");
+    s.relative("lift", window(lift, lo, hi), ref["lift"].get<double>(), 0.01, source, "N/m");
+    s.info("lift_range_last_second", hi - lo, "N/m");
+    s.info("ux_A_final", run.ux_a.back(), "m");
+    s.info("uy_A_final", run.uy_a.back(), "m");
+    s.info("lift_final", lift.back(), "N/m");
+  } else {
+    int periods = 0;
+    try {
+      if (t.size() < 3) throw fem::NotConverged("fewer than 3 steps");  // nothing to grade
+      const fem::validation::LastPeriod p = fem::validation::last_period(t, run.uy_a);
+      periods = p.periods;
+      const auto ux = fem::validation::mean_amplitude(t, run.ux_a, p.t_begin, p.t_end);
+      const auto uy = fem::validation::mean_amplitude(t, run.uy_a, p.t_begin, p.t_end);
+      const auto fd = fem::validation::mean_amplitude(t, drag, p.t_begin, p.t_end);
+      const auto fl = fem::validation::mean_amplitude(t, lift, p.t_begin, p.t_end);
+      const auto rux = pair_of(ref, "ux_A", name), ruy = pair_of(ref, "uy_A", name);
+      const auto rd = pair_of(ref, "drag", name), rl = pair_of(ref, "lift", name);
+      s.relative("uy_A_amplitude", uy.amplitude, ruy[1], 0.03, source, "m");
+      s.relative("uy_A_frequency", p.frequency, ref["uy_freq"].get<double>(), 0.03, source, "Hz");
+      s.relative("ux_A_mean", ux.mean, rux[0], 0.05, source, "m");
+      s.relative("ux_A_amplitude", ux.amplitude, rux[1], 0.05, source, "m");
+      s.relative("drag_mean", fd.mean, rd[0], 0.02, source, "N/m");
+      s.relative("lift_amplitude", fl.amplitude, rl[1], 0.10, source, "N/m");
+      s.info("uy_A_mean", uy.mean, "m");
+      s.info("drag_amplitude", fd.amplitude, "N/m");
+      s.info("lift_mean", fl.mean, "N/m");
+      // The seed's Table 1 quantities: A_m / D (peak |u_y|), St = f D / Ubar, C_D = drag / (rho Ubar^2 D / 2).
+      s.info("Am_over_D_peak", (std::abs(uy.mean) + uy.amplitude) / D);
+      s.info("St", p.frequency * D / ubar);
+      s.info("CD_mean", fd.mean / (0.5 * kRho * ubar * ubar * D));
+      s.info("last_period_begin", p.t_begin, "s");
+      s.info("last_period_end", p.t_end, "s");
+      grade_energy_balance(s, t, run, p.t_begin, p.t_end);
+    } catch (const fem::NotConverged&) {
+      periods = 0;  // fewer than two upward crossings: nothing to grade
+    }
+    s.at_most("missing_periods", periods >= 1 ? 0.0 : 1.0, 0.0, "a full period of u_y(A) is needed to grade");
+    s.info("uy_A_final", run.uy_a.back(), "m");
+    s.info("drag_final", drag.back(), "N/m");
+    s.info("lift_final", lift.back(), "N/m");
+  }
+  double mean_it = 0, max_it = 0, mismatch = 0, mean_ramped = 0;
+  long ramped = 0, at_cap = 0;
+  for (std::size_t k = 0; k < run.statistics.size(); ++k) {
+    const double it = run.statistics[k].iterations;
+    at_cap += run.statistics[k].converged ? 0 : 1;
+    mean_it += it;
+    max_it = std::max(max_it, it);
+    mismatch = std::max(mismatch, run.records[k].transfer_mismatch);
+    if (run.records[k].time > opt.ramp_time) {
+      mean_ramped += it;
+      ++ramped;
+    }
+  }
+  mean_it /= static_cast<double>(run.statistics.size());
+  s.info("coupling_iterations_mean", mean_it);
+  s.info("coupling_iterations_max", max_it);
+  if (ramped > 0) s.info("coupling_iterations_mean_after_ramp", mean_ramped / static_cast<double>(ramped));
+  s.info("transfer_mismatch_max", mismatch);
+  s.info("steps_at_cap", static_cast<double>(at_cap));
+  // Energy from rest: the work the fluid did on the flag against its energy at the end; with
+  // rho_inf < 1 the integrator dissipates part of it (graded over the last period above).
+  double work = 0;
+  for (const StepRecord& r : run.records) work += r.interface_work;
+  const double energy = f.structure_energy;
+  s.info("interface_work_total", work, "J/m");
+  s.info("structure_energy_final", energy, "J/m");
+  s.info("steps", static_cast<double>(steps));
+  // This run's own steps (after a restart: those since the checkpoint), for the benchmark.
+  double it_run = 0, it_run_max = 0;
+  for (std::size_t k = static_cast<std::size_t>(run.first_step); k < run.statistics.size(); ++k) {
+    it_run += run.statistics[k].iterations;
+    it_run_max = std::max(it_run_max, static_cast<double>(run.statistics[k].iterations));
+  }
+  const auto steps_run = static_cast<double>(steps - run.first_step);
+  s.info("steps_this_run", steps_run);
+  s.info("coupling_iterations_mean_this_run", it_run / steps_run);
+  s.info("coupling_iterations_max_this_run", it_run_max);
+  s.info("wall_seconds_per_step", loop_seconds / steps_run, "s");
+  s.info("wall_seconds_per_simulated_second", run.wall_seconds / t_end, "s");
+  s.info("flow_cells", static_cast<double>(f.flow_cells));
+  s.parameters() = config;
+  s.parameters().erase("reference_sha256");
+  if (!opt.restart.empty()) {
+    s.parameters()["restart"] = opt.restart.string();
+    s.parameters()["restart_step"] = run.first_step;
+  }
+  return s;
+}
+
 }  // namespace
 
 TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
@@ -334,130 +474,16 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
   const double loop_seconds = coupled.loop_seconds();
   std::unique_ptr<FsiParaView>& paraview = flag_case.paraview;
 
-  // Grading.
-  const std::string source = "Turek & Hron 2006 (" + opt.reference.filename().string() + ", /cases/" + name + ")";
-  Summary s("validation", "fsi_turek_hron_" + std::string(name == "FSI1" ? "fsi1" : name == "FSI2" ? "fsi2" : "fsi3"),
-            "Turek-Hron " + name + ": elastic flag behind a cylinder, implicit partitioned coupling (" +
-                opt.acceleration + ")");
-  std::vector<double> t, drag, lift;
-  for (const StepRecord& r : run.records) {
-    t.push_back(r.time);
-    drag.push_back(r.force[0]);
-    lift.push_back(r.force[1]);
-  }
-  if (name == "FSI1") {
-    // Steady: the means over the last second. The forces carry one-step impulses whenever a cell
-    // changes kind as the flag settles (measured: lift 0.64-1.34 N/m over the last second at D/32),
-    // so the last sample alone is not the steady value.
-    const double t0 = t.back() - std::min(1.0, 0.5 * t.back());
-    const auto window = [&](const std::vector<double>& v, double& lo, double& hi) {
-      double sum = 0;
-      long n = 0;
-      lo = 1e300;
-      hi = -1e300;
-      for (std::size_t k = 0; k < t.size(); ++k)
-        if (t[k] >= t0 - 1e-12) {
-          sum += v[k];
-          ++n;
-          lo = std::min(lo, v[k]);
-          hi = std::max(hi, v[k]);
-        }
-      return sum / static_cast<double>(n);
-    };
-    double lo = 0, hi = 0;
-    s.relative("ux_A", window(run.ux_a, lo, hi), ref["ux_A"].get<double>(), 0.01, source, "m");
-    s.relative("uy_A", window(run.uy_a, lo, hi), ref["uy_A"].get<double>(), 0.01, source, "m");
-    s.info("uy_A_range_last_second", hi - lo, "m");
-    s.relative("drag", window(drag, lo, hi), ref["drag"].get<double>(), 0.01, source, "N/m");
-    s.info("drag_range_last_second", hi - lo, "N/m");
-    s.relative("lift", window(lift, lo, hi), ref["lift"].get<double>(), 0.01, source, "N/m");
-    s.info("lift_range_last_second", hi - lo, "N/m");
-    s.info("ux_A_final", run.ux_a.back(), "m");
-    s.info("uy_A_final", run.uy_a.back(), "m");
-    s.info("lift_final", lift.back(), "N/m");
-  } else {
-    int periods = 0;
-    try {
-      if (t.size() < 3) throw fem::NotConverged("fewer than 3 steps");  // nothing to grade
-      const fem::validation::LastPeriod p = fem::validation::last_period(t, run.uy_a);
-      periods = p.periods;
-      const auto ux = fem::validation::mean_amplitude(t, run.ux_a, p.t_begin, p.t_end);
-      const auto uy = fem::validation::mean_amplitude(t, run.uy_a, p.t_begin, p.t_end);
-      const auto fd = fem::validation::mean_amplitude(t, drag, p.t_begin, p.t_end);
-      const auto fl = fem::validation::mean_amplitude(t, lift, p.t_begin, p.t_end);
-      const auto rux = pair_of(ref, "ux_A", name), ruy = pair_of(ref, "uy_A", name);
-      const auto rd = pair_of(ref, "drag", name), rl = pair_of(ref, "lift", name);
-      s.relative("uy_A_amplitude", uy.amplitude, ruy[1], 0.03, source, "m");
-      s.relative("uy_A_frequency", p.frequency, ref["uy_freq"].get<double>(), 0.03, source, "Hz");
-      s.relative("ux_A_mean", ux.mean, rux[0], 0.05, source, "m");
-      s.relative("ux_A_amplitude", ux.amplitude, rux[1], 0.05, source, "m");
-      s.relative("drag_mean", fd.mean, rd[0], 0.02, source, "N/m");
-      s.relative("lift_amplitude", fl.amplitude, rl[1], 0.10, source, "N/m");
-      s.info("uy_A_mean", uy.mean, "m");
-      s.info("drag_amplitude", fd.amplitude, "N/m");
-      s.info("lift_mean", fl.mean, "N/m");
-      // The seed's Table 1 quantities: A_m / D (peak |u_y|), St = f D / Ubar, C_D = drag / (rho Ubar^2 D / 2).
-      s.info("Am_over_D_peak", (std::abs(uy.mean) + uy.amplitude) / D);
-      s.info("St", p.frequency * D / ubar);
-      s.info("CD_mean", fd.mean / (0.5 * kRho * ubar * ubar * D));
-      s.info("last_period_begin", p.t_begin, "s");
-      s.info("last_period_end", p.t_end, "s");
-      grade_energy_balance(s, t, run, p.t_begin, p.t_end);
-    } catch (const fem::NotConverged&) {
-      periods = 0;  // fewer than two upward crossings: nothing to grade
-    }
-    s.at_most("missing_periods", periods >= 1 ? 0.0 : 1.0, 0.0, "a full period of u_y(A) is needed to grade");
-    s.info("uy_A_final", run.uy_a.back(), "m");
-    s.info("drag_final", drag.back(), "N/m");
-    s.info("lift_final", lift.back(), "N/m");
-  }
-  double mean_it = 0, max_it = 0, mismatch = 0, mean_ramped = 0;
-  long ramped = 0, at_cap = 0;
-  for (std::size_t k = 0; k < run.statistics.size(); ++k) {
-    const double it = run.statistics[k].iterations;
-    at_cap += run.statistics[k].converged ? 0 : 1;
-    mean_it += it;
-    max_it = std::max(max_it, it);
-    mismatch = std::max(mismatch, run.records[k].transfer_mismatch);
-    if (run.records[k].time > opt.ramp_time) {
-      mean_ramped += it;
-      ++ramped;
-    }
-  }
-  mean_it /= static_cast<double>(run.statistics.size());
-  s.info("coupling_iterations_mean", mean_it);
-  s.info("coupling_iterations_max", max_it);
-  if (ramped > 0) s.info("coupling_iterations_mean_after_ramp", mean_ramped / static_cast<double>(ramped));
-  s.info("transfer_mismatch_max", mismatch);
-  s.info("steps_at_cap", static_cast<double>(at_cap));
-  // Energy from rest: the work the fluid did on the flag against its energy at the end; with
-  // rho_inf < 1 the integrator dissipates part of it (graded over the last period above).
-  double work = 0;
-  for (const StepRecord& r : run.records) work += r.interface_work;
-  const double energy = structure.kinetic_energy() + structure.strain_energy();
-  s.info("interface_work_total", work, "J/m");
-  s.info("structure_energy_final", energy, "J/m");
-  s.info("steps", static_cast<double>(steps));
-  // This run's own steps (after a restart: those since the checkpoint), for the benchmark.
-  double it_run = 0, it_run_max = 0;
-  for (std::size_t k = static_cast<std::size_t>(run.first_step); k < run.statistics.size(); ++k) {
-    it_run += run.statistics[k].iterations;
-    it_run_max = std::max(it_run_max, static_cast<double>(run.statistics[k].iterations));
-  }
-  const auto steps_run = static_cast<double>(steps - run.first_step);
-  s.info("steps_this_run", steps_run);
-  s.info("coupling_iterations_mean_this_run", it_run / steps_run);
-  s.info("coupling_iterations_max_this_run", it_run_max);
-  s.info("wall_seconds_per_step", loop_seconds / steps_run, "s");
-  s.info("wall_seconds_per_simulated_second", run.wall_seconds / t_end, "s");
-  s.info("flow_cells", static_cast<double>(grid.cells()));
-  s.parameters() = config;
-  s.parameters().erase("reference_sha256");
-  if (!opt.restart.empty()) {
-    s.parameters()["restart"] = opt.restart.string();
-    s.parameters()["restart_step"] = run.first_step;
-  }
-  run.summary = s;
+  RunFacts facts;
+  facts.D = D;
+  facts.ubar = ubar;
+  facts.t_end = t_end;
+  facts.loop_seconds = loop_seconds;
+  facts.structure_energy = structure.kinetic_energy() + structure.strain_energy();
+  facts.steps = steps;
+  facts.flow_cells = static_cast<long>(grid.cells());
+  run.summary = grade_turek_hron(opt, ref, run, config, facts);
+  Summary& s = run.summary;
 
   if (paraview) paraview->write_structure(flag.model, output);
   if (!opt.fsi_h5.empty()) {
