@@ -43,7 +43,9 @@ void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
       .add_option("--structure-max-iterations", o.structure_max_iterations, "structure Newton iterations per sub-step")
       ->capture_default_str();
   command.add_option("--substeps", o.substeps, "structure sub-steps per coupling step")->capture_default_str();
-  command.add_option("--checkpoint", o.checkpoint, "checkpoint file, replaced atomically (empty: none)");
+  command.add_option(
+      "--checkpoint", o.checkpoint,
+      "checkpoint file, replaced atomically (default with --checkpoint-every: <out stem>.checkpoint.h5 beside --out)");
   command.add_option("--checkpoint-every", o.checkpoint_every, "steps between checkpoints (0: after the last only)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);

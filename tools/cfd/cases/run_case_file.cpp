@@ -57,11 +57,17 @@ int run_flow_case_file(const fs::path& file, bool coarse, const fs::path& out_di
   if (spec.dt_max > 0) dt = std::min(dt, spec.dt_max);
   const double steps = spec.t_end / dt;
   log::Progress progress(spec.name + " step", static_cast<std::size_t>(std::ceil(steps)));
-  const auto r = run_flow_case(spec, [&](const StepStats& st, double cx) {
-    progress.update(static_cast<std::size_t>(st.step), "t " + fmt("%.4f", st.time) + "  C_x " + fmt("%.4f", cx) +
-                                                           "  Poisson " + std::to_string(st.poisson_iterations) +
-                                                           " it");
-  });
+  FlowCaseResult r;
+  try {
+    r = run_flow_case(spec, [&](const StepStats& st, double cx) {
+      progress.update(static_cast<std::size_t>(st.step), "t " + fmt("%.4f", st.time) + "  C_x " + fmt("%.4f", cx) +
+                                                             "  Poisson " + std::to_string(st.poisson_iterations) +
+                                                             " it");
+    });
+  } catch (const Error& e) {
+    // The solver's message names the step and the measure; the file names the case.
+    throw Error(file.string() + ": " + e.what());
+  }
   progress.finish("t " + fmt("%.4f", r.time.back()));
   const fs::path dir = out_dir / spec.name;
   fs::create_directories(dir);
