@@ -184,23 +184,20 @@ FlowCaseResult run_plane(const FlowCaseSpec& s, const StretchedGrid& grid, FlowS
   return r;
 }
 
-// Zero-thickness sheets, fixed: the forces of the markers on each body's triangles.
+// Zero-thickness sheets, fixed or moving: the forces of the markers on each body's elements.
 FlowCaseResult run_sheets(const FlowCaseSpec& s, const StretchedGrid& grid, FlowSolver& solver,
                           const TriangulatedSurface& all, const std::vector<std::size_t>& first,
+                          const std::vector<std::size_t>& first_node,
                           const std::function<void(const StepStats&, double)>& progress,
                           std::chrono::steady_clock::time_point t0) {
   if (s.control_volume) throw Error(s.name + ": outputs.control_volume: not available with sheet bodies");
   std::vector<Vec3> rest(all.points.begin(), all.points.end());
   SheetMotion motion = [rest](double) { return SheetState{rest, {}}; };
-  if (any_moves(s.bodies)) {
-    std::vector<std::size_t> first_node;
-    std::vector<std::size_t> unused;
-    merged(s.bodies, unused, &first_node);
+  if (any_moves(s.bodies))
     motion = [&bodies = s.bodies, rest, first_node](double t) {
       NodeKinematics k = place_nodes(bodies, rest, first_node, t);
       return SheetState{std::move(k.position), std::move(k.velocity)};
     };
-  }
   solver.immerse_sheet(SheetTopology{s.dim, rest.size(), all.triangles}, rest, s.sheet, motion);
   const auto u0 = s.initial_velocity;
   solver.initialise([u0](double, double, double, double) { return u0; });
@@ -280,11 +277,11 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
   if (s.dim == 2) {
     opt.cut_cell_continuity_fixed = s.cut_cells && !any_moves(s.bodies);
     solver.setup(grid, b, opt);
-    if (sheets > 0) return run_sheets(s, grid, solver, body, first, progress, t0);
+    if (sheets > 0) return run_sheets(s, grid, solver, body, first, first_node, progress, t0);
     return run_plane(s, grid, solver, progress, t0);
   }
   solver.setup(grid, b, opt);
-  if (sheets > 0) return run_sheets(s, grid, solver, body, first, progress, t0);
+  if (sheets > 0) return run_sheets(s, grid, solver, body, first, first_node, progress, t0);
   const bool moving = any_moves(s.bodies);
   if (moving && s.control_volume) throw Error(s.name + ": outputs.control_volume: not available with moving bodies");
   if (moving) {

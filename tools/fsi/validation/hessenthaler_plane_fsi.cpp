@@ -35,6 +35,88 @@ double number(const nlohmann::json& j, const char* pointer, const std::filesyste
 
 namespace {
 
+// The last fifth of the run (of what ran): mean and range of the tip, and the flow's mean load per
+// station.
+struct LastFifth {
+  double t0 = 0, mean = 0, lo = 0, hi = 0;
+  Eigen::Matrix2Xd mean_load;
+  std::vector<double> along, transverse, edges;
+};
+LastFifth last_fifth(const std::vector<double>& time, const std::vector<double>& tip,
+                     const std::vector<Eigen::Matrix2Xd>& binned_loads, int bins, double length) {
+  LastFifth r;
+  const double t0 = r.t0 = 0.8 * time.back();
+  double sum = 0, lo = 1e300, hi = -1e300;
+  int count = 0;
+  for (std::size_t k = 0; k < time.size(); ++k)
+    if (time[k] >= t0) sum += tip[k], lo = std::min(lo, tip[k]), hi = std::max(hi, tip[k]), ++count;
+  r.mean = sum / std::max(count, 1);
+  r.lo = lo;
+  r.hi = hi;
+  Eigen::Matrix2Xd& mean_load = r.mean_load;
+  mean_load = Eigen::Matrix2Xd::Zero(2, bins);
+  for (std::size_t k = 0; k < time.size(); ++k)
+    if (time[k] >= t0) mean_load += binned_loads[k];
+  mean_load /= std::max(count, 1);
+  // Per unit length of the flap and unit depth [N/m^2]: times the 3-D flap's width, a load per length.
+  const double station = length / bins;
+  for (int b = 0; b <= bins; ++b) r.edges.push_back(b * station);
+  for (int b = 0; b < bins; ++b)
+    r.along.push_back(mean_load(0, b) / station), r.transverse.push_back(mean_load(1, b) / station);
+  return r;
+}
+
+// The plane-strain strip's static buoyancy deflection, no flow.
+double static_buoyancy_tip(fem::validation::TurekHronFlagSpec spec) {
+  spec.gravity_as_load = true;
+  const fem::validation::TurekHronFlag f = fem::validation::build_turek_hron_flag(spec);
+  fem::StaticOptions so;
+  so.steps = 8;
+  fem::StaticSolver solver(f.model, so);
+  fem::NodalState state = f.model.reference_state();
+  solver.solve(state, 0.0, 1.0);
+  const auto a = static_cast<std::size_t>(f.point_a);
+  return state.position[a].y() - f.model.reference_positions()[a].y();
+}
+
+// The two inlet pipes as parabolic slots of half-width `half` on the channel's inlet (centres,
+// peaks: lower, upper), ramped over ramp_time; a convective outlet.
+cfd::FlowBoundary slot_inflow(double ramp_time, double half, std::array<double, 2> centre, std::array<double, 2> peak) {
+  cfd::FlowBoundary b;
+  b[cfd::Side::XLo].type = cfd::FlowBcType::Inlet;
+  b[cfd::Side::XLo].profile = cfd::InletProfile::Function;
+  b[cfd::Side::XLo].ramp_time = ramp_time;
+  b[cfd::Side::XLo].function = [=](double, double y, double, double) -> std::array<double, 3> {
+    const auto slot = [&](double c, double u) {
+      const double s = (y - c) / half;
+      return std::abs(s) < 1 ? u * (1 - s * s) : 0.0;
+    };
+    return {slot(centre[1], peak[1]) + slot(centre[0], peak[0]), 0, 0};
+  };
+  b[cfd::Side::XHi].type = cfd::FlowBcType::ConvectiveOutlet;
+  return b;
+}
+
+// The coupling: IQN-ILS, the best iterate accepted at the cap.
+CouplingOptions coupling_options(const HessenthalerPlaneOptions& o) {
+  CouplingOptions co;
+  co.convergence.relative_tolerance = o.tolerance;
+  co.convergence.absolute_tolerance = o.absolute_tolerance;
+  co.max_iterations = o.max_iterations;
+  co.divergence_iterations = 0;
+  co.accept_at_cap = true;
+  return co;
+}
+
+// Each wet node's station: `bins` equal stations along the flap by reference x from the clamp.
+std::vector<int> stations(const Eigen::Matrix2Xd& wet_reference, double clamp, double length, int bins) {
+  std::vector<int> bin_of(static_cast<std::size_t>(wet_reference.cols()));
+  for (Eigen::Index k = 0; k < wet_reference.cols(); ++k)
+    bin_of[static_cast<std::size_t>(k)] =
+        std::clamp(static_cast<int>(std::floor((wet_reference(0, k) - clamp) / length * bins)), 0, bins - 1);
+  return bin_of;
+}
+
 // The flap's part of the coupled run (coupled_run.hpp): per step the tip's deflection and the
 // flow's load summed over equal stations along the flap; every 50th step a progress line.
 class FlapCase final : public CoupledCase {
@@ -124,20 +206,7 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
   spec.mesh = o.mesh;
   spec.straight_clamp = true;
 
-  // The plane-strain strip's static buoyancy deflection, no flow.
-  double static_tip = 0;
-  {
-    fem::validation::TurekHronFlagSpec s = spec;
-    s.gravity_as_load = true;
-    const fem::validation::TurekHronFlag f = fem::validation::build_turek_hron_flag(s);
-    fem::StaticOptions so;
-    so.steps = 8;
-    fem::StaticSolver solver(f.model, so);
-    fem::NodalState state = f.model.reference_state();
-    solver.solve(state, 0.0, 1.0);
-    static_tip = state.position[static_cast<std::size_t>(f.point_a)].y() -
-                 f.model.reference_positions()[static_cast<std::size_t>(f.point_a)].y();
-  }
+  const double static_tip = static_buoyancy_tip(spec);  // no flow
 
   const fem::validation::TurekHronFlag flag = fem::validation::build_turek_hron_flag(spec);
   const auto& X0 = flag.model.reference_positions();
@@ -167,19 +236,8 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
   const double dt = o.cfl * o.h / u_max;
   cfd::FlowOptions flow_options = cfd::channel_benchmark_options(mu / rho, o.cfl, o.h, u_max);
   flow_options.dt = dt;
-  cfd::FlowBoundary b;
-  b[cfd::Side::XLo].type = cfd::FlowBcType::Inlet;
-  b[cfd::Side::XLo].profile = cfd::InletProfile::Function;
-  b[cfd::Side::XLo].ramp_time = o.ramp_time;
-  const double lo_c = yc - offset, hi_c = yc + offset, half = 0.5 * d_in;
-  b[cfd::Side::XLo].function = [=](double, double y, double, double) -> std::array<double, 3> {
-    const auto slot = [&](double centre, double peak) {
-      const double s = (y - centre) / half;
-      return std::abs(s) < 1 ? peak * (1 - s * s) : 0.0;
-    };
-    return {slot(hi_c, u_upper) + slot(lo_c, u_lower), 0, 0};
-  };
-  b[cfd::Side::XHi].type = cfd::FlowBcType::ConvectiveOutlet;
+  const double lo_c = yc - offset, hi_c = yc + offset;
+  const cfd::FlowBoundary b = slot_inflow(o.ramp_time, 0.5 * d_in, {lo_c, hi_c}, {u_lower, u_upper});
   cfd::FlowSolver flow;
   flow.setup(grid, b, flow_options);
   const FlagFlowBody body(g, 256, wet_reference);
@@ -194,25 +252,16 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
   fem::CoupledStructure structure(flag.model, so, flag.wet_nodes);
   structure.save();
   FlowStructureStep step(flow, structure, body, rho, dt);
-  CouplingOptions co;
-  co.convergence.relative_tolerance = o.tolerance;
-  co.convergence.absolute_tolerance = o.absolute_tolerance;
-  co.max_iterations = o.max_iterations;
-  co.divergence_iterations = 0;
-  co.accept_at_cap = true;
   const InterfaceLayout layout = step.layout();
   ImplicitCoupling coupling(layout, Eigen::VectorXd::Zero(layout.size()), make_acceleration("iqn-ils", layout, 0.1),
-                            co);
+                            coupling_options(o));
 
   const auto steps = static_cast<long>(std::ceil(o.t_end / dt - 1e-9));
   // The flow's load on the flap per step, summed over the wet nodes of each of load_bins equal
   // stations along the flap (by reference x from the clamp; the end face's nodes in the first
   // and last): the time mean of the last fifth is the "measured" flow load of fin-loop flap.
   const int bins = std::max(o.load_bins, 1);
-  std::vector<int> bin_of(static_cast<std::size_t>(n_wet));
-  for (int k = 0; k < n_wet; ++k)
-    bin_of[static_cast<std::size_t>(k)] =
-        std::clamp(static_cast<int>(std::floor((wet_reference(0, k) - clamp) / flap.length * bins)), 0, bins - 1);
+  const std::vector<int> bin_of = stations(wet_reference, clamp, flap.length, bins);
   // A step that fails (the flow blowing up) ends the run with what it has: the summary flags it.
   FsiOutput output(std::vector<Eigen::Vector3d>(X0.begin(), X0.end()), {}, rho, 1.0, 1.0);
   CoupledRunOptions ro;
@@ -242,23 +291,10 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
   const nlohmann::json& history = flap_case.tip_history;
 
   if (time.empty()) throw Error("hessenthaler_plane: the first step failed: " + failure);
-  // The last fifth of the run (of what ran): mean and range of the tip.
-  const double t0 = 0.8 * time.back();
-  double sum = 0, lo = 1e300, hi = -1e300;
-  int count = 0;
-  for (std::size_t k = 0; k < time.size(); ++k)
-    if (time[k] >= t0) sum += tip[k], lo = std::min(lo, tip[k]), hi = std::max(hi, tip[k]), ++count;
-  const double mean = sum / std::max(count, 1);
-  Eigen::Matrix2Xd mean_load = Eigen::Matrix2Xd::Zero(2, bins);
-  for (std::size_t k = 0; k < time.size(); ++k)
-    if (time[k] >= t0) mean_load += binned_loads[k];
-  mean_load /= std::max(count, 1);
-  // Per unit length of the flap and unit depth [N/m^2]: times the 3-D flap's width, a load per length.
-  const double station = flap.length / bins;
-  std::vector<double> along, transverse, edges;
-  for (int b = 0; b <= bins; ++b) edges.push_back(b * station);
-  for (int b = 0; b < bins; ++b)
-    along.push_back(mean_load(0, b) / station), transverse.push_back(mean_load(1, b) / station);
+  const LastFifth last = last_fifth(time, tip, binned_loads, bins, flap.length);
+  const double t0 = last.t0, mean = last.mean, lo = last.lo, hi = last.hi;
+  const Eigen::Matrix2Xd& mean_load = last.mean_load;
+  const std::vector<double>&along = last.along, &transverse = last.transverse, &edges = last.edges;
 
   Summary s("validation", "loop_hessenthaler_phase_I_plane",
             "PLANE VERSION of the Hessenthaler 2017 Phase I flow (2-D section: the flap spans the depth and "

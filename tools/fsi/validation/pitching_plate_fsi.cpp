@@ -120,6 +120,55 @@ PitchingPlateModes pitching_plate_modes(const PitchingPlateOptions& o) {
 
 namespace {
 
+// Over the last period: the trailing edge's amplitude and phase against the rigid plate's, the
+// mean thrust and the lift's fundamental.
+void measure_last_period(const PitchingPlateOptions& o, long steps, const std::vector<double>& fx,
+                         const std::vector<double>& fy, const std::vector<double>& rigid_te,
+                         PitchingPlateCaseResult& res) {
+  const auto N = static_cast<std::size_t>(o.steps_per_period), first = static_cast<std::size_t>(steps) - N;
+  const auto [lo, hi] = std::minmax_element(res.te_y.begin() + static_cast<long>(first), res.te_y.end());
+  res.amplitude = (*hi - *lo) / 2;
+  const std::complex<double> y1 = fundamental(res.te_y, first, N), r1 = fundamental(rigid_te, first, N);
+  res.phase_deg = std::arg(y1 / r1) * 180 / pi;
+  const double q = 0.5 * o.aspect;  // rho U^2 L W / 2
+  double mean_fx = 0;
+  for (std::size_t k = first; k < first + N; ++k) mean_fx += fx[k];
+  res.mean_thrust = -mean_fx / static_cast<double>(N) / q;
+  res.lift_amplitude = std::abs(fundamental(fy, first, N)) / q;
+}
+
+// The rigid plate: the flow alone around the prescribed rigid motion, the force from the surface
+// traction (or the sheet's markers) after every step.
+void run_rigid_plate(
+    const PitchingPlateOptions& o, cfd::FlowSolver& flow, SurfaceFlowStructureStep& step, long steps, double dt, int te,
+    const std::string& tag,
+    const std::function<void(double, Eigen::Matrix3Xd&, Eigen::Matrix3Xd&, Eigen::Matrix3Xd&)>& rigid_nodes,
+    std::vector<double>& fx, std::vector<double>& fy, std::vector<double>& rigid_te, PitchingPlateCaseResult& res) {
+  for (long s = 1; s <= steps; ++s) {
+    const double t = static_cast<double>(s) * dt;
+    Eigen::Matrix3Xd x, v, a;
+    rigid_nodes(t, x, v, a);
+    rigid_te.push_back(x(1, te));
+    try {
+      step.place(x, v, a);
+      flow.step();
+    } catch (const std::exception& e) {
+      throw Error("pitching plate (" + tag + "), step " + std::to_string(s) + ": flow: " + e.what());
+    }
+    const SurfaceLoadTransfer tr = step.transfer(x);
+    res.transfer_mismatch = std::max(res.transfer_mismatch, tr.mismatch(1.0));
+    fx.push_back(tr.flow_force.x());
+    fy.push_back(tr.flow_force.y());
+    res.te_y.push_back(x(1, te));
+    res.time.push_back(t);
+    res.coupling_iterations_max = 1;
+    if (o.progress)
+      o.progress(tag + ": step " + std::to_string(s) + " t " + printf_format("%.4f", t) + ": F (" +
+                 printf_format("%.4f", fx.back()) + ", " + printf_format("%.4f", fy.back()) + "), y_TE " +
+                 printf_format("%.4f", res.te_y.back()));
+  }
+}
+
 // The flexible plate's part of the coupled run (coupled_run.hpp): per step the force, the
 // mid-span trailing edge and, for the phase, where the rigid plate's would be.
 class PlateCase final : public CoupledCase {
@@ -270,31 +319,8 @@ PitchingPlateCaseResult run_pitching_plate_case(const PitchingPlateOptions& o, d
                             make_acceleration(o.acceleration, layout, o.omega), co);
   const std::string tag = rigid ? std::string("rigid") : "K " + printf_format("%g", stiffness);
   if (rigid) {
-    // The flow alone around the prescribed rigid motion.
-    for (long s = 1; s <= steps; ++s) {
-      const double t = static_cast<double>(s) * dt;
-      Eigen::Matrix3Xd x, v, a;
-      rigid_nodes(t, x, v, a);
-      rigid_te.push_back(x(1, te));
-      try {
-        step.place(x, v, a);
-        flow.step();
-      } catch (const std::exception& e) {
-        throw Error("pitching plate (" + tag + "), step " + std::to_string(s) + ": flow: " + e.what());
-      }
-      const SurfaceLoadTransfer tr = step.transfer(x);
-      res.transfer_mismatch = std::max(res.transfer_mismatch, tr.mismatch(1.0));
-      fx.push_back(tr.flow_force.x());
-      fy.push_back(tr.flow_force.y());
-      res.te_y.push_back(x(1, te));
-      res.time.push_back(t);
-      it_sum += 1;
-      res.coupling_iterations_max = 1;
-      if (o.progress)
-        o.progress(tag + ": step " + std::to_string(s) + " t " + printf_format("%.4f", t) + ": F (" +
-                   printf_format("%.4f", fx.back()) + ", " + printf_format("%.4f", fy.back()) + "), y_TE " +
-                   printf_format("%.4f", res.te_y.back()));
-    }
+    run_rigid_plate(o, flow, step, steps, dt, te, tag, rigid_nodes, fx, fy, rigid_te, res);
+    it_sum = static_cast<double>(steps);
   } else {
     // The coupled run every case uses (coupled_run.hpp); no fsi.h5 here.
     std::vector<Eigen::Vector3d> reference(static_cast<std::size_t>(n));
@@ -326,17 +352,7 @@ PitchingPlateCaseResult run_pitching_plate_case(const PitchingPlateOptions& o, d
   }
   res.coupling_iterations_mean = it_sum / static_cast<double>(steps);
 
-  // The last period.
-  const auto N = static_cast<std::size_t>(o.steps_per_period), first = static_cast<std::size_t>(steps) - N;
-  const auto [lo, hi] = std::minmax_element(res.te_y.begin() + static_cast<long>(first), res.te_y.end());
-  res.amplitude = (*hi - *lo) / 2;
-  const std::complex<double> y1 = fundamental(res.te_y, first, N), r1 = fundamental(rigid_te, first, N);
-  res.phase_deg = std::arg(y1 / r1) * 180 / pi;
-  const double q = 0.5 * W;  // rho U^2 L W / 2
-  double mean_fx = 0;
-  for (std::size_t k = first; k < first + N; ++k) mean_fx += fx[k];
-  res.mean_thrust = -mean_fx / static_cast<double>(N) / q;
-  res.lift_amplitude = std::abs(fundamental(fy, first, N)) / q;
+  measure_last_period(o, steps, fx, fy, rigid_te, res);
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return res;
 }
