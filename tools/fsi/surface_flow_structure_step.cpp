@@ -69,7 +69,7 @@ SurfaceLoadTransfer transfer_sheet_loads(const cfd::FlowSolver& flow, double rho
     t.node_force += t.loads.col(k);
     t.node_moment += (nodes.col(k) - centre).cross(t.loads.col(k));
   }
-  const std::vector<cfd::Vec3> X = m->at_markers(columns(nodes));
+  const std::vector<cfd::Vec3> X = m->positions_at_markers(columns(nodes));
   for (std::size_t q = 0; q < X.size(); ++q) {
     const Eigen::Vector3d F(L.marker[q][0], L.marker[q][1], L.marker[q][2]);
     t.flow_force += F;

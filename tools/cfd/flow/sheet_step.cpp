@@ -52,7 +52,11 @@ void FlowSolver::immerse_sheet(const SheetTopology& topology, const std::vector<
       if (x[d] >= a.lo() && x[d] <= a.hi()) h = std::min(h, a.width_at(x[d]));
     }
   if (!std::isfinite(h)) throw Error("flow solver: sheet: no node inside the domain at rest");
-  sheet_.emplace(topology, rest, options.spacing * h, "flow solver: sheet");
+  // On a periodic axis the markers see the sheet's images (a sheet across the whole period).
+  std::array<double, 3> period{0, 0, 0};
+  for (int d = 0; d < dim(); ++d)
+    if (bnd_.periodic(d)) period[static_cast<std::size_t>(d)] = grid_.axis(d).hi() - grid_.axis(d).lo();
+  sheet_.emplace(topology, rest, options.spacing * h, "flow solver: sheet", period);
   sheet_opt_ = options;
   sheet_motion_ = std::move(motion);
   sheet_state_ = {rest, {}};
@@ -60,7 +64,7 @@ void FlowSolver::immerse_sheet(const SheetTopology& topology, const std::vector<
   sheet_impulse_.assign(sheet_->size(), Vec3{0, 0, 0});
   // Every marker must be inside the domain at rest (a stencil that fails names the boundary).
   RegularizedStencils(grid_, {bnd_.periodic(0), bnd_.periodic(1), dim() == 3 && bnd_.periodic(2)},
-                      sheet_->at_markers(rest), sheet_opt_.kernel, "flow solver: sheet at rest");
+                      sheet_->positions_at_markers(rest), sheet_opt_.kernel, "flow solver: sheet at rest");
 }
 
 void FlowSolver::set_sheet_state(SheetState next) {
@@ -73,7 +77,7 @@ void FlowSolver::force_sheet(double dt, SheetState next) {
   const double t = time_ + dt;
   check_sheet_state(next, sheet_->topology().nodes, t);
   const std::string what = "flow solver: step " + std::to_string(step_ + 1) + " (t = " + num(t) + "): sheet";
-  const std::vector<Vec3> X = sheet_->at_markers(next.position);
+  const std::vector<Vec3> X = sheet_->positions_at_markers(next.position);
   sheet_marker_velocity_ =
       next.velocity.empty() ? std::vector<Vec3>(X.size(), Vec3{0, 0, 0}) : sheet_->at_markers(next.velocity);
   sheet_marker_position_ = X;
@@ -90,7 +94,7 @@ void FlowSolver::force_sheet(double dt, SheetState next) {
 // at t0, with a unit step; the impulses are not kept as loads.
 void FlowSolver::force_initial_sheet(double t0) {
   const std::string what = "flow solver: initial sheet at t = " + num(t0);
-  const std::vector<Vec3> X = sheet_->at_markers(sheet_state_.position);
+  const std::vector<Vec3> X = sheet_->positions_at_markers(sheet_state_.position);
   sheet_marker_velocity_ = sheet_state_.velocity.empty() ? std::vector<Vec3>(X.size(), Vec3{0, 0, 0})
                                                          : sheet_->at_markers(sheet_state_.velocity);
   sheet_stencils_.emplace(grid_,

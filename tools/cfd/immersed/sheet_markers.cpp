@@ -12,6 +12,66 @@
 namespace finverse::cfd {
 namespace {
 
+Vec3 add3(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+
+// Seeds on a hash grid of cell `spacing`. On a periodic axis (period > 0) positions are kept in
+// [origin, origin + period) and searched at their images too, so that distances are the
+// minimum-image ones; on the other axes positions stay as they are.
+class SeedIndex {
+ public:
+  SeedIndex(double spacing, const std::array<double, 3>& period, const Vec3& origin)
+      : h_(spacing), period_(period), origin_(origin) {}
+  Vec3 wrap(const Vec3& x) const {
+    Vec3 w = x;
+    for (int d = 0; d < 3; ++d)
+      if (period_[d] > 0) {
+        const double P = period_[d];
+        w[d] = origin_[d] + std::fmod(std::fmod(x[d] - origin_[d], P) + P, P);
+        if (w[d] >= origin_[d] + P) w[d] -= P;  // fmod's round-off at the top
+      }
+    return w;
+  }
+  void add(const Vec3& x) {
+    const auto c = cell(x);
+    grid_[key(c[0], c[1], c[2])].push_back(static_cast<int>(seed_.size()));
+    seed_.push_back(x);
+  }
+  std::size_t size() const { return seed_.size(); }
+  const Vec3& seed(int q) const { return seed_[static_cast<std::size_t>(q)]; }
+  // fn(q, image) for every seed q in the (2 r + 1)^3 hash cells around each image x + image of x.
+  template <class Fn>
+  void near(const Vec3& x, int r, Fn&& fn) const {
+    const int ix = period_[0] > 0 ? 1 : 0, iy = period_[1] > 0 ? 1 : 0, iz = period_[2] > 0 ? 1 : 0;
+    for (int a = -ix; a <= ix; ++a)
+      for (int b = -iy; b <= iy; ++b)
+        for (int g = -iz; g <= iz; ++g) {
+          const Vec3 image{a * period_[0], b * period_[1], g * period_[2]};
+          const auto c = cell(add3(x, image));
+          for (long long di = -r; di <= r; ++di)
+            for (long long dj = -r; dj <= r; ++dj)
+              for (long long dk = -r; dk <= r; ++dk) {
+                const auto it = grid_.find(key(c[0] + di, c[1] + dj, c[2] + dk));
+                if (it == grid_.end()) continue;
+                for (int q : it->second) fn(q, image);
+              }
+        }
+  }
+
+ private:
+  std::array<long long, 3> cell(const Vec3& x) const {
+    return {static_cast<long long>(std::floor(x[0] / h_)), static_cast<long long>(std::floor(x[1] / h_)),
+            static_cast<long long>(std::floor(x[2] / h_))};
+  }
+  static long long key(long long i, long long j, long long k) {
+    return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL);
+  }
+  double h_;
+  std::array<double, 3> period_;
+  Vec3 origin_;
+  std::unordered_map<long long, std::vector<int>> grid_;  // hash cell -> seeds
+  std::vector<Vec3> seed_;
+};
+
 double element_measure(int dim, const Vec3& a, const Vec3& b, const Vec3& c) {
   if (dim == 2) return norm(sub(b, a));
   return 0.5 * norm(cross(sub(b, a), sub(c, a)));
@@ -20,7 +80,7 @@ double element_measure(int dim, const Vec3& a, const Vec3& b, const Vec3& c) {
 }  // namespace
 
 SheetMarkers::SheetMarkers(const SheetTopology& t, const std::vector<Vec3>& rest, double spacing,
-                           const std::string& what)
+                           const std::string& what, const std::array<double, 3>& period)
     : topo_(t), spacing_(spacing) {
   if (t.dim != 2 && t.dim != 3) throw Error(what + ": sheet dimension " + std::to_string(t.dim) + ", expected 2 or 3");
   if (rest.size() != t.nodes)
@@ -29,6 +89,10 @@ SheetMarkers::SheetMarkers(const SheetTopology& t, const std::vector<Vec3>& rest
   if (!(spacing > 0) || !std::isfinite(spacing))
     throw Error(what + ": marker spacing " + std::to_string(spacing) + ", expected a positive finite length");
   if (t.elements.empty()) throw Error(what + ": the sheet has no elements");
+  for (int d = 0; d < 3; ++d)
+    if (!(period[d] == 0 || (std::isfinite(period[d]) && period[d] >= 4 * spacing)))
+      throw Error(what + ": period " + std::to_string(period[d]) + " along axis " + std::to_string(d) +
+                  ", expected 0 (not periodic) or at least 4 marker spacings");
   // The sheet's extent, the scale of the degeneracy test.
   Vec3 lo = rest.front(), hi = rest.front();
   for (const Vec3& p : rest)
@@ -77,36 +141,19 @@ SheetMarkers::SheetMarkers(const SheetTopology& t, const std::vector<Vec3>& rest
       }
   }
   // Greedy thinning of the subdivision's vertices into seeds, nodes first, then edge points, then
-  // interior points, each in element order (deterministic), on a hash grid of cell `spacing`.
+  // interior points, each in element order (deterministic).
   std::stable_sort(cand.begin(), cand.end(), [](const Candidate& p, const Candidate& q) { return p.rank < q.rank; });
-  const auto cell_of = [&](const Vec3& x) {
-    return std::array<long long, 3>{static_cast<long long>(std::floor(x[0] / spacing)),
-                                    static_cast<long long>(std::floor(x[1] / spacing)),
-                                    static_cast<long long>(std::floor(x[2] / spacing))};
-  };
-  const auto key = [](long long i, long long j, long long k) {
-    return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL);
-  };
-  std::unordered_map<long long, std::vector<int>> grid;  // hash cell -> seeds
-  std::vector<Vec3> seed;
+  SeedIndex index(spacing, period, lo);
   const double dmin2 = spacing * spacing * (1 - 1e-9);
   for (const Candidate& p : cand) {
-    const auto c = cell_of(p.x);
+    const Vec3 x = index.wrap(p.x);
     bool near = false;
-    for (long long di = -1; di <= 1 && !near; ++di)
-      for (long long dj = -1; dj <= 1 && !near; ++dj)
-        for (long long dk = -1; dk <= 1 && !near; ++dk) {
-          const auto it = grid.find(key(c[0] + di, c[1] + dj, c[2] + dk));
-          if (it == grid.end()) continue;
-          for (int q : it->second)
-            if (dot(sub(p.x, seed[static_cast<std::size_t>(q)]), sub(p.x, seed[static_cast<std::size_t>(q)])) < dmin2) {
-              near = true;
-              break;
-            }
-        }
+    index.near(x, 1, [&](int q, const Vec3& image) {
+      const Vec3 d = sub(add3(x, image), index.seed(q));
+      near = near || dot(d, d) < dmin2;
+    });
     if (near) continue;
-    grid[key(c[0], c[1], c[2])].push_back(static_cast<int>(seed.size()));
-    seed.push_back(p.x);
+    index.add(x);
     element_.push_back(p.element);
   }
   // Patches: every piece's centroid (n^2 per triangle, n per segment, the same n as the
@@ -114,9 +161,13 @@ SheetMarkers::SheetMarkers(const SheetTopology& t, const std::vector<Vec3>& rest
   // weights. Every candidate lies within `spacing` of a seed, so the nearest seed of a centroid is
   // within two spacings: a 5 x 5 x 5 block of hash cells holds it. (Pieces shared smoothly among
   // the seeds within 1.5 spacings instead smeared the sheet's edges and made the towed plate's
-  // force oscillation larger, 4.2 % against 3.2 % at c/32: docs/studies/thin_surface.md.)
-  std::vector<std::map<int, double>> patch(seed.size());
-  std::vector<double> patch_area(seed.size(), 0.0);
+  // force oscillation larger, 4.2 % against 3.2 % at c/32: docs/studies/thin_surface.md.) On a
+  // periodic axis a piece may lie a period away from its seed: its shift is kept in the marker's
+  // offset, so that the marker's position is the patch's mean beside the seed.
+  const std::size_t ns = index.size();
+  std::vector<std::map<int, double>> patch(ns);
+  std::vector<double> patch_area(ns, 0.0);
+  std::vector<Vec3> shift_sum(ns, Vec3{0, 0, 0});
   for (std::size_t e = 0; e < t.elements.size(); ++e) {
     const auto& el = t.elements[e];
     const Vec3& a = rest[el[0]];
@@ -139,29 +190,28 @@ SheetMarkers::SheetMarkers(const SheetTopology& t, const std::vector<Vec3>& rest
     for (const auto& w : pieces) {
       Vec3 x{0, 0, 0};
       for (int d = 0; d < 3; ++d) x[d] = w[0] * a[d] + w[1] * b[d] + (nq == 3 ? w[2] * c[d] : 0.0);
-      const auto cc = cell_of(x);
+      const Vec3 xw = index.wrap(x);
       int best = -1;
       double best_d2 = std::numeric_limits<double>::infinity();
-      for (long long di = -2; di <= 2; ++di)
-        for (long long dj = -2; dj <= 2; ++dj)
-          for (long long dk = -2; dk <= 2; ++dk) {
-            const auto it = grid.find(key(cc[0] + di, cc[1] + dj, cc[2] + dk));
-            if (it == grid.end()) continue;
-            for (int q : it->second) {
-              const double d2 =
-                  dot(sub(x, seed[static_cast<std::size_t>(q)]), sub(x, seed[static_cast<std::size_t>(q)]));
-              if (d2 < best_d2 || (d2 == best_d2 && q < best)) best = q, best_d2 = d2;
-            }
-          }
+      Vec3 best_image{0, 0, 0};
+      index.near(xw, 2, [&](int q, const Vec3& image) {
+        const Vec3 d = sub(add3(xw, image), index.seed(q));
+        const double d2 = dot(d, d);
+        if (d2 < best_d2 || (d2 == best_d2 && q < best)) best = q, best_d2 = d2, best_image = image;
+      });
       if (best < 0) throw Error(what + ": element " + std::to_string(e) + " has no marker within two spacings");
       const auto B = static_cast<std::size_t>(best);
       patch_area[B] += area;
       for (int k = 0; k < nq; ++k) patch[B][el[k]] += area * w[k];
+      const Vec3 shift = add3(sub(xw, x), best_image);
+      for (int d = 0; d < 3; ++d) shift_sum[B][d] += area * shift[d];
     }
   }
   start_.push_back(0);
-  for (std::size_t k = 0; k < seed.size(); ++k) {
+  offset_.assign(ns, Vec3{0, 0, 0});
+  for (std::size_t k = 0; k < ns; ++k) {
     if (!(patch_area[k] > 0)) throw Error(what + ": a marker has no piece of the sheet (degenerate sampling)");
+    for (int d = 0; d < 3; ++d) offset_[k][d] = shift_sum[k][d] / patch_area[k];
     for (const auto& [node, w] : patch[k]) {
       node_.push_back(node);
       weight_.push_back(w / patch_area[k]);
@@ -178,6 +228,12 @@ std::vector<Vec3> SheetMarkers::at_markers(const std::vector<Vec3>& v) const {
   for (std::size_t m = 0; m < size(); ++m)
     for (std::size_t e = start_[m]; e < start_[m + 1]; ++e)
       for (int d = 0; d < 3; ++d) out[m][d] += weight_[e] * v[static_cast<std::size_t>(node_[e])][d];
+  return out;
+}
+
+std::vector<Vec3> SheetMarkers::positions_at_markers(const std::vector<Vec3>& x) const {
+  std::vector<Vec3> out = at_markers(x);
+  for (std::size_t m = 0; m < size(); ++m) out[m] = add3(out[m], offset_[m]);
   return out;
 }
 

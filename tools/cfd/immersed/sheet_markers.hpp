@@ -44,8 +44,11 @@ class SheetMarkers {
   SheetMarkers() = default;
   // Markers on `rest` (the nodes' rest positions), seeds no closer than `spacing`. Throws a one-line
   // finverse::Error naming `what` and the element for a node index out of range or a degenerate
-  // element (length or area below 1e-12 of the sheet's extent).
-  SheetMarkers(const SheetTopology& topology, const std::vector<Vec3>& rest, double spacing, const std::string& what);
+  // element (length or area below 1e-12 of the sheet's extent). `period`: the domain's length along
+  // each periodic axis (0: not periodic). There distances are minimum-image ones, so that a sheet
+  // that spans the period (nodes on both ends) gets one row of markers at the seam, not two.
+  SheetMarkers(const SheetTopology& topology, const std::vector<Vec3>& rest, double spacing, const std::string& what,
+               const std::array<double, 3>& period = {0, 0, 0});
 
   std::size_t size() const { return element_.size(); }
   const SheetTopology& topology() const { return topo_; }
@@ -58,8 +61,12 @@ class SheetMarkers {
   double entry_weight(std::size_t e) const { return weight_[e]; }
   double spacing() const { return spacing_; }
 
-  // Node values (positions, velocities) interpolated to the markers.
+  // Node values (velocities) interpolated to the markers.
   std::vector<Vec3> at_markers(const std::vector<Vec3>& node_values) const;
+  // Node positions interpolated to the markers: at_markers plus the marker's periodic offset (the
+  // mean shift by whole periods of the pieces that lie across a periodic seam; zero elsewhere).
+  std::vector<Vec3> positions_at_markers(const std::vector<Vec3>& node_positions) const;
+  const Vec3& offset(std::size_t m) const { return offset_[m]; }
   // Marker values (forces) returned to the nodes by the transposed weights.
   std::vector<Vec3> to_nodes(const std::vector<Vec3>& marker_values) const;
   // The sheet's length (2-D) or area (3-D) lumped to its nodes (a third of every triangle's area,
@@ -76,6 +83,7 @@ class SheetMarkers {
   std::vector<std::size_t> start_;  // entries of marker m: [start_[m], start_[m + 1])
   std::vector<int> node_;
   std::vector<double> weight_;
+  std::vector<Vec3> offset_;  // per marker, see positions_at_markers
 };
 
 }  // namespace finverse::cfd

@@ -1,11 +1,15 @@
-// A spanwise-uniform heaving and pitching plate through the fin's 3-D thin-body path against the
-// 2-D solver on its section (issue 30, item 3a). The plate spans a slab between two slip walls and
-// reaches beyond both (FlowOptions::surface_crosses): a slip wall is a symmetry plane, so the slab
-// holds the section's 2-D flow and no periodic boundary is needed. The 2-D reference is the
-// section as a polygon with the same blunt ends, the same rigid motion (pitch leading heave by 90
-// degrees, feathering, after a smooth start), x-y grid, step, Re and stream. Compared over the last
-// period per unit span: mean C_T, C_L's fundamental amplitude and mean
-// (docs/studies/spanwise_plate_2d3d.md).
+// A spanwise-uniform heaving and pitching plate through the fin's 3-D paths against the 2-D solver
+// on its section, in both of the fin's treatments:
+//  - closed (issue 30, item 3a): the plate two cells thick spans a slab between two slip walls and
+//    reaches beyond both (FlowOptions::surface_crosses): a slip wall is a symmetry plane, so the
+//    slab holds the section's 2-D flow. The 2-D reference is the section as a polygon with the
+//    same blunt ends;
+//  - sheet (issue 44, goal 5): the zero-thickness mid-surface spans a z-periodic slab from seam to
+//    seam (its markers see the periodic images, sheet_markers.hpp); the 2-D reference is the
+//    section as a sheet polyline.
+// Same rigid motion (pitch leading heave by 90 degrees, feathering, after a smooth start), x-y
+// grid, step, Re and stream throughout. Compared over the last period per unit span: mean C_T,
+// C_L's fundamental amplitude and mean (docs/studies/spanwise_plate_2d3d.md, thin_surface.md).
 #pragma once
 
 #include <functional>
@@ -35,6 +39,7 @@ struct SpanwisePlateSetup {
   // cut_cell_continuity, cut_cell_continuity_3d), to separate the balances' share of a difference.
   bool staircase = false;
   int frames_per_period = 200;        // the 3-D motion's samples (spline knots)
+  bool closed = true, sheet = true;   // which treatments run (each a 2-D and a 3-D run)
   double box_margin = 0.15, box_behind = 0.5;             // uniform box around the path [c]
   double upstream = 2, downstream = 4, half_height = 2;  // domain [c]
   double stretch_ratio = 1.1;
@@ -47,13 +52,14 @@ struct SpanwisePlateRun {
   double cx_noise = 0, cy_noise = 0;  // rms above the 10th harmonic over the last period
   double max_cfl = 0, max_divergence = 0, seconds = 0;
   long cells = 0;
-  bool failed = false;
+  bool ran = false, failed = false;
   std::string error;
 };
 
 struct SpanwisePlateResult {
   std::vector<double> time;
-  SpanwisePlateRun flat, slab;  // 2-D polygon, 3-D thin body
+  SpanwisePlateRun flat, slab;              // closed: 2-D polygon, 3-D thin body
+  SpanwisePlateRun flat_sheet, slab_sheet;  // sheet: 2-D polyline, 3-D periodic slab
   long steps = 0, steps_per_period = 0;
   double dt = 0, h = 0, thickness = 0, span = 0;
 };
