@@ -123,6 +123,9 @@ void add_fin_options(CLI::App* f, FinArgs& a) {
   f->add_option("--marker-spacing", o.marker_spacing, "sheet: marker spacing in core cell widths")
       ->capture_default_str()
       ->check(CLI::Range(0.25, 4.0));
+  f->add_flag("--raw-sheet-force", o.raw_sheet_force,
+              "sheet: the markers' impulses as the loads, without removing the inertia of the fluid band the kernel "
+              "moves with the sheet (docs/studies/thin_surface.md)");
   f->add_flag("--sheet-loads-mean", o.sheet_loads_mean,
               "sheet: loads at an output time are the mean over the output interval centred on it instead of the "
               "raw force of the step on it");

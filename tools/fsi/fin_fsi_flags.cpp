@@ -22,6 +22,10 @@ void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
   command.add_option("--marker-spacing", o.flow.marker_spacing, "sheet: marker spacing in core cell widths")
       ->capture_default_str()
       ->check(CLI::Range(0.25, 4.0));
+  command.add_flag(
+      "--band-correction", o.band_correction,
+      "sheet: load the structure with the markers' impulses less the kernel band's inertia (off: unstable for a "
+      "structure lighter than the band; docs/studies/thin_surface.md)");
   command
       .add_option("--ramp-periods", o.ramp_periods,
                   "--motion: periods of the root's ramp from rest before its first frame")

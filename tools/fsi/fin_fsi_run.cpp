@@ -360,6 +360,8 @@ void grid_time_and_config(const FinFsiInputs& in, const FinFsiOptions& o, FinSet
                 {"rayleigh_mass", so_rayleigh_mass},
                 {"rayleigh_stiffness", so_rayleigh_stiffness},
                 {"drive", drive_config}};
+  // The sheet's load option only with the sheet, so that a closed-body run's configuration stays.
+  if (o.surface == "sheet") res.config["band_correction"] = o.band_correction;
 }
 
 // The fin's part of the coupled run (coupled_run.hpp): per step the force on the fin, the rays'
@@ -563,6 +565,7 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
     sheet.emplace();
     sheet->kernel = cfd::delta_kernel_from_name(fo.kernel);
     sheet->spacing = fo.marker_spacing;
+    sheet->band_correction = o.band_correction;
   }
   try {
     step.immerse(s.X0, sheet);

@@ -48,6 +48,11 @@ struct FinFsiOptions {
   // sheet's impulsive start loads the fin with the momentum of the fluid in its kernel width
   // (docs/studies/thin_surface.md).
   double stream_ramp_periods = 0;
+  // The sheet's load on the structure less the kernel band's inertia (cfd::SheetForcingOptions::
+  // band_correction). Off by default: the band is much heavier than the fin's membrane, and
+  // removing its inertia explicitly inside the partitioned coupling leaves the structure a negative
+  // effective mass (docs/studies/thin_surface.md, "The entrained band").
+  bool band_correction = false;
   double ramp_periods = 1;        // tracked motion only (the drive has its own)
   double ramp_time = 0;           // [s]; > 0: the tracked motion's ramp instead of ramp_periods T
   std::string acceleration = "iqn-ils";

@@ -317,7 +317,8 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
   if (t["dt_max"]) s.dt_max = r.number(t["dt_max"], "time.dt_max");
   if (const YAML::Node sv = root["solver"]) {
     r.only(sv, "solver",
-           {"helmholtz_rtol", "poisson_rtol", "wall_momentum_balance", "cut_cells", "kernel", "marker_spacing"});
+           {"helmholtz_rtol", "poisson_rtol", "wall_momentum_balance", "cut_cells", "kernel", "marker_spacing",
+            "band_correction"});
     if (sv["kernel"]) {
       const std::string k = r.scalar<std::string>(sv["kernel"], "solver.kernel", "roma3, peskin4, smooth3 or smooth4");
       try {
@@ -327,6 +328,8 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
       }
     }
     if (sv["marker_spacing"]) s.sheet.spacing = r.number(sv["marker_spacing"], "solver.marker_spacing");
+    if (sv["band_correction"])
+      s.sheet.band_correction = r.scalar<bool>(sv["band_correction"], "solver.band_correction", "true or false");
     if (sv["cut_cells"]) s.cut_cells = r.scalar<bool>(sv["cut_cells"], "solver.cut_cells", "true or false");
     if (sv["helmholtz_rtol"]) s.helmholtz_rtol = r.number(sv["helmholtz_rtol"], "solver.helmholtz_rtol");
     if (sv["poisson_rtol"]) s.poisson_rtol = r.number(sv["poisson_rtol"], "solver.poisson_rtol");

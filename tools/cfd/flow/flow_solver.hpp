@@ -278,6 +278,8 @@ class FlowSolver {
   const SheetState& sheet_state() const { return sheet_state_; }  // at time()
   // The force of the fluid on the sheet during the last step (rho times minus the markers'
   // impulses), per marker and per node; zero before the first step.
+  // With SheetForcingOptions::band_correction, less the inertia of the fluid band that the kernel
+  // moves with the sheet (sheet_band_correction in sheet_step.cpp).
   SheetLoads sheet_loads(double rho = 1.0) const;
   const SheetSolveStats& sheet_solve_stats() const { return sheet_stats_; }
   // Cells that were cleared at the start of the last step (i, j, k; k = 0 in 2-D).
@@ -415,10 +417,12 @@ class FlowSolver {
   // Zero-thickness sheet (sheet_step.cpp): forcing after the momentum predictor.
   void force_sheet(double dt, SheetState next);
   void add_sheet_impulse(double dt);
+  std::vector<Vec3> sheet_band_correction() const;
   void force_initial_sheet(double t0);
   std::vector<Vec3> sheet_marker_position_;
   std::optional<RegularizedStencils> sheet_stencils_;  // of the last placement
   std::vector<Vec3> sheet_marker_velocity_;
+  std::vector<Vec3> sheet_marker_acceleration_;  // over the last step
   std::optional<SheetMarkers> sheet_;
   SheetForcingOptions sheet_opt_;
   SheetMotion sheet_motion_;

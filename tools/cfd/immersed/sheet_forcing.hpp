@@ -35,6 +35,11 @@ struct SheetForcingOptions {
   // solenoidal and equal to the sheet's at the markers (the IB projection method's solution,
   // Taira & Colonius 2007), at one more pressure solve each.
   int projections = 1;
+  // Loads: remove the inertia of the fluid band that the kernel moves with the sheet, an added mass
+  // a zero-thickness surface does not have (FlowSolver::sheet_loads); false: the markers' impulses
+  // as they are. For prescribed motions; inside a partitioned coupling it can leave a light
+  // structure a negative effective mass (fin_fsi_run.hpp).
+  bool band_correction = true;
 };
 
 // The interpolation weights of a set of markers on a grid, over the compact list of the cells they

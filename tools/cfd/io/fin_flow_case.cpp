@@ -180,6 +180,7 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
       SheetForcingOptions so;
       so.kernel = delta_kernel_from_name(o.kernel);
       so.spacing = o.marker_spacing;
+      so.band_correction = !o.raw_sheet_force;
       const std::shared_ptr<const FinSurfaceMotion> mo = in.motion;
       solver.immerse_sheet(SheetTopology{3, in.rest.size(), in.mid_triangles}, in.rest, so, [mo](double t) {
         MidSurfaceState ms = mo->mid_surface(t);

@@ -68,6 +68,9 @@ struct FinFlowOptions {
   std::string surface = "closed";
   std::string kernel = "smooth3";
   double marker_spacing = 1.0;
+  // The sheet's load: the markers' impulses less the kernel band's inertia
+  // (SheetForcingOptions::band_correction); true: the impulses as they are.
+  bool raw_sheet_force = false;
   // The sheet's loads at an output time: the one step on it (default), or the mean over the output
   // interval as for the closed body.
   bool sheet_loads_mean = false;

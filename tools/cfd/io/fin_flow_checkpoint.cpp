@@ -78,6 +78,7 @@ nlohmann::json fin_flow_config(const FinFlowOptions& o, const FinInput& in) {
     opt["--surface"] = o.surface;
     opt["--kernel"] = o.kernel;
     opt["--marker-spacing"] = o.marker_spacing;
+    opt["--raw-sheet-force"] = o.raw_sheet_force;
     opt["--sheet-loads-mean"] = o.sheet_loads_mean;
   }
   if (o.motion_harmonics > 0) opt["--motion-harmonics"] = o.motion_harmonics;

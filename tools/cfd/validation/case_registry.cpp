@@ -161,6 +161,8 @@ std::vector<CaseOption> case_options(const ValidationCase& c, CaseOptions& o) {
     v.push_back({"--staircase-balance", &o.staircase_balance,
                  "both runs with the staircase mass balance instead of the cut-cell one (to compare)"});
     v.push_back({"--at-rest", &o.at_rest, "the plate held still: the drag alone (to compare)"});
+    v.push_back({"--raw-sheet-force", &o.raw_sheet_force,
+                 "sheet: the markers' impulses as the force, without the band correction (to compare)"});
   } else if (n == "sheet_towed_plate") {
     v.push_back({"--cells-per-chord", &o.cells_per_chord, "grid: h = c / N (default 32)", 8, 4000});
     v.push_back({"--cfl", &o.cfl, "time step: dt = cfl h / U (default 0.32)", 0.01, 1.0});
@@ -169,6 +171,9 @@ std::vector<CaseOption> case_options(const ValidationCase& c, CaseOptions& o) {
     v.push_back(k);
     v.push_back({"--marker-spacing", &o.marker_spacing, "sheet: marker spacing in cells (default 1)", 0.25, 4.0});
     v.push_back({"--projections", &o.projections, "sheet: forcing and projection passes per step (default 1)", 1, 10});
+    v.push_back({"--raw-sheet-force", &o.raw_sheet_force,
+                 "sheet: the markers' impulses as the force, without removing the kernel band's inertia (to "
+                 "compare)"});
   }
   return v;
 }

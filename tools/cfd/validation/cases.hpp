@@ -46,6 +46,7 @@ struct CaseOptions {
   std::string kernel;
   double marker_spacing = 0;
   int projections = 0;
+  bool raw_sheet_force = false;  // the markers' impulses as the load, without the band correction
   // Channel: checkpoint and restart, ParaView output.
   int checkpoint_every = 0;
   std::string restart;

@@ -84,6 +84,11 @@ class SpanwisePlate {
   void slab_closed(SpanwisePlateRun& q);
   void flat_sheet(SpanwisePlateRun& q);
   void slab_sheet(SpanwisePlateRun& q);
+  SheetForcingOptions sheet_options() const {
+    SheetForcingOptions o;
+    o.band_correction = !s_.raw_sheet_force;
+    return o;
+  }
   // The sheet's nodes at time t: rest positions (x, 0, z) under the pose, with velocities.
   SheetState sheet_state(const std::vector<Vec3>& rest, double t) const;
 
@@ -288,7 +293,7 @@ void SpanwisePlate::flat_sheet(SpanwisePlateRun& q) {
   q.cells = static_cast<long>(g.cells());
   FlowSolver solver;
   solver.setup(g, b_, opt_);
-  solver.immerse_sheet(topo, rest, SheetForcingOptions{}, [this, rest](double t) { return sheet_state(rest, t); });
+  solver.immerse_sheet(topo, rest, sheet_options(), [this, rest](double t) { return sheet_state(rest, t); });
   solver.initialise([](double, double, double, double) { return std::array<double, 3>{1, 0, 0}; });
   march(solver, q, "2-D sheet", [&] {
     const Vec3 F = solver.sheet_loads(1.0).total;
@@ -318,7 +323,7 @@ void SpanwisePlate::slab_sheet(SpanwisePlateRun& q) {
   b[Side::ZHi].type = FlowBcType::Periodic;
   FlowSolver solver;
   solver.setup(g, b, opt_);
-  solver.immerse_sheet(topo, rest, SheetForcingOptions{}, [this, rest](double t) { return sheet_state(rest, t); });
+  solver.immerse_sheet(topo, rest, sheet_options(), [this, rest](double t) { return sheet_state(rest, t); });
   solver.initialise([](double, double, double, double) { return std::array<double, 3>{1, 0, 0}; });
   march(solver, q, "3-D sheet", [&] {
     const Vec3 F = solver.sheet_loads(1.0).total;

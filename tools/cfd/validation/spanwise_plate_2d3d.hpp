@@ -40,6 +40,7 @@ struct SpanwisePlateSetup {
   bool staircase = false;
   int frames_per_period = 200;        // the 3-D motion's samples (spline knots)
   bool closed = true, sheet = true;   // which treatments run (each a 2-D and a 3-D run)
+  bool raw_sheet_force = false;       // the sheet's force without the band correction (to compare)
   double box_margin = 0.15, box_behind = 0.5;             // uniform box around the path [c]
   double upstream = 2, downstream = 4, half_height = 2;  // domain [c]
   double stretch_ratio = 1.1;

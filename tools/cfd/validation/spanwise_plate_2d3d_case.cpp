@@ -81,6 +81,7 @@ int run_spanwise_plate_2d3d(const CaseOptions& o) {
   if (o.cfl > 0) ps.cfl = o.cfl;
   if (o.thickness > 0) ps.thickness_cells = o.thickness * ps.cells_per_chord;
   ps.staircase = o.staircase_balance;
+  ps.raw_sheet_force = o.raw_sheet_force;
   if (o.at_rest) ps.heave = ps.pitch = 0;
   const long per_run = ps.periods * std::max(20L, static_cast<long>(std::ceil(ps.period / (ps.cfl / ps.cells_per_chord))));
   log::Progress progress("spanwise_plate_2d3d step", 4 * static_cast<std::size_t>(per_run));
@@ -128,6 +129,7 @@ int run_spanwise_plate_2d3d(const CaseOptions& o) {
                     {"ramp_periods", ps.ramp_periods},
                     {"cfl", ps.cfl},
                     {"staircase_balance", ps.staircase},
+                    {"raw_sheet_force", ps.raw_sheet_force},
                     {"dt", r.dt},
                     {"steps_per_period", r.steps_per_period},
                     {"frames_per_period", ps.frames_per_period},

@@ -26,6 +26,7 @@ int run_sheet_towed_plate(const CaseOptions& o) {
   if (!o.kernel.empty()) s.sheet.kernel = delta_kernel_from_name(o.kernel);
   if (o.marker_spacing > 0) s.sheet.spacing = o.marker_spacing;
   if (o.projections > 0) s.sheet.projections = o.projections;
+  s.sheet.band_correction = !o.raw_sheet_force;
   log::info("sheet_towed_plate: c/" + std::to_string(s.cells_per_chord) + ", Re " + fmt("%g", s.re) + ", " +
             fmt("%g", s.incidence_deg) + " deg, kernel " + delta_kernel_name(s.sheet.kernel) + ", 4 runs");
   const TowedPlateResult r = run_towed_plate(s);
@@ -83,7 +84,8 @@ int run_sheet_towed_plate(const CaseOptions& o) {
                      {"t_compare", s.t_compare},
                      {"kernel", delta_kernel_name(s.sheet.kernel)},
                      {"marker_spacing", s.sheet.spacing},
-                     {"projections", s.sheet.projections}};
+                     {"projections", s.sheet.projections},
+                     {"band_correction", s.sheet.band_correction}};
   return finish(sm, dir, seconds_since(t0));
 }
 

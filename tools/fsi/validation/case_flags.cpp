@@ -71,6 +71,8 @@ void add_pitching_plate_flags(CLI::App& command, PitchingPlateOptions& o) {
                   "how the flow sees the plate: closed (closed thin body) or sheet (zero-thickness mid-surface)")
       ->capture_default_str()
       ->check(CLI::IsMember({"closed", "sheet"}));
+  command.add_flag("--band-correction", o.band_correction,
+                   "sheet: the plate's load less the kernel band's inertia (see fin-fsi fin --help)");
   command.add_option("--stretch-ratio", o.stretch_ratio, "cell-width ratio outside the uniform box")
       ->capture_default_str();
   command.add_option("--downstream", o.downstream, "domain length behind the trailing edge [L]")->capture_default_str();

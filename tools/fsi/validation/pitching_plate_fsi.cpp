@@ -304,7 +304,10 @@ PitchingPlateCaseResult run_pitching_plate_case(const PitchingPlateOptions& o, d
   structure.save();
   SurfaceFlowStructureStep step(flow, structure, body, mid, X0, 1.0, dt, Eigen::Vector3d::Zero(), 1.0);
   std::optional<cfd::SheetForcingOptions> sheet;
-  if (o.surface == "sheet") sheet.emplace();
+  if (o.surface == "sheet") {
+    sheet.emplace();
+    sheet->band_correction = o.band_correction;
+  }
   step.immerse(X0, sheet);
   flow.initialise([](double, double, double, double) { return std::array<double, 3>{1, 0, 0}; });
 
@@ -454,6 +457,7 @@ PitchingPlateRun run_pitching_plate(const PitchingPlateOptions& o) {
                     {"cells_per_chord", o.cells_per_chord},
                     {"thin_body_thickness", o.thickness_cells / o.cells_per_chord},
                     {"surface", o.surface},
+                    {"band_correction", o.band_correction},
                     {"stretch_ratio", o.stretch_ratio},
                     {"domain", {-o.upstream, 1 + o.downstream, o.half_height, o.half_width}},
                     {"steps_per_period", o.steps_per_period},

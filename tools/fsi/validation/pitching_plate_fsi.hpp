@@ -35,6 +35,7 @@ struct PitchingPlateOptions {
   // "closed" (the closed thin body, ghost cells) or "sheet" (the zero-thickness mid-surface with
   // the default kernel and markers; docs/studies/thin_surface.md).
   std::string surface = "closed";
+  bool band_correction = false;  // sheet: cfd::SheetForcingOptions::band_correction
   double stretch_ratio = 1.15;
   double upstream = 2, downstream = 5, half_height = 2, half_width = 2;  // domain [L]
   double box_half_height = 0.45;       // uniform box |y| <= this [L]
