@@ -84,6 +84,8 @@ class SpanwisePlate {
   void slab_closed(SpanwisePlateRun& q);
   void flat_sheet(SpanwisePlateRun& q);
   void slab_sheet(SpanwisePlateRun& q);
+  void run_sheet(SpanwisePlateRun& q, const std::string& tag, const StretchedGrid& g, const FlowBoundary& b,
+                 const SheetTopology& topo, const std::vector<Vec3>& rest, double span);
   SheetForcingOptions sheet_options() const {
     SheetForcingOptions o;
     o.band_correction = !s_.raw_sheet_force;
@@ -289,16 +291,7 @@ void SpanwisePlate::flat_sheet(SpanwisePlateRun& q) {
     rest.push_back({static_cast<double>(i) / n, 0, 0});
     if (i < n) topo.elements.push_back({i, i + 1, -1});
   }
-  const StretchedGrid g(ax_, ay_);
-  q.cells = static_cast<long>(g.cells());
-  FlowSolver solver;
-  solver.setup(g, b_, opt_);
-  solver.immerse_sheet(topo, rest, sheet_options(), [this, rest](double t) { return sheet_state(rest, t); });
-  solver.initialise([](double, double, double, double) { return std::array<double, 3>{1, 0, 0}; });
-  march(solver, q, "2-D sheet", [&] {
-    const Vec3 F = solver.sheet_loads(1.0).total;
-    return std::array<double, 2>{2 * F[0], 2 * F[1]};
-  });
+  run_sheet(q, "2-D sheet", StretchedGrid(ax_, ay_), b_, topo, rest, 1.0);
 }
 
 // 3-D, sheet: the mid-surface from seam to seam of a z-periodic slab (nodes on both seams, one row
@@ -316,18 +309,25 @@ void SpanwisePlate::slab_sheet(SpanwisePlateRun& q) {
       topo.elements.push_back({node(i, k), node(i + 1, k), node(i + 1, k + 1)});
       topo.elements.push_back({node(i, k), node(i + 1, k + 1), node(i, k + 1)});
     }
-  const StretchedGrid g(ax_, ay_, Axis::uniform(z0, z0 + r_.span, nz));
-  q.cells = static_cast<long>(g.cells());
   FlowBoundary b = b_;
   b[Side::ZLo].type = FlowBcType::Periodic;
   b[Side::ZHi].type = FlowBcType::Periodic;
+  run_sheet(q, "3-D sheet", StretchedGrid(ax_, ay_, Axis::uniform(z0, z0 + r_.span, nz)), b, topo, rest, r_.span);
+}
+
+// One sheet run: the sheet moved by the pose from an impulsive start in the stream, its force per
+// unit span (span 1 in 2-D) as coefficients.
+void SpanwisePlate::run_sheet(SpanwisePlateRun& q, const std::string& tag, const StretchedGrid& g,
+                              const FlowBoundary& b, const SheetTopology& topo, const std::vector<Vec3>& rest,
+                              double span) {
+  q.cells = static_cast<long>(g.cells());
   FlowSolver solver;
   solver.setup(g, b, opt_);
   solver.immerse_sheet(topo, rest, sheet_options(), [this, rest](double t) { return sheet_state(rest, t); });
   solver.initialise([](double, double, double, double) { return std::array<double, 3>{1, 0, 0}; });
-  march(solver, q, "3-D sheet", [&] {
+  march(solver, q, tag, [&] {
     const Vec3 F = solver.sheet_loads(1.0).total;
-    return std::array<double, 2>{2 * F[0] / r_.span, 2 * F[1] / r_.span};
+    return std::array<double, 2>{2 * F[0] / span, 2 * F[1] / span};
   });
 }
 
