@@ -2,8 +2,10 @@
 // markers' coupling of Breugem 2012 solved exactly). After the momentum predictor the impulses g
 // solve M g = (U_B - I u*) / dt, M = I S (interpolation times its adjoint spreading), by Jacobi-PCG,
 // so u* equals the sheet's velocity at every marker and no marker volume enters. -rho g is the
-// jump across the sheet, the shell's load; all of it is continuous in the markers' positions, as
-// no cell changes kind. Why this method and its measurements: docs/studies/thin_surface.md.
+// force on the fluid band the kernel moves with the sheet; less that band's inertia
+// (band_correction) it is the jump across the sheet, the shell's load. All of it is continuous in
+// the markers' positions, as no cell changes kind. Why this method and its measurements:
+// docs/studies/thin_surface.md.
 #pragma once
 
 #include <array>
