@@ -117,6 +117,23 @@ TEST(FinCheckpoint, RestartReproducesTheUninterruptedLoadsBitwise) {
   fs::remove(r.checkpoint);
 }
 
+TEST(FinCheckpoint, ASheetRestartsBitwiseWithItsBandCorrection) {
+  // The sheet's loads less the band's inertia (on by default) use the markers' acceleration over
+  // the step, taken from the sheet's states at both ends: a restart needs nothing more.
+  const FinInput in = tiny_plate();
+  FinFlowOptions o = tiny_options();
+  o.surface = "sheet";
+  const Interrupted r = interrupted_run(in, o, "sheet_restart");
+  ASSERT_TRUE(fs::exists(r.checkpoint));
+  FinCheckpointing ck;
+  ck.restart = r.checkpoint;
+  FinFlowStats st;
+  const stage::Loads again = run_fin_flow(in, o, st, {}, ck);
+  EXPECT_EQ(st.first_step, r.at);
+  expect_same(again, r.full);
+  fs::remove(r.checkpoint);
+}
+
 TEST(FinCheckpoint, RestartWithOtherOptionsOrInputsIsRefused) {
   const FinInput in = tiny_plate();
   FinFlowOptions o = tiny_options();

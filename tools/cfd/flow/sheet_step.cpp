@@ -140,7 +140,8 @@ SheetLoads FlowSolver::sheet_loads(double rho) const {
   l.marker.resize(sheet_impulse_.size());
   for (std::size_t m = 0; m < sheet_impulse_.size(); ++m)
     for (int d = 0; d < 3; ++d) l.marker[m][d] = -rho * sheet_impulse_[m][d];
-  if (sheet_opt_.band_correction && sheet_stencils_ && step_ > 0) {
+  // Only after a step of this run (a restored run has no acceleration until it steps).
+  if (sheet_opt_.band_correction && sheet_stencils_ && sheet_marker_acceleration_.size() == sheet_impulse_.size()) {
     const std::vector<Vec3> c = sheet_band_correction();
     for (std::size_t m = 0; m < c.size(); ++m)
       for (int d = 0; d < 3; ++d) l.marker[m][d] += rho * c[m][d];
