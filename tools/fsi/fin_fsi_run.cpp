@@ -575,12 +575,8 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
     throw Error("fin fsi: setting up the body in the " + std::to_string(s.grid.nx()) + " x " +
                 std::to_string(s.grid.ny()) + " x " + std::to_string(s.grid.nz()) + " grid: " + e.what());
   }
-  CouplingOptions co;
-  co.convergence.relative_tolerance = o.tolerance;
-  co.convergence.absolute_tolerance = o.absolute_tolerance * s.c;
-  co.max_iterations = o.max_iterations;
-  co.divergence_iterations = 0;
-  co.accept_at_cap = !o.strict;
+  const CouplingOptions co =
+      immersed_coupling_options(o.tolerance, o.absolute_tolerance * s.c, o.max_iterations, o.strict);
   const InterfaceLayout layout = step.layout();
   ImplicitCoupling coupling(layout, Eigen::VectorXd::Zero(layout.size()),
                             make_acceleration(o.acceleration, layout, o.omega), co, s.t_start);

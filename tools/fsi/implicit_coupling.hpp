@@ -71,6 +71,20 @@ struct CouplingOptions {
   bool accept_at_cap = false;
 };
 
+// The coupling of an immersed surface: stop at the relative or absolute interface tolerance or the
+// cap, never on a growing residual (a surface crossing cells makes the residual jump), and accept
+// the best iterate at the cap unless `strict`.
+inline CouplingOptions immersed_coupling_options(double relative_tolerance, double absolute_tolerance,
+                                                 int max_iterations, bool strict = false) {
+  CouplingOptions co;
+  co.convergence.relative_tolerance = relative_tolerance;
+  co.convergence.absolute_tolerance = absolute_tolerance;
+  co.max_iterations = max_iterations;
+  co.divergence_iterations = 0;
+  co.accept_at_cap = !strict;
+  return co;
+}
+
 struct IterationReport {
   long step = 0;
   double time = 0.0;      // t^N, the end of the step

@@ -97,17 +97,6 @@ cfd::FlowBoundary slot_inflow(double ramp_time, double half, std::array<double, 
   return b;
 }
 
-// The coupling: IQN-ILS, the best iterate accepted at the cap.
-CouplingOptions coupling_options(const HessenthalerPlaneOptions& o) {
-  CouplingOptions co;
-  co.convergence.relative_tolerance = o.tolerance;
-  co.convergence.absolute_tolerance = o.absolute_tolerance;
-  co.max_iterations = o.max_iterations;
-  co.divergence_iterations = 0;
-  co.accept_at_cap = true;
-  return co;
-}
-
 // Each wet node's station: `bins` equal stations along the flap by reference x from the clamp.
 std::vector<int> stations(const Eigen::Matrix2Xd& wet_reference, double clamp, double length, int bins) {
   std::vector<int> bin_of(static_cast<std::size_t>(wet_reference.cols()));
@@ -172,25 +161,35 @@ class FlapCase final : public CoupledCase {
   std::function<void(const std::string&)> progress_;
 };
 
-}  // namespace
+constexpr double kGravity = 9.81;  // [m/s^2]
 
-Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  if (!(o.youngs_modulus > 0)) throw Error("hessenthaler_plane: --youngs-modulus must be positive");
-  if (!(o.h > 0) || !(o.t_end > 0) || !(o.cfl > 0)) throw Error("hessenthaler_plane: h, t_end and cfl must be positive");
-  const fem::validation::HessenthalerFlap flap = fem::validation::read_hessenthaler_flap(o.reference);
-  std::ifstream in(o.reference);
+// The rig's numbers from the reference file [SI].
+struct Rig {
+  double d_in = 0, offset = 0, H = 0;  // inlet pipes' diameter and centres' offset, outlet diameter
+  double u_upper = 0, u_lower = 0;     // Phase I peak inflow speeds
+  double rho = 0, mu = 0;
+};
+
+Rig read_rig(const std::filesystem::path& reference) {
+  std::ifstream in(reference);
   const nlohmann::json j = nlohmann::json::parse(in);
   const double mm = 1e-3;
-  const double d_in = number(j, "/geometry/inlet_pipes/diameter_mm", o.reference) * mm;
-  const double offset = std::abs(number(j, "/geometry/inlet_pipes/centre_offsets_mm/0", o.reference)) * mm;
-  const double H = number(j, "/geometry/outlet_pipe_diameter_mm", o.reference) * mm;
-  const double u_upper = number(j, "/phase_I_steady_inflow/peak_velocity_m_s/upper", o.reference);
-  const double u_lower = number(j, "/phase_I_steady_inflow/peak_velocity_m_s/lower", o.reference);
-  const double rho = number(j, "/fluid/density", o.reference), mu = number(j, "/fluid/dynamic_viscosity", o.reference);
-  const double yc = 0.5 * H, g0 = 9.81;
+  Rig r;
+  r.d_in = number(j, "/geometry/inlet_pipes/diameter_mm", reference) * mm;
+  r.offset = std::abs(number(j, "/geometry/inlet_pipes/centre_offsets_mm/0", reference)) * mm;
+  r.H = number(j, "/geometry/outlet_pipe_diameter_mm", reference) * mm;
+  r.u_upper = number(j, "/phase_I_steady_inflow/peak_velocity_m_s/upper", reference);
+  r.u_lower = number(j, "/phase_I_steady_inflow/peak_velocity_m_s/lower", reference);
+  r.rho = number(j, "/fluid/density", reference);
+  r.mu = number(j, "/fluid/dynamic_viscosity", reference);
+  return r;
+}
 
-  // Structure: the strip behind a small nose, clamped straight where the nose meets its faces.
+// The structure: the strip behind a small nose, clamped straight where the nose meets its faces,
+// buoyant (the net of gravity and buoyancy as a body force).
+fem::validation::TurekHronFlagSpec flap_spec(const fem::validation::HessenthalerFlap& flap,
+                                             const HessenthalerPlaneOptions& o, double yc) {
+  const double mm = 1e-3;
   fem::validation::TurekHronFlagSpec spec;
   spec.radius = 1.2 * mm;
   // The nose's image points must stay among the cell centres: its upstream side 4 cells off the inlet.
@@ -202,9 +201,25 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
   spec.youngs_modulus = o.youngs_modulus;
   spec.poisson_ratio = flap.poisson_ratio;
   spec.density = flap.solid_density;
-  spec.gravity = -(flap.fluid_density - flap.solid_density) / flap.solid_density * g0;  // upward net
+  spec.gravity = -(flap.fluid_density - flap.solid_density) / flap.solid_density * kGravity;  // upward net
   spec.mesh = o.mesh;
   spec.straight_clamp = true;
+  return spec;
+}
+
+}  // namespace
+
+Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  if (!(o.youngs_modulus > 0)) throw Error("hessenthaler_plane: --youngs-modulus must be positive");
+  if (!(o.h > 0) || !(o.t_end > 0) || !(o.cfl > 0))
+    throw Error("hessenthaler_plane: h, t_end and cfl must be positive");
+  const fem::validation::HessenthalerFlap flap = fem::validation::read_hessenthaler_flap(o.reference);
+  const Rig rig = read_rig(o.reference);
+  const double d_in = rig.d_in, offset = rig.offset, H = rig.H, u_upper = rig.u_upper, u_lower = rig.u_lower;
+  const double rho = rig.rho, mu = rig.mu, yc = 0.5 * H;
+  const fem::validation::TurekHronFlagSpec spec = flap_spec(flap, o, yc);
+  const double clamp = spec.xc + std::sqrt(spec.radius * spec.radius - 0.25 * spec.thickness * spec.thickness);
 
   const double static_tip = static_buoyancy_tip(spec);  // no flow
 
@@ -254,7 +269,7 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
   FlowStructureStep step(flow, structure, body, rho, dt);
   const InterfaceLayout layout = step.layout();
   ImplicitCoupling coupling(layout, Eigen::VectorXd::Zero(layout.size()), make_acceleration("iqn-ils", layout, 0.1),
-                            coupling_options(o));
+                            immersed_coupling_options(o.tolerance, o.absolute_tolerance, o.max_iterations));
 
   const auto steps = static_cast<long>(std::ceil(o.t_end / dt - 1e-9));
   // The flow's load on the flap per step, summed over the wet nodes of each of load_bins equal
@@ -328,7 +343,7 @@ Summary run_hessenthaler_plane_fsi(const HessenthalerPlaneOptions& o) {
                     {"nose_radius_m", spec.radius},
                     {"clamp_x_m", clamp},
                     {"flag_mesh", {o.mesh.nx, o.mesh.ny, o.mesh.grading}},
-                    {"buoyancy_body_force_N_m3", (flap.fluid_density - flap.solid_density) * g0},
+                    {"buoyancy_body_force_N_m3", (flap.fluid_density - flap.solid_density) * kGravity},
                     {"tip_history_t_s_uy_m", history},
                     {"mean_flow_load_last_fifth",
                      {{"note",

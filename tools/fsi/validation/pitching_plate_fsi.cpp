@@ -311,12 +311,7 @@ PitchingPlateCaseResult run_pitching_plate_case(const PitchingPlateOptions& o, d
   step.immerse(X0, sheet);
   flow.initialise([](double, double, double, double) { return std::array<double, 3>{1, 0, 0}; });
 
-  CouplingOptions co;
-  co.convergence.relative_tolerance = o.tolerance;
-  co.convergence.absolute_tolerance = o.absolute_tolerance;
-  co.max_iterations = o.max_iterations;
-  co.divergence_iterations = 0;
-  co.accept_at_cap = true;
+  const CouplingOptions co = immersed_coupling_options(o.tolerance, o.absolute_tolerance, o.max_iterations);
   const InterfaceLayout layout = step.layout();
   ImplicitCoupling coupling(layout, Eigen::VectorXd::Zero(layout.size()),
                             make_acceleration(o.acceleration, layout, o.omega), co);
