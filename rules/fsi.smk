@@ -27,6 +27,20 @@ _FSI_CASES = {
     "fsi_turek_hron_fsi3": ("Turek-Hron FSI3: flag flapping at Re 200, rho_s/rho_f = 1, coupled",
                             "--case FSI3 --cells-per-diameter 16 --cfl 0.3 --t-end 10 --output-every 10",
                             "--case FSI3 --cells-per-diameter 16 --cfl 0.3 --t-end 0.3 --output-every 10"),
+    # The flag's wet surface as a zero-thickness sheet beside the ghost-cell cylinder (issue 44,
+    # goal 6, D/20; docs/studies/thin_surface.md, "Goal 6"): 4.5 min (FSI2) and 6 min (FSI3) of CPU;
+    # the closed flag at D/20 takes 15 and 27 min. Measured there: the sheet is the better flag for
+    # FSI2, the closed one for FSI3.
+    "fsi_turek_hron_fsi2_sheet": ("Turek-Hron FSI2 with the flag as a sheet (no cell changes kind), coupled",
+                                  "--case FSI2 --surface sheet --cells-per-diameter 20 --cfl 0.3 --t-end 15"
+                                  " --output-every 10",
+                                  "--case FSI2 --surface sheet --cells-per-diameter 16 --cfl 0.3 --t-end 0.5"
+                                  " --output-every 10"),
+    "fsi_turek_hron_fsi3_sheet": ("Turek-Hron FSI3 with the flag as a sheet (no cell changes kind), coupled",
+                                  "--case FSI3 --surface sheet --cells-per-diameter 20 --cfl 0.3 --t-end 10"
+                                  " --output-every 10",
+                                  "--case FSI3 --surface sheet --cells-per-diameter 16 --cfl 0.3 --t-end 0.3"
+                                  " --output-every 10"),
 }
 
 for _case, (_description, _full, _coarse) in _FSI_CASES.items():

@@ -265,7 +265,7 @@ class FlowSolver {
   EdgeTraction edge_traction(double rho = 1.0) const;
   // A zero-thickness immersed surface (sheet_forcing.hpp, sheet_step.cpp): the sheet's topology and
   // rest node positions (markers about options.spacing core cells apart, fixed in material
-  // coordinates), after setup, before initialise; no other immersed body may be present. Its node
+  // coordinates), after setup, before initialise; another immersed body must be fixed (immerse(), first). Its node
   // state at every new time level comes from `motion` (a fixed sheet: a motion that returns the
   // rest state), or, without one, from set_sheet_state() before every step() (coupled runs). No cell changes kind:
   // every cell is fluid, and after the momentum predictor the markers' forces make u* equal to the sheet's velocity at

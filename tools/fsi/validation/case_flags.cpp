@@ -27,6 +27,15 @@ void add_turek_hron_flags(CLI::App& command, TurekHronFsiOptions& o) {
       ->capture_default_str();
   command.add_option("--ramp-time", o.ramp_time, "inflow ramp time [s]")->capture_default_str();
   command.add_option("--circle-vertices", o.circle_vertices, "cylinder polygon resolution")->capture_default_str();
+  command
+      .add_option("--surface", o.surface,
+                  "closed: the flag in the ghost-cell body; sheet: its wet surface as a zero-thickness sheet")
+      ->check(CLI::IsMember({"closed", "sheet"}))
+      ->capture_default_str();
+  command.add_flag("--band-correction", o.band_correction,
+                   "sheet: take the kernel band's inertia off the loads (unstable for light flags)");
+  command.add_flag("--subtract-enclosed-fluid", o.subtract_enclosed_fluid,
+                   "sheet: the flag's density less the fluid's, which the sheet carries inside the flag");
   command.add_option("--nx", o.mesh.nx, "Q9 elements along the flag")->capture_default_str();
   command.add_option("--ny", o.mesh.ny, "Q9 elements across the flag")->capture_default_str();
   command.add_option("--dt", o.dt, "time step [s]; 0: cfl h / U_max")->capture_default_str();

@@ -7,36 +7,24 @@
 // structure; H(x) is its wet [X; V]. All evaluations of a step use the cell kinds of its first
 // iterate (FlowSolver::set_body_state's kinds_at), so H is continuous in x (a centre crossing the
 // wall between iterations does not flip its cell; docs/studies/fsi_turek_hron.md section 7).
-// Per accepted step a StepRecord: body and flag forces, the interface power sum F_i . v_i [W/m],
-// the structure's interface work over the step and the worst force / moment mismatch.
+// Per accepted step a StepRecord (flag_coupled_step.hpp).
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "cfd/flow/flow_solver.hpp"
 #include "fem/coupled_structure.hpp"
-#include "fsi/implicit_coupling.hpp"
 #include "fsi/interface_transfer.hpp"
+#include "fsi/validation/flag_coupled_step.hpp"
 #include "fsi/validation/flag_flow_body.hpp"
 
 namespace finverse::fsi::validation {
 
-struct StepRecord {
-  long step = 0;
-  double time = 0;                     // t^{n+1}
-  std::array<double, 2> force{};       // whole body [N/m]: drag, lift
-  std::array<double, 2> flag_force{};  // the flag's part [N/m]
-  double power = 0;                    // sum_i F_i . v_i at t^{n+1} [W/m]
-  double interface_work = 0;           // the structure's W_I over the step [J/m]
-  double transfer_mismatch = 0;        // max over the step's evaluations: |dF| / |F| and |dM| / (|F| D)
-};
-
-class FlowStructureStep final : public CoupledStep {
+class FlowStructureStep final : public FlagCoupledStep {
  public:
   // flow: set up, with immerse_deforming(body.state(reference)) and initialise() done, fixed time
   // step dt; structure: its wet nodes in the body's order, dim 2, time_step dt. rho: fluid density
@@ -51,10 +39,9 @@ class FlowStructureStep final : public CoupledStep {
   void accept(const Eigen::VectorXd& x_in, const Eigen::VectorXd& x_out) override;
   void resume(const Eigen::VectorXd& x_in) override;
 
-  [[nodiscard]] InterfaceLayout layout() const;
-  [[nodiscard]] const std::vector<StepRecord>& records() const { return records_; }
-  // Wet-node loads of the last evaluation, 2 x n_wet [N/m].
-  [[nodiscard]] const Eigen::Matrix2Xd& wet_loads() const { return loads_; }
+  [[nodiscard]] InterfaceLayout layout() const override;
+  [[nodiscard]] const std::vector<StepRecord>& records() const override { return records_; }
+  [[nodiscard]] const Eigen::Matrix2Xd& wet_loads() const override { return loads_; }
   // false: every evaluation classifies the cells at its own x (the jumping H, for comparison).
   void set_frozen_kinds(bool on) { frozen_kinds_ = on; }
 

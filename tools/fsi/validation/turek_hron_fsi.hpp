@@ -4,7 +4,9 @@
 // turek_hron_cfd.hpp's channel, grid and inflow ramp) around the cylinder + elastic flag polygon
 // (flag_flow_body.hpp), and the flag as plane-strain St. Venant-Kirchhoff Q9 solids stepped with
 // generalized-alpha (fem/coupled_structure.hpp, fem/validation/turek_hron_flag.hpp), coupled per
-// time step by FlowStructureStep with Aitken (the seed paper's rule) or IQN-ILS.
+// time step by FlowStructureStep with Aitken (the seed paper's rule) or IQN-ILS. With surface
+// "sheet" the flag's wet surface is a zero-thickness sheet beside the ghost-cell cylinder instead
+// (SheetFlagStep; issue 44, goal 6).
 //   FSI1 (Re 20, steady): u_x, u_y of point A, drag and lift, their means over the last second,
 //        against turek_hron.json (goal 1 %); their ranges there as info.
 //   FSI2 (Re 100, rho_s/rho_f = 10) and FSI3 (Re 200, rho_s/rho_f = 1), periodic: over the last full
@@ -52,6 +54,16 @@ struct TurekHronFsiOptions {
   double core_wake = 0.5;
   double channel_length = 2.5;
   int circle_vertices = 256;
+  // "closed": the flag is part of the ghost-cell body (flow_structure_step.hpp); "sheet": its wet
+  // surface is a zero-thickness sheet beside the fixed ghost-cell cylinder (sheet_flag_step.hpp;
+  // docs/studies/thin_surface.md, "Goal 6"), no cell changing kind as it moves.
+  std::string surface = "closed";
+  bool band_correction = false;  // sheet: cfd::SheetForcingOptions::band_correction
+  // sheet: the sheet's forcing carries the fluid enclosed by the flag's outline with the flag, and
+  // its loads include that fluid's inertia, -rho_f int a dA; true: the flag's density is taken as
+  // rho_s - rho_f so that flag + enclosed fluid weigh what the flag does (Uhlmann 2005's internal
+  // mass, implicit in the structure's step). Needs rho_s > rho_f.
+  bool subtract_enclosed_fluid = false;
   fem::validation::FlagMesh mesh{20, 2, 3.0};
   double dt = 0;            // coupling = flow = structure step; 0: cfl h / U_max
   double cfl = 0.5;
