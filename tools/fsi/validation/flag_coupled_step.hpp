@@ -7,8 +7,11 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
+#include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "fsi/implicit_coupling.hpp"
 
 namespace finverse::fsi::validation {
@@ -29,6 +32,23 @@ class FlagCoupledStep : public CoupledStep {
   [[nodiscard]] virtual const std::vector<StepRecord>& records() const = 0;
   // Wet-node loads of the last evaluation, 2 x n_wet [N/m].
   [[nodiscard]] virtual const Eigen::Matrix2Xd& wet_loads() const = 0;
+
+ protected:
+  // The step's info kept for where(); a one-line error unless coupling, flow and structure share dt.
+  void start_step(const StepInfo& info, double flow_dt, double dt) {
+    info_ = info;
+    if (std::abs(info.dt - dt) > 1e-12 * dt || std::abs(flow_dt - dt) > 1e-12 * dt)
+      throw Error("fsi: step " + std::to_string(info.step) + " asks for dt = " + std::to_string(info.dt) +
+                  " but flow and structure run at " + std::to_string(dt));
+  }
+  // "fsi: step N (t = ...)", for the participants' errors.
+  [[nodiscard]] std::string where() const {
+    return "fsi: step " + std::to_string(info_.step) + " (t = " + std::to_string(info_.time + info_.dt) + ")";
+  }
+  // A wet surface of n nodes in 2-D: [X; V] in and out.
+  [[nodiscard]] static InterfaceLayout wet_layout(Eigen::Index n) { return {2 * n, 2 * n}; }
+
+  StepInfo info_;
 };
 
 }  // namespace finverse::fsi::validation

@@ -21,35 +21,29 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() 
 
 }  // namespace
 
-FlowStructureStep::FlowStructureStep(cfd::FlowSolver& flow, fem::CoupledStructure& structure,
-                                     const FlagFlowBody& body, double rho, double dt)
-    : flow_(flow), structure_(structure), body_(body), surface_(body.wet_nodes(), chain(body.wet_nodes())),
-      rho_(rho), dt_(dt) {
+FlowStructureStep::FlowStructureStep(cfd::FlowSolver& flow, fem::CoupledStructure& structure, const FlagFlowBody& body,
+                                     double rho, double dt)
+    : flow_(flow),
+      structure_(structure),
+      body_(body),
+      surface_(body.wet_nodes(), chain(body.wet_nodes())),
+      rho_(rho),
+      dt_(dt) {
   if (static_cast<int>(structure.wet_nodes().size()) != body.wet_nodes() || structure.dim() != 2)
-    throw Error("fsi: the structure's wet nodes (" + std::to_string(structure.wet_nodes().size()) +
-                ", dim " + std::to_string(structure.dim()) + ") do not match the flow body's " +
-                std::to_string(body.wet_nodes()) + " (dim 2)");
+    throw Error("fsi: the structure's wet nodes (" + std::to_string(structure.wet_nodes().size()) + ", dim " +
+                std::to_string(structure.dim()) + ") do not match the flow body's " + std::to_string(body.wet_nodes()) +
+                " (dim 2)");
   if (!(dt > 0)) throw Error("fsi: the coupling time step must be > 0");
   velocity_start_ = Eigen::Matrix2Xd::Zero(2, body.wet_nodes());
   loads_ = Eigen::Matrix2Xd::Zero(2, body.wet_nodes());
 }
 
-InterfaceLayout FlowStructureStep::layout() const {
-  const Eigen::Index n = 2 * body_.wet_nodes();
-  return {n, n};
-}
+InterfaceLayout FlowStructureStep::layout() const { return wet_layout(body_.wet_nodes()); }
 
 void FlowStructureStep::begin_step(const StepInfo& info) {
-  info_ = info;
-  if (std::abs(info.dt - dt_) > 1e-12 * dt_ || std::abs(flow_.next_dt() - dt_) > 1e-12 * dt_)
-    throw Error("fsi: step " + std::to_string(info.step) + " asks for dt = " + std::to_string(info.dt) +
-                " but flow and structure run at " + std::to_string(dt_));
+  start_step(info, flow_.next_dt(), dt_);
   step_mismatch_ = 0;
   kinds_.reset();
-}
-
-std::string FlowStructureStep::where() const {
-  return "fsi: step " + std::to_string(info_.step) + " (t = " + std::to_string(info_.time + info_.dt) + ")";
 }
 
 void FlowStructureStep::save() {

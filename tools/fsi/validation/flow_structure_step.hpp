@@ -46,8 +46,6 @@ class FlowStructureStep final : public FlagCoupledStep {
   void set_frozen_kinds(bool on) { frozen_kinds_ = on; }
 
  private:
-  [[nodiscard]] std::string where() const;  // "fsi: step N (t = ...)", for participants' errors
-
   cfd::FlowSolver& flow_;
   fem::CoupledStructure& structure_;
   const FlagFlowBody& body_;
@@ -57,7 +55,6 @@ class FlowStructureStep final : public FlagCoupledStep {
   Eigen::Matrix2Xd velocity_start_;  // V^n (the converged wall velocity)
   bool frozen_kinds_ = true;
   std::optional<cfd::PolygonState> kinds_;  // the step's first iterate
-  StepInfo info_;
   Eigen::Matrix2Xd loads_;
   StepRecord current_;
   double step_mismatch_ = 0;

@@ -30,21 +30,11 @@ SheetFlagStep::SheetFlagStep(cfd::FlowSolver& flow, fem::CoupledStructure& struc
   loads_ = Eigen::Matrix2Xd::Zero(2, wet_reference_.cols());
 }
 
-InterfaceLayout SheetFlagStep::layout() const {
-  const Eigen::Index n = 2 * wet_reference_.cols();
-  return {n, n};
-}
+InterfaceLayout SheetFlagStep::layout() const { return wet_layout(wet_reference_.cols()); }
 
 void SheetFlagStep::begin_step(const StepInfo& info) {
-  info_ = info;
-  if (std::abs(info.dt - dt_) > 1e-12 * dt_ || std::abs(flow_.next_dt() - dt_) > 1e-12 * dt_)
-    throw Error("fsi: step " + std::to_string(info.step) + " asks for dt = " + std::to_string(info.dt) +
-                " but flow and structure run at " + std::to_string(dt_));
+  start_step(info, flow_.next_dt(), dt_);
   step_mismatch_ = 0;
-}
-
-std::string SheetFlagStep::where() const {
-  return "fsi: step " + std::to_string(info_.step) + " (t = " + std::to_string(info_.time + info_.dt) + ")";
 }
 
 void SheetFlagStep::save() {

@@ -43,7 +43,6 @@ class SheetFlagStep final : public FlagCoupledStep {
   [[nodiscard]] const Eigen::Matrix2Xd& wet_loads() const override { return loads_; }
 
  private:
-  [[nodiscard]] std::string where() const;
   [[nodiscard]] Eigen::Vector2d cylinder_force() const;
 
   cfd::FlowSolver& flow_;
@@ -53,7 +52,6 @@ class SheetFlagStep final : public FlagCoupledStep {
   Eigen::Matrix2Xd wet_reference_;
   double rho_, nu_, dt_;
   std::vector<cfd::StateArray> saved_flow_;
-  StepInfo info_;
   Eigen::Matrix2Xd loads_;
   StepRecord current_;
   double step_mismatch_ = 0;
