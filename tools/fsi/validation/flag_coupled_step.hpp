@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "fem/coupled_structure.hpp"
 #include "fsi/implicit_coupling.hpp"
 
 namespace finverse::fsi::validation {
@@ -45,6 +46,12 @@ class FlagCoupledStep : public CoupledStep {
   [[nodiscard]] std::string where() const {
     return "fsi: step " + std::to_string(info_.step) + " (t = " + std::to_string(info_.time + info_.dt) + ")";
   }
+  // Structure side of an evaluation: advance `structure` to t_new under the wet nodes' loads
+  // (2 x n) and return its wet [X; V] at the step's end, X measured from `reference`; a failure
+  // names the step (flag_coupled_step.cpp).
+  [[nodiscard]] Eigen::VectorXd advance_structure(fem::CoupledStructure& structure, double t_new,
+                                                  const Eigen::Matrix2Xd& loads, const Eigen::Matrix2Xd& reference,
+                                                  fem::CoupledStepReport& report) const;
   // A wet surface of n nodes in 2-D: [X; V] in and out.
   [[nodiscard]] static InterfaceLayout wet_layout(Eigen::Index n) { return {2 * n, 2 * n}; }
 

@@ -93,18 +93,9 @@ Eigen::VectorXd FlowStructureStep::evaluate(const Eigen::VectorXd& x) {
   step_mismatch_ = std::max({step_mismatch_, (node_force - flag_force).norm() / scale,
                              std::abs(node_moment - flag_moment) / (scale * body_.diameter())});
 
-  const Eigen::VectorXd load = Eigen::Map<const Eigen::VectorXd>(loads_.data(), 2 * n);
   fem::CoupledStepReport report;
-  try {
-    report = structure_.advance(t_new, load);
-  } catch (const std::exception& e) {
-    throw Error(where() + ": structure: " + e.what());
-  }
-
-  Eigen::VectorXd out(4 * n);
-  const Eigen::VectorXd xs = structure_.wet_positions(), vs = structure_.wet_velocities();
-  out.head(2 * n) = xs - Eigen::Map<const Eigen::VectorXd>(body_.wet_reference().data(), 2 * n);
-  out.tail(2 * n) = vs;
+  const Eigen::VectorXd out = advance_structure(structure_, t_new, loads_, body_.wet_reference(), report);
+  const Eigen::VectorXd vs = out.tail(2 * n);
 
   current_.step = info_.step;
   current_.time = t_new;

@@ -89,18 +89,9 @@ Eigen::VectorXd SheetFlagStep::evaluate(const Eigen::VectorXd& x) {
   const Eigen::Vector2d node_force = loads_.rowwise().sum();
   step_mismatch_ = std::max(step_mismatch_, (node_force - flag_force).norm() / std::max(flag_force.norm(), 1e-300));
 
-  const Eigen::VectorXd load = Eigen::Map<const Eigen::VectorXd>(loads_.data(), 2 * n);
   fem::CoupledStepReport report;
-  try {
-    report = structure_.advance(t_new, load);
-  } catch (const std::exception& e) {
-    throw Error(where() + ": structure: " + e.what());
-  }
-
-  Eigen::VectorXd out(4 * n);
-  const Eigen::VectorXd xs = structure_.wet_positions(), vs = structure_.wet_velocities();
-  out.head(2 * n) = xs - Eigen::Map<const Eigen::VectorXd>(wet_reference_.data(), 2 * n);
-  out.tail(2 * n) = vs;
+  const Eigen::VectorXd out = advance_structure(structure_, t_new, loads_, wet_reference_, report);
+  const Eigen::VectorXd vs = out.tail(2 * n);
 
   const Eigen::Vector2d body = cylinder_force() + flag_force;
   current_.step = info_.step;
