@@ -356,6 +356,45 @@ Summary grade_turek_hron(const TurekHronFsiOptions& opt, const nlohmann::json& r
 
 }  // namespace
 
+// The flag's structure; with subtract_enclosed_fluid its density less the fluid's.
+fem::validation::TurekHronFlag build_flag(const TurekHronFsiOptions& opt) {
+  fem::validation::TurekHronFlagSpec spec = fem::validation::turek_hron_flag_spec(opt.reference, opt.case_name);
+  spec.mesh = opt.mesh;
+  if (opt.subtract_enclosed_fluid) {
+    if (opt.surface != "sheet") throw Error("turek_hron_fsi: subtract_enclosed_fluid needs the sheet flag");
+    if (!(spec.density > kRho))
+      throw Error("turek_hron_fsi: subtract_enclosed_fluid needs rho_s > rho_f (" + opt.case_name +
+                  ": rho_s = " + printf_format("%g", spec.density) + " kg/m^3)");
+    spec.density -= kRho;
+  }
+  return fem::validation::build_turek_hron_flag(spec);
+}
+
+// The channel's grid: a uniform box of h around cylinder, flag and wake, a core of h_core
+// (0: none) inside it, stretched outside.
+cfd::StretchedGrid flag_channel_grid(const TurekHronFsiOptions& opt, const cfd::TurekHronGeometry& g, double h,
+                                     double h_core) {
+  const double D = 2 * g.radius;
+  if (h_core > 0 && !(opt.core_wake > 0 && opt.core_wake < opt.wake_box))
+    throw Error("turek_hron_fsi: core_wake must be > 0 and end inside the uniform box (wake_box)");
+  if (!(g.tip_x() + opt.wake_box * D < g.length))
+    throw Error("turek_hron_fsi: the wake box must end before the outlet (wake_box, channel_length)");
+  return cfd::channel_grid({.length = g.length,
+                            .height = g.height,
+                            .box_x0 = g.xc - D,
+                            .box_x1 = g.tip_x() + opt.wake_box * D,
+                            .box_y0 = g.yc - D,
+                            .box_y1 = g.yc + D,
+                            .h = h,
+                            .core_x0 = g.xc - 0.75 * D,
+                            .core_x1 = g.tip_x() + opt.core_wake * D,
+                            .core_y0 = g.yc - 0.75 * D,
+                            .core_y1 = g.yc + 0.75 * D,
+                            .h_core = h_core,
+                            .ratio = opt.stretch_ratio,
+                            .wall_ratio = opt.wall_stretch_ratio});
+}
+
 // The flag in the flow and the coupled step: part of the closed ghost-cell body, or its wet surface
 // as a sheet beside the fixed ghost-cell cylinder; then the flow's initial field.
 std::unique_ptr<FlagCoupledStep> immerse_flag(const TurekHronFsiOptions& opt, cfd::FlowSolver& flow,
@@ -400,21 +439,12 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
   const nlohmann::json ref = read_case(opt.reference, name);
   const double ubar = ref["Ubar"].get<double>(), um = 1.5 * ubar;
 
-  // Structure.
-  fem::validation::TurekHronFlagSpec spec = fem::validation::turek_hron_flag_spec(opt.reference, name);
-  spec.mesh = opt.mesh;
-  if (opt.subtract_enclosed_fluid) {
-    if (opt.surface != "sheet") throw Error("turek_hron_fsi: subtract_enclosed_fluid needs the sheet flag");
-    if (!(spec.density > kRho))
-      throw Error("turek_hron_fsi: subtract_enclosed_fluid needs rho_s > rho_f (" + name +
-                  ": rho_s = " + printf_format("%g", spec.density) + " kg/m^3)");
-    spec.density -= kRho;
-  }
-  const fem::validation::TurekHronFlag flag = fem::validation::build_turek_hron_flag(spec);
+  const fem::validation::TurekHronFlag flag = build_flag(opt);
   const auto& X0 = flag.model.reference_positions();
   const int n_wet = static_cast<int>(flag.wet_nodes.size());
   Eigen::Matrix2Xd wet_reference(2, n_wet);
-  for (int k = 0; k < n_wet; ++k) wet_reference.col(k) = X0[static_cast<std::size_t>(flag.wet_nodes[static_cast<std::size_t>(k)])].head<2>();
+  for (int k = 0; k < n_wet; ++k)
+    wet_reference.col(k) = X0[static_cast<std::size_t>(flag.wet_nodes[static_cast<std::size_t>(k)])].head<2>();
 
   // Flow: the channel and grid of turek_hron_cfd.cpp.
   cfd::TurekHronGeometry g;
@@ -422,24 +452,7 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
   const double D = 2 * g.radius, h = D / opt.cells_per_diameter;
   const bool core = opt.core_cells_per_diameter > opt.cells_per_diameter;
   const double hc = core ? D / opt.core_cells_per_diameter : h;
-  if (core && !(opt.core_wake > 0 && opt.core_wake < opt.wake_box))
-    throw Error("turek_hron_fsi: core_wake must be > 0 and end inside the uniform box (wake_box)");
-  if (!(g.tip_x() + opt.wake_box * D < g.length))
-    throw Error("turek_hron_fsi: the wake box must end before the outlet (wake_box, channel_length)");
-  const cfd::StretchedGrid grid = cfd::channel_grid({.length = g.length,
-                                                     .height = g.height,
-                                                     .box_x0 = g.xc - D,
-                                                     .box_x1 = g.tip_x() + opt.wake_box * D,
-                                                     .box_y0 = g.yc - D,
-                                                     .box_y1 = g.yc + D,
-                                                     .h = h,
-                                                     .core_x0 = g.xc - 0.75 * D,
-                                                     .core_x1 = g.tip_x() + opt.core_wake * D,
-                                                     .core_y0 = g.yc - 0.75 * D,
-                                                     .core_y1 = g.yc + 0.75 * D,
-                                                     .h_core = core ? hc : 0,
-                                                     .ratio = opt.stretch_ratio,
-                                                     .wall_ratio = opt.wall_stretch_ratio});
+  const cfd::StretchedGrid grid = flag_channel_grid(opt, g, h, core ? hc : 0);
   const double dt = opt.dt > 0 ? opt.dt : opt.cfl * hc / um;
   const double t_end = opt.t_end > 0 ? opt.t_end : (name == "FSI1" ? 6.0 : 10.0);
   cfd::FlowOptions flow_options = cfd::channel_benchmark_options(kNu, opt.cfl, hc, um);
