@@ -93,18 +93,19 @@ Eigen::VectorXd SheetFlagStep::evaluate(const Eigen::VectorXd& x) {
   const Eigen::VectorXd out = advance_structure(structure_, t_new, loads_, wet_reference_, report);
   const Eigen::VectorXd vs = out.tail(2 * n);
 
-  const Eigen::Vector2d body = cylinder_force() + flag_force;
   current_.step = info_.step;
   current_.time = t_new;
-  current_.force = {body.x(), body.y()};
   current_.flag_force = {flag_force.x(), flag_force.y()};
   current_.power = interface_power(loads_, Eigen::Map<const Eigen::Matrix2Xd>(vs.data(), 2, n));
   current_.interface_work = report.interface_work;
   return out;
 }
 
+// The flow holds the accepted evaluation's state: the cylinder's traction is sampled once per step.
 void SheetFlagStep::accept(const Eigen::VectorXd&, const Eigen::VectorXd&) {
   structure_.accept();
+  const Eigen::Vector2d body = cylinder_force() + Eigen::Vector2d(current_.flag_force[0], current_.flag_force[1]);
+  current_.force = {body.x(), body.y()};
   current_.transfer_mismatch = step_mismatch_;
   records_.push_back(current_);
 }
