@@ -119,6 +119,18 @@ void Assembler::gather_vector(const std::vector<double>& buffer, Eigen::VectorXd
   }
 }
 
+void Assembler::gather_matrix(const std::vector<double>& buffer, SparseMatrix& out) const {
+  if (out.nonZeros() != matrix_.nonZeros() || out.rows() != matrix_.rows()) out = matrix_;
+  const int nnz = static_cast<int>(matrix_.nonZeros());
+  double* values = out.valuePtr();
+#pragma omp parallel for schedule(static) if (nnz > 16384)
+  for (int k = 0; k < nnz; ++k) {
+    double s = 0;
+    for (int c = mat_ptr_[k]; c < mat_ptr_[k + 1]; ++c) s += buffer[mat_src_[c]];
+    values[k] = s;
+  }
+}
+
 void Assembler::assemble(const NodalState& state, const AssemblyRequest& req) {
   const auto& elems = model_.elements();
   const int ne = static_cast<int>(elems.size());

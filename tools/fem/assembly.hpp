@@ -62,9 +62,25 @@ class Assembler {
   const DofMap& dofs() const { return dofs_; }
   const Model& model() const { return model_; }
 
- private:
+  // The element-by-element buffers behind the last assembly, for callers that recombine element
+  // matrices themselves (tangent_basis.hpp): element e's stiffness (as assembled: symmetrised
+  // unless full_matrix, times its stiffness-field scale) is the column-major n x n block at
+  // element_stiffness()[matrix_offset(e)], n = model().element(e).size(); its vectors (internal
+  // force, K v) sit at vector_offset(e). element_stiffness() holds the last assembly that asked
+  // for the matrix or for K v.
+  const std::vector<double>& element_stiffness() const { return ke_; }
+  const std::vector<double>& element_stiffness_product() const { return fk_; }  // K_e v_e (stiffness_times)
+  int matrix_offset(int element) const { return mat_offset_[element]; }
+  int vector_offset(int element) const { return vec_offset_[element]; }
+  int matrix_buffer_size() const { return mat_offset_.back(); }
+  int vector_buffer_size() const { return vec_offset_.back(); }
+  // Element vectors / matrices laid out as those buffers, summed into the global full-length
+  // vector / the free-DOF matrix (pattern and summation order of assemble(): bit-identical).
   void gather_vector(const std::vector<double>& buffer, Eigen::VectorXd& out) const;
+  void gather_matrix(const std::vector<double>& buffer, SparseMatrix& out) const;
+  const SparseMatrix& pattern() const { return matrix_; }
 
+ private:
   const Model& model_;
   const DofMap& dofs_;
   bool full_ = false;

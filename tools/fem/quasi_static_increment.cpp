@@ -8,19 +8,22 @@ namespace finverse::fem {
 QuasiStaticIncrement::QuasiStaticIncrement(const Model& model, StaticOptions options)
     : solver_(model, options) {}
 
-NodalState QuasiStaticIncrement::solve(const NodalState& base, double t, double t_next,
-                                       QuasiStaticInfo* info) {
+NodalState QuasiStaticIncrement::solve(const NodalState& base, double t, double t_next, QuasiStaticInfo* info,
+                                       const Eigen::VectorXd* load_change) {
   const Model& model = solver_.model();
   AssemblyRequest req;
   req.time = t;
   solver_.assembler().assemble(base, req);
   // Balance f_int(x) + offset = f_ext(t_next), offset = f_ext(t) - f_int(x_t).
-  const Eigen::VectorXd offset = model.external_load(t) - solver_.assembler().internal_force();
+  Eigen::VectorXd offset = model.external_load(t) - solver_.assembler().internal_force();
+  if (load_change) offset -= *load_change;
   NodalState x = base;
   const StaticResult r = solver_.solve(x, t, t_next, &offset);
   if (info) {
     const DofMap& dofs = solver_.dofs();
-    const double df = dofs.gather_free(model.external_load(t_next) - model.external_load(t)).norm();
+    Eigen::VectorXd change = model.external_load(t_next) - model.external_load(t);
+    if (load_change) change += *load_change;
+    const double df = dofs.gather_free(change).norm();
     info->iterations = r.total_iterations;
     info->step_cuts = r.step_cuts;
     info->base_imbalance = dofs.gather_free(offset).norm() / std::max(df, 1e-300);
@@ -28,9 +31,10 @@ NodalState QuasiStaticIncrement::solve(const NodalState& base, double t, double 
   return x;
 }
 
-std::vector<Vec3> QuasiStaticIncrement::displacement_increment(const NodalState& base, double t,
-                                                               double t_next, QuasiStaticInfo* info) {
-  const NodalState x = solve(base, t, t_next, info);
+std::vector<Vec3> QuasiStaticIncrement::displacement_increment(const NodalState& base, double t, double t_next,
+                                                               QuasiStaticInfo* info,
+                                                               const Eigen::VectorXd* load_change) {
+  const NodalState x = solve(base, t, t_next, info, load_change);
   std::vector<Vec3> dx(x.position.size());
   for (size_t i = 0; i < dx.size(); ++i) dx[i] = x.position[i] - base.position[i];
   return dx;

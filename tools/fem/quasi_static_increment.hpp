@@ -40,13 +40,17 @@ class QuasiStaticIncrement {
   // the solver cuts steps itself when Newton fails).
   QuasiStaticIncrement(const Model& model, StaticOptions options = {.steps = 1});
 
-  // x_{t+dt} from the base x_t; base is not modified. Throws NotConverged / SingularMatrix /
-  // InvalidInput (see static_solver.hpp).
-  NodalState solve(const NodalState& base, double t, double t_next, QuasiStaticInfo* info = nullptr);
+  // x_{t+dt} from the base x_t; base is not modified. load_change (full length, optional): a
+  // known change of load over the increment that the model's f_ext does not hold, e.g. the
+  // inertial -M (a(t_next) - a(t)) of a measured motion (eq. (2) with inertia, issue 45).
+  // Throws NotConverged / SingularMatrix / InvalidInput (see static_solver.hpp).
+  NodalState solve(const NodalState& base, double t, double t_next, QuasiStaticInfo* info = nullptr,
+                   const Eigen::VectorXd* load_change = nullptr);
 
   // dx = positions of solve() minus those of the base, [node][xyz]: the quantity eq. (2) compares.
   std::vector<Vec3> displacement_increment(const NodalState& base, double t, double t_next,
-                                           QuasiStaticInfo* info = nullptr);
+                                           QuasiStaticInfo* info = nullptr,
+                                           const Eigen::VectorXd* load_change = nullptr);
 
   StaticSolver& solver() { return solver_; }
 

@@ -90,24 +90,29 @@ int StaticSolver::newton(NodalState& state, double lam, const Eigen::VectorXd* o
   return out.iterations;
 }
 
-int StaticSolver::predict_free(const NodalState& state, NodalState& trial, double lam) {
-  // Increment of the prescribed DOFs (rotations as spatial spins, the convention of
-  // NodalState::apply_increment).
-  const int nn = model_.node_count();
-  Eigen::VectorXd dp = Eigen::VectorXd::Zero(dofs_.total());
-  bool moved = false;
+Eigen::VectorXd prescribed_increment(const DofMap& dofs, const NodalState& from, const NodalState& to) {
+  const int nn = static_cast<int>(from.position.size());
+  Eigen::VectorXd dp = Eigen::VectorXd::Zero(dofs.total());
   for (int n = 0; n < nn; ++n) {
     const int g0 = kDofsPerNode * n;
     bool any = false;
-    for (int j = 0; j < kDofsPerNode; ++j) any = any || dofs_.is_prescribed(g0 + j);
+    for (int j = 0; j < kDofsPerNode; ++j) any = any || dofs.is_prescribed(g0 + j);
     if (!any) continue;
-    const Vec3 du = trial.position[n] - state.position[n];
-    const Vec3 w = log_so3(trial.rotation[n] * state.rotation[n].transpose());
+    const Vec3 du = to.position[n] - from.position[n];
+    const Vec3 w = log_so3(to.rotation[n] * from.rotation[n].transpose());
     for (int j = 0; j < 3; ++j) {
-      if (dofs_.is_prescribed(g0 + j) && du(j) != 0) dp(g0 + j) = du(j), moved = true;
-      if (dofs_.is_prescribed(g0 + 3 + j) && w(j) != 0) dp(g0 + 3 + j) = w(j), moved = true;
+      if (dofs.is_prescribed(g0 + j)) dp(g0 + j) = du(j);
+      if (dofs.is_prescribed(g0 + 3 + j)) dp(g0 + 3 + j) = w(j);
     }
   }
+  return dp;
+}
+
+int StaticSolver::predict_free(const NodalState& state, NodalState& trial, double lam) {
+  // Increment of the prescribed DOFs (rotations as spatial spins, the convention of
+  // NodalState::apply_increment).
+  Eigen::VectorXd dp = prescribed_increment(dofs_, state, trial);
+  const bool moved = (dp.array() != 0).any();
   if (!moved || dofs_.free() == 0) return 0;
   AssemblyRequest req;
   req.matrix = true;

@@ -57,6 +57,10 @@ struct StaticResult {
 std::string describe_equation(const DofMap& dofs, int equation);
 std::string describe_dof(int global_dof);
 
+// Increment of the prescribed DOFs from one state to another, full length (zero elsewhere):
+// translations as differences, rotations as spatial spins (NodalState::apply_increment).
+Eigen::VectorXd prescribed_increment(const DofMap& dofs, const NodalState& from, const NodalState& to);
+
 // Applies the prescribed values at time t2, given they were at t1 in `state` (see model.hpp).
 void apply_prescribed(const Model& model, double t1, double t2, NodalState& state);
 

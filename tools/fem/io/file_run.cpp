@@ -12,6 +12,7 @@
 #include "fem/io/fin_layout.hpp"
 #include "fem/io/fin_model.hpp"
 #include "fem/io/material_spec.hpp"
+#include "fem/io/nodal_force_file.hpp"
 #include "fem/io/periodic_motion.hpp"
 #include "fem/io/root_drive_file.hpp"
 #include "fem/io/run_output.hpp"
@@ -25,18 +26,8 @@ FileRunSummary run_from_files(const FileRunOptions& o, const nlohmann::json& con
   if (o.effects) effects = read_effects(*o.effects);
   std::optional<stage::Loads> loads;
   std::optional<stage::Motion> motion;
-  if (o.loads) {
-    // A structural load case needs no flow: nodal_loads.h5 carries only times and nodal forces.
-    const auto schema = h5::File::open_read(*o.loads).attr_string(".", "schema");
-    if (schema && *schema == stage::NodalLoads::kSchema) {
-      auto nodal = stage::read<stage::NodalLoads>(*o.loads);
-      loads.emplace();
-      loads->time = std::move(nodal.time);
-      loads->nodal_force = std::move(nodal.nodal_force);
-    } else {
-      loads = stage::read<stage::Loads>(*o.loads);
-    }
-  }
+  // A structural load case needs no flow: nodal_loads.h5 carries only times and nodal forces.
+  if (o.loads) loads = read_nodal_force_file(*o.loads).loads;
   if (o.motion) motion = stage::read<stage::Motion>(*o.motion);
   // Stages that disagree (issue 33): the motion or loads of another mesh, loads of another motion.
   if (o.motion) check_made_from(*o.motion, o.mesh);

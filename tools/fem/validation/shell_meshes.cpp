@@ -68,9 +68,9 @@ std::vector<int> add_shell_mesh(Model& model, const TriangleMesh& mesh, const Ma
   for (const Vec3& X : mesh.nodes) id.push_back(model.add_node(X));
   for (const auto& t : mesh.triangles) {
     const auto& X = model.reference_positions();
-    model.add_element(std::make_unique<CorotationalShell>(id[t[0]], id[t[1]], id[t[2]],
-                                                          X[id[t[0]]], X[id[t[1]]], X[id[t[2]]],
-                                                          material, thickness));
+    model.add_element(std::make_unique<CorotationalShell>(id[t[0]], id[t[1]], id[t[2]], X[id[t[0]]], X[id[t[1]]],
+                                                          X[id[t[2]]], material, thickness),
+                      -1, material.youngs_modulus);  // no region, but a known modulus (stiffness_field.hpp)
   }
   return id;
 }
