@@ -284,6 +284,34 @@ rule bench_fit:
         "(OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} --case {input.case} {params.sizes}"
         " --out {output.json} " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
 
+# Eq. (2) evaluations per second on the case's own fin (issue 45, goal 8: >= 10 on 2 threads): the
+# converged Newton increment against the linearised one on stored element tangents
+# (fem/linear_increment.hpp), the same seeded points, from the pipeline's mesh, motion and loads and
+# the fit stage's materials file. Under config/cases/tiny.yaml this is the default fin's mesh on a
+# tenth of a period. Numbers and commands: docs/studies/fit_evaluation_speed.md.
+register_bench("fit_fin_rate", "eq. (2) evaluations per second on the fin: converged Newton vs the linearised increment")
+
+rule bench_fit_fin_rate:
+    input:
+        exe=EXE("fin-fit-bench"),
+        mesh=f"results/{config['case']}/mesh.h5",
+        motion=f"results/{config['case']}/motion.h5",
+        loads=f"results/{config['case']}/loads.h5",
+        materials=os.path.join(REPO, config["fit"]["materials"]),
+    output:
+        json="results/bench/fit_fin_rate.json",
+    params:
+        sizes="--points 4" if COARSE else "",
+    log:
+        "results/logs/bench/fit_fin_rate.log",
+    threads: THREADS
+    resources:
+        mem_mb=2000,
+    shell:
+        "(OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin_rate --mesh {input.mesh}"
+        " --motion {input.motion} --loads {input.loads} --materials {input.materials} {params.sizes}"
+        " --out {output.json} " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
+
 # The coupled FSI (issue 32): coupling iterations per step at relative residual 1e-5, Aitken against
 # IQN-ILS, on Turek-Hron FSI2 and FSI3 over their limit cycle, and the wall time of one coupled FSI3
 # step against one step of the same flow with the flag held rigid (tools/fsi/validation/

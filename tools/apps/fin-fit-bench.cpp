@@ -5,12 +5,22 @@
 // that tests can run it small. Exit 0 when every goal is met, 1 when one is missed, 2 on error.
 //
 //   fin-fit-bench --case data/cases/hybrid_plate_small_heave.json --out results/bench/fit.json --threads 2
+//
+// fin-fit-bench fin_rate: eq. (2) evaluations per second on a case's fin, the converged Newton
+// increment against the linearised one (results/bench/fit_fin_rate.json, issue 45 goal 8;
+// tools/fit/validation/fin_rate_bench.hpp):
+//
+//   fin-fit-bench --threads 2 fin_rate --mesh results/tiny/mesh.h5 --motion results/tiny/motion.h5
+//       --loads results/tiny/loads.h5 --materials data/cases/trout_fin_materials.json
+//       --out results/bench/fit_fin_rate.json
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <string>
 
 #include "core/cli.hpp"
 #include "core/summary.hpp"
+#include "fit/errors.hpp"
+#include "fit/validation/fin_rate_bench.hpp"
 #include "fit/validation/fit_bench.hpp"
 
 int main(int argc, char** argv) {
@@ -18,8 +28,8 @@ int main(int argc, char** argv) {
   finverse::cli::Standard standard(app, "fin-fit-bench");
   finverse::fit::validation::FitBenchOptions o;
   std::string case_file, out = "results/bench/fit.json";
-  app.add_option("--case", case_file, "data/cases/hybrid_plate_small_heave.json (the fit validations' twin)")
-      ->required();
+  app.add_option("--case", case_file,
+                 "data/cases/hybrid_plate_small_heave.json (the fit validations' twin; required without fin_rate)");
   app.add_option("--out", out, "benchmark file")->capture_default_str();
   app.add_option("--objective", o.objective, "the arms' objective: dynamic (eq. 1) or quasi_static (eq. 2)")
       ->capture_default_str();
@@ -59,8 +69,37 @@ int main(int argc, char** argv) {
   app.add_flag("--no-rate", no_rate, "skip the evaluations-per-second part");
   app.add_flag("--no-speedup", no_speedup, "skip the speed-up part");
 
+  namespace v = finverse::fit::validation;
+  v::FinRateOptions fr;
+  fr.files.instant_count = 2;  // the default case's (config.schema.yaml fit.flags)
+  std::string fr_loads, fr_out = "results/bench/fit_fin_rate.json", fr_base = "stress_free";
+  auto* rate = app.add_subcommand("fin_rate", "eq. (2) evaluations per second on a case's fin: Newton vs linear");
+  rate->add_option("--mesh", fr.files.mesh, "mesh.h5")->required();
+  rate->add_option("--motion", fr.files.motion, "motion.h5 (the target)")->required();
+  rate->add_option("--loads", fr_loads, "loads.h5")->required();
+  rate->add_option("--materials", fr.files.materials, "materials JSON")->required();
+  rate->add_option("--instant-count", fr.files.instant_count, "instants of eq. (2) (the default case's: 2)")
+      ->capture_default_str();
+  rate->add_option("--base", fr_base, "carried or stress_free (the pipeline's)")
+      ->check(CLI::IsMember({"carried", "stress_free"}))
+      ->capture_default_str();
+  rate->add_option("--points", fr.points, "seeded points evaluated by each route")->capture_default_str();
+  rate->add_option("--spread", fr.spread, "moduli within this factor of the materials file's")->capture_default_str();
+  rate->add_option("--seed", fr.seed, "seed of the points")->capture_default_str();
+  rate->add_option("--out", fr_out, "benchmark file")->capture_default_str();
+
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     const auto start = std::chrono::steady_clock::now();
+    if (rate->parsed()) {
+      fr.files.loads = fr_loads;
+      fr.files.stress_free_base = fr_base == "stress_free";
+      fr.threads = finverse::cli::threads_in_use();
+      finverse::Summary s = v::run_fin_rate_bench(fr);
+      s.set_timing(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), fr.threads);
+      s.write(fr_out);
+      return s.pass() ? 0 : 1;
+    }
+    if (case_file.empty()) throw finverse::fit::InvalidInput("--case: required (the hybrid plate case file)");
     o.case_file = case_file;
     o.threads = finverse::cli::threads_in_use();
     o.rate = !no_rate;

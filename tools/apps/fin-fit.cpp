@@ -3,20 +3,24 @@
 //   fin-fit run --mesh mesh.h5 --motion motion.h5 --loads loads.h5 --materials materials.json
 //       --out materials.h5 [--summary fit_summary.json] [--parameters spec.json]
 //       [--objective quasi_static|dynamic] [--instant-count 4] [--runs 6] [--methods ga,cmaes]
+//   fin-fit evaluate (the run's problem flags) [--at E_membrane=2e6,nu=0.4]   misfit, no fit
 //   fin-fit uniform_plate                                            sec. 3.3 twin, eq. (1)
 //   fin-fit hybrid_plate --case data/cases/hybrid_plate_small_heave.json   eq. (1), eq. (2)
 //   fin-fit noise | identifiability --case ...                       noise; no loads
 //   fin-fit flap --reference data/reference/hessenthaler2017.json    flap modulus (issue 34)
+#include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "core/cli.hpp"
 #include "core/summary.hpp"
+#include "fit/errors.hpp"
 #include "fit/io/file_fit.hpp"
 #include "fit/validation/fin_twin_grade.hpp"
 #include "fit/validation/hessenthaler_flap_fit.hpp"
@@ -44,6 +48,33 @@ int finish(finverse::Summary summary, const std::string& name, const std::filesy
   return summary.pass() ? 0 : 1;
 }
 
+// "NAME=VALUE" pairs of --at; throws a one-line error naming the bad entry.
+std::vector<std::pair<std::string, double>> parse_at(const std::vector<std::string>& entries) {
+  std::vector<std::pair<std::string, double>> at;
+  for (const auto& e : entries) {
+    const auto eq = e.find('=');
+    double v = std::numeric_limits<double>::quiet_NaN();
+    try {
+      if (eq != std::string::npos) v = std::stod(e.substr(eq + 1));
+    } catch (const std::exception&) {
+    }
+    if (eq == std::string::npos || eq == 0 || !std::isfinite(v))
+      throw finverse::fit::InvalidInput("--at '" + e + "': expected NAME=VALUE with a finite value");
+    at.emplace_back(e.substr(0, eq), v);
+  }
+  return at;
+}
+
+int print_misfit(const finverse::fit::io::MisfitReport& m) {
+  std::printf("fin-fit evaluate: %s\n", m.description.c_str());
+  for (std::size_t i = 0; i < m.names.size(); ++i)
+    std::printf("  %-14s %.6g\n", m.names[i].c_str(), m.values(static_cast<Eigen::Index>(i)));
+  std::printf("misfit (weighted mean distance) %.6e m\n", m.total);
+  for (std::size_t b = 0; b < m.block_times.size(); ++b)
+    std::printf("  t = %-12.6g %.6e m\n", m.block_times[b], m.block_misfit[b]);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -54,35 +85,65 @@ int main(int argc, char** argv) {
   finverse::fit::io::FileFitOptions o;
   std::string mesh, motion, materials, out, loads, parameters, summary, checkpoint;
   std::vector<std::string> methods{"ga"};
-  std::string root_rotation = "fit", base = "carried";
+  std::string root_rotation = "auto", base = "carried", increment = "newton";
   bool no_polish = false;
+  // The fit problem's flags, shared by run and evaluate (only one subcommand is parsed).
+  const auto add_problem_options = [&](CLI::App* c) {
+    c->add_option("--mesh", mesh, "mesh.h5 (finverse/mesh; a structural mesh needs no /ibm surface)")->required();
+    c->add_option("--motion", motion,
+                  "motion.h5: the target positions per time or load level; its root nodes drive "
+                  "the model")
+        ->required();
+    c->add_option("--loads", loads,
+                  "loads.h5 of fin-cfd, or nodal_loads.h5 (a structural load case: times or load "
+                  "levels and nodal forces); eq. (2) needs loads for the modulus scale");
+    c->add_option("--materials", materials, "materials JSON: densities and the values of parameters not fitted")
+        ->required();
+    c->add_option("--parameters", parameters,
+                  "parameter specification JSON (default: E_membrane, E_ray<id> for every ray, nu)");
+    c->add_option("--objective", o.objective,
+                  "quasi_static (paper eq. 2), dynamic (eq. 1) or static (load levels measured at rest)")
+        ->check(CLI::IsMember({"quasi_static", "dynamic", "static"}))
+        ->capture_default_str();
+    c->add_option("--instants", o.instants, "quasi_static: instants t_j [s] (default: --instant-count spread)");
+    c->add_option("--instant-count", o.instant_count, "quasi_static: instants spread over the span from mid-swing")
+        ->capture_default_str();
+    c->add_option("--dt", o.dt, "quasi_static: increment [s] (0: the motion's frame spacing)")->capture_default_str();
+    c->add_option("--substeps", o.substeps, "dynamic: time steps per frame interval")->capture_default_str();
+    c->add_option("--periods", o.periods, "dynamic: periods compared at the end of the motion")->capture_default_str();
+    c->add_option("--ramp", o.ramp, "s (or load level) of ramp from rest before the first frame (0: ten intervals)")
+        ->capture_default_str();
+    c->add_option("--root-rotation", root_rotation,
+                  "root rotations: fit (root nodes + the rays' tangents at the root), zero (a clamp that does not "
+                  "turn) or auto (zero with nodal_loads.h5 or --objective static, else fit)")
+        ->check(CLI::IsMember({"auto", "fit", "per_ray", "zero"}))
+        ->capture_default_str();
+    c->add_option("--base", base,
+                  "quasi_static: the base at t carries its stress from the mesh (carried) or is the stress-free "
+                  "reference of the increment (stress_free)")
+        ->check(CLI::IsMember({"carried", "stress_free"}))
+        ->capture_default_str();
+    c->add_flag("--inertia", o.inertia,
+                "quasi_static: keep the structure's mass times the motion's measured acceleration as a known load "
+                "(eq. (2) with inertia; default: the paper's form without it)");
+    c->add_option("--increment", increment,
+                  "quasi_static: newton (the converged increment) or linear (its first Newton step from the base's "
+                  "stored tangent: no element evaluation per evaluation, docs/studies/fit_evaluation_speed.md)")
+        ->check(CLI::IsMember({"newton", "linear"}))
+        ->capture_default_str();
+  };
+  const char* own_data =
+      "Your own FEM or experiment: write mesh.h5 with the structural datasets only (points, triangles, shell/*, "
+      "beams/*, root_nodes; no /ibm), motion.h5 with the measured positions of every mesh node at each time or "
+      "load level (time, points), and nodal_loads.h5 with the nodal forces at the same times or levels (time, "
+      "nodal_force); `fin-contract --markdown` lists every dataset. Static tests: --objective static (the "
+      "model's equilibrium at each level from the unloaded reference; the clamp is the default root); "
+      "`fin-fit evaluate` prints the misfit at given moduli before a fit.";
   auto* rn = app.add_subcommand("run", "fit from stage files (mesh, motion, loads, materials) to materials.h5");
-  rn->add_option("--mesh", mesh, "mesh.h5 (finverse/mesh)")->required();
-  rn->add_option("--motion", motion, "motion.h5: the target motion; its root nodes drive the model")->required();
-  rn->add_option("--loads", loads, "loads.h5: hydrodynamic nodal forces (eq. (2) needs them for the modulus scale)");
-  rn->add_option("--materials", materials, "materials JSON: densities and the values of parameters not fitted")
-      ->required();
-  rn->add_option("--parameters", parameters,
-                 "parameter specification JSON (default: E_membrane, E_ray<id> for every ray, nu)");
+  add_problem_options(rn);
+  rn->footer(own_data);
   rn->add_option("--out", out, "materials.h5 (finverse/materials)")->required();
   rn->add_option("--summary", summary, "also write this JSON digest (values, intervals, wall times)");
-  rn->add_option("--objective", o.objective, "quasi_static (paper eq. 2) or dynamic (eq. 1)")->capture_default_str();
-  rn->add_option("--instants", o.instants, "quasi_static: instants t_j [s] (default: --instant-count spread)");
-  rn->add_option("--instant-count", o.instant_count, "quasi_static: instants spread over the span from mid-swing")
-      ->capture_default_str();
-  rn->add_option("--dt", o.dt, "quasi_static: increment [s] (0: the motion's frame spacing)")->capture_default_str();
-  rn->add_option("--substeps", o.substeps, "dynamic: time steps per frame interval")->capture_default_str();
-  rn->add_option("--periods", o.periods, "dynamic: periods compared at the end of the motion")->capture_default_str();
-  rn->add_option("--ramp", o.ramp, "s of ramp from rest before the first frame (0: ten frame intervals)")
-      ->capture_default_str();
-  rn->add_option("--root-rotation", root_rotation,
-                 "root rotations: fit (root nodes + the rays' tangents at the root) or zero (the clamp does not turn)")
-      ->capture_default_str();
-  rn->add_option("--base", base,
-                 "quasi_static: the base at t carries its stress from the mesh (carried) or is the stress-free reference "
-                 "of the increment (stress_free)")
-      ->check(CLI::IsMember({"carried", "stress_free"}))
-      ->capture_default_str();
   rn->add_option("--methods", methods, "optimisers, run in this order: ga, cmaes")->delimiter(',')->capture_default_str();
   rn->add_option("--runs", o.fit.runs, "independent seeded runs per method")->capture_default_str();
   rn->add_option("--population", o.fit.population, "GA population (0: 8 per unknown)")->capture_default_str();
@@ -96,6 +157,16 @@ int main(int argc, char** argv) {
                  "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")->capture_default_str();
   rn->add_option("--checkpoint", checkpoint, "checkpoint file, written after every generation");
   rn->add_flag("--resume", o.fit.resume, "continue from --checkpoint (same inputs and options)");
+
+  // The misfit at given values, without a fit.
+  std::vector<std::string> at_values;
+  auto* ev = app.add_subcommand("evaluate", "the objective at given parameter values, in total and per instant");
+  add_problem_options(ev);
+  ev->footer(own_data);
+  ev->add_option("--at", at_values,
+                 "NAME=VALUE (SI), e.g. --at E_membrane=2e6 --at nu=0.4; the materials file's "
+                 "values for the others")
+      ->delimiter(',');
 
   // Validation cases: the hybrid plate twin and its variants.
   finverse::fit::validation::HybridPlateFitOptions hp;
@@ -216,8 +287,10 @@ int main(int argc, char** argv) {
     if (!summary.empty()) o.summary = summary;
     if (!checkpoint.empty()) o.fit.checkpoint = checkpoint;
     o.fit.methods = methods;
-    o.root_rotation = finverse::fem::parse_root_rotation(root_rotation);
+    if (root_rotation != "auto") o.root_rotation = finverse::fem::parse_root_rotation(root_rotation);
     o.stress_free_base = base == "stress_free";
+    o.increment = finverse::fit::parse_increment_solve(increment);
+    if (*ev) return print_misfit(finverse::fit::io::evaluate_misfit(o, parse_at(at_values)));
     o.fit.polish = !no_polish;
     o.fit.threads = finverse::cli::threads_in_use();
     const auto result = finverse::fit::io::run_fit_from_files(o, finverse::cli::effective_config(app));

@@ -99,27 +99,32 @@ std::vector<FileSpec> build() {
                     {"fit_status", "", "why the views cannot constrain the fit (fin-track exits 1); absent when it can be trusted",
                      false, true}}});
 
-  specs.push_back({"finverse/mesh", 1, "mesh.h5", "fin-mesh",
-                   "Structural mesh of the fin (membrane shells, ray beams on mesh edges, root node set) and the "
-                   "closed thin surface the immersed-boundary solver sees.",
-                   {
-                       {"points", f64, {"nv", "3"}, "m", "mid-surface nodes at rest"},
-                       {"triangles", i32, {"ntri", "3"}, "", "shell elements (0-based nodes)"},
-                       {"shell/thickness", f64, {"ntri"}, "m", "membrane thickness per shell element"},
-                       {"shell/region", i32, {"ntri"}, "", "material region of each shell element (0 = membrane)"},
-                       {"beams/elements", i32, {"nb", "2"}, "", "beam elements on mesh edges (0-based nodes)"},
-                       {"beams/ray", i32, {"nb"}, "", "ray number of each beam element, 1 = dorsal edge"},
-                       {"beams/s", f64, {"nb", "2"}, "1", "arc-length fraction along the ray at both ends"},
-                       {"beams/thickness", f64, {"nb", "2"}, "m", "section thickness (flapping direction) at both ends"},
-                       {"beams/width", f64, {"nb", "2"}, "m", "section width (in the fin plane) at both ends"},
-                       {"root_nodes", i32, {"nroot"}, "", "nodes whose motion is prescribed (the fin root)"},
-                       {"ibm/points", f64, {"nvi", "3"}, "m", "closed thin immersed-boundary surface at rest"},
-                       {"ibm/triangles", i32, {"ntri_ibm", "3"}, "", "its triangles, outward normals"},
-                       {"ibm/source_node", i32, {"nvi"}, "", "mid-surface node each surface vertex is offset from"},
-                       {"ibm/offset_sign", i32, {"nvi"}, "", "+1/-1: side of the mid-surface, 0 on the rim"},
-                   },
-                   {{"ibm_thickness", "m", "thickness of the closed immersed-boundary body"},
-                    {"chord", "m", "fin chord c"}}});
+  specs.push_back(
+      {"finverse/mesh",
+       1,
+       "mesh.h5",
+       "fin-mesh",
+       "Structural mesh of the fin (membrane shells, ray beams on mesh edges, root node set) and the "
+       "closed thin surface the immersed-boundary solver sees.",
+       {
+           {"points", f64, {"nv", "3"}, "m", "mid-surface nodes at rest"},
+           {"triangles", i32, {"ntri", "3"}, "", "shell elements (0-based nodes)"},
+           {"shell/thickness", f64, {"ntri"}, "m", "membrane thickness per shell element"},
+           {"shell/region", i32, {"ntri"}, "", "material region of each shell element (0 = membrane)"},
+           {"beams/elements", i32, {"nb", "2"}, "", "beam elements on mesh edges (0-based nodes)"},
+           {"beams/ray", i32, {"nb"}, "", "ray number of each beam element, 1 = dorsal edge"},
+           {"beams/s", f64, {"nb", "2"}, "1", "arc-length fraction along the ray at both ends"},
+           {"beams/thickness", f64, {"nb", "2"}, "m", "section thickness (flapping direction) at both ends"},
+           {"beams/width", f64, {"nb", "2"}, "m", "section width (in the fin plane) at both ends"},
+           {"root_nodes", i32, {"nroot"}, "", "nodes whose motion is prescribed (the fin root)"},
+           // Optional (issue 45): a structural mesh (a user's own FEM or test rig) has no
+           // flow surface; fin-cfd and fin-fsi name the missing dataset.
+           opt({"ibm/points", f64, {"nvi", "3"}, "m", "closed thin immersed-boundary surface at rest"}),
+           opt({"ibm/triangles", i32, {"ntri_ibm", "3"}, "", "its triangles, outward normals"}),
+           opt({"ibm/source_node", i32, {"nvi"}, "", "mid-surface node each surface vertex is offset from"}),
+           opt({"ibm/offset_sign", i32, {"nvi"}, "", "+1/-1: side of the mid-surface, 0 on the rim"}),
+       },
+       {{"ibm_thickness", "m", "thickness of the closed immersed-boundary body"}, {"chord", "m", "fin chord c"}}});
 
   specs.push_back({"finverse/motion", 1, "motion.h5", "fin-mesh",
                    "The reconstructed motion carried onto the structural mesh nodes.",
@@ -152,50 +157,66 @@ std::vector<FileSpec> build() {
                    },
                    {}});
 
-  specs.push_back({"finverse/materials", 1, "materials.h5", "fin-fit",
-                   "Inverse-fit result (issue 31): the parameters and their bounds, the best values, every "
-                   "optimiser run with its history per generation and its Levenberg-Marquardt polish, and the "
-                   "uncertainty at the optimum. Values are SI in the units of parameters/units; moduli are "
-                   "searched as log10 (parameters/scale), and standard errors are in that search scale. Wall "
-                   "times are not stored (same inputs, seed and threads give a byte-identical file); fin-fit "
-                   "writes them to its summary JSON.",
-                   {
-                       {"parameters/names", str, {"np"}, "", "parameter names, e.g. E_membrane, E_ray1, nu"},
-                       {"parameters/units", str, {"np"}, "", "unit of each parameter"},
-                       {"parameters/scale", str, {"np"}, "", "search scale: log10 or linear"},
-                       {"parameters/lower", f64, {"np"}, "", "lower bounds (units per parameters/units)"},
-                       {"parameters/upper", f64, {"np"}, "", "upper bounds"},
-                       opt({"parameters/truth", f64, {"np"}, "", "truth values (twin validation cases only)"}),
-                       {"best", f64, {"np"}, "", "best parameter values (after the polish)"},
-                       {"objective", f64, {}, "m", "distance objective at the best values: weighted mean point-to-point distance"},
-                       {"sum_of_squares", f64, {}, "m2", "least-squares objective |r|^2 at the best values"},
-                       {"evaluations", i64, {}, "", "FEM evaluations of all runs and polishes (cache hits not counted)"},
-                       {"runs/method", str, {"nruns"}, "", "optimiser of each independent run: ga or cmaes"},
-                       {"runs/seed", i64, {"nruns"}, "", "seed of each independent run"},
-                       {"runs/best", f64, {"nruns", "np"}, "", "best values of each run (before the polish)"},
-                       {"runs/objective", f64, {"nruns"}, "m", "final objective of each run"},
-                       {"runs/generations", i32, {"nruns"}, "", "generations run"},
-                       {"runs/converged", i32, {"nruns"}, "", "1 when the stopping rule was met before the generation cap"},
-                       {"runs/evaluations", i64, {"nruns"}, "", "FEM evaluations of each run"},
-                       may_be_nan({"runs/history", f64, {"nruns", "ngen"}, "m",
-                                   "best objective after each generation; NaN after a run stopped"}),
-                       may_be_nan({"runs/history_evaluations", f64, {"nruns", "ngen"}, "",
-                                   "evaluations after each generation; NaN after a run stopped"}),
-                       may_be_nan({"runs/history_best", f64, {"nruns", "ngen", "np"}, "",
-                                   "best values after each generation; NaN after a run stopped"}),
-                       opt({"runs/polished", f64, {"nruns", "np"}, "", "values after the polish from each run's best"}),
-                       opt({"runs/polished_objective", f64, {"nruns"}, "m", "objective after each polish"}),
-                       opt({"runs/polish_evaluations", i64, {"nruns"}, "", "evaluations of each polish"}),
-                       opt(may_be_nan({"uncertainty/standard_error", f64, {"np"}, "",
-                                       "standard error in the search scale (decades for log10); Inf when not constrained"})),
-                       opt(may_be_nan({"uncertainty/ci95", f64, {"np", "2"}, "", "95% interval in parameter units"})),
-                       opt(may_be_nan({"uncertainty/correlation", f64, {"np", "np"}, "1", "parameter correlation matrix"})),
-                       opt({"uncertainty/singular_values", f64, {"np"}, "m", "singular values of the weighted Jacobian dr/dz"}),
-                       opt(may_be_nan({"uncertainty/residual_variance", f64, {}, "m2", "s^2 = |r|^2 / (m - n); NaN when m <= n"})),
-                       opt({"uncertainty/identified", i32, {"np"}, "", "1: identified; 0: not (see verdict)"}),
-                       {"uncertainty/verdict", str, {"np"}, "", "identifiability verdict per parameter"},
-                   },
-                   {{"objective_kind", "", "dynamic (eq. 1) or quasi_static (eq. 2)", true, true}}});
+  specs.push_back(
+      {"finverse/materials",
+       1,
+       "materials.h5",
+       "fin-fit",
+       "Inverse-fit result (issue 31): the parameters and their bounds, the best values, every "
+       "optimiser run with its history per generation and its Levenberg-Marquardt polish, and the "
+       "uncertainty at the optimum. Values are SI in the units of parameters/units; moduli are "
+       "searched as log10 (parameters/scale), and standard errors are in that search scale. Wall "
+       "times are not stored (same inputs, seed and threads give a byte-identical file); fin-fit "
+       "writes them to its summary JSON.",
+       {
+           {"parameters/names", str, {"np"}, "", "parameter names, e.g. E_membrane, E_ray1, nu"},
+           {"parameters/units", str, {"np"}, "", "unit of each parameter"},
+           {"parameters/scale", str, {"np"}, "", "search scale: log10 or linear"},
+           {"parameters/lower", f64, {"np"}, "", "lower bounds (units per parameters/units)"},
+           {"parameters/upper", f64, {"np"}, "", "upper bounds"},
+           opt({"parameters/truth", f64, {"np"}, "", "truth values (twin validation cases only)"}),
+           {"best", f64, {"np"}, "", "best parameter values (after the polish)"},
+           {"objective", f64, {}, "m", "distance objective at the best values: weighted mean point-to-point distance"},
+           {"sum_of_squares", f64, {}, "m2", "least-squares objective |r|^2 at the best values"},
+           {"evaluations", i64, {}, "", "FEM evaluations of all runs and polishes (cache hits not counted)"},
+           {"runs/method", str, {"nruns"}, "", "optimiser of each independent run: ga or cmaes"},
+           {"runs/seed", i64, {"nruns"}, "", "seed of each independent run"},
+           {"runs/best", f64, {"nruns", "np"}, "", "best values of each run (before the polish)"},
+           {"runs/objective", f64, {"nruns"}, "m", "final objective of each run"},
+           {"runs/generations", i32, {"nruns"}, "", "generations run"},
+           {"runs/converged", i32, {"nruns"}, "", "1 when the stopping rule was met before the generation cap"},
+           {"runs/evaluations", i64, {"nruns"}, "", "FEM evaluations of each run"},
+           may_be_nan({"runs/history",
+                       f64,
+                       {"nruns", "ngen"},
+                       "m",
+                       "best objective after each generation; NaN after a run stopped"}),
+           may_be_nan({"runs/history_evaluations",
+                       f64,
+                       {"nruns", "ngen"},
+                       "",
+                       "evaluations after each generation; NaN after a run stopped"}),
+           may_be_nan({"runs/history_best",
+                       f64,
+                       {"nruns", "ngen", "np"},
+                       "",
+                       "best values after each generation; NaN after a run stopped"}),
+           opt({"runs/polished", f64, {"nruns", "np"}, "", "values after the polish from each run's best"}),
+           opt({"runs/polished_objective", f64, {"nruns"}, "m", "objective after each polish"}),
+           opt({"runs/polish_evaluations", i64, {"nruns"}, "", "evaluations of each polish"}),
+           opt(may_be_nan({"uncertainty/standard_error",
+                           f64,
+                           {"np"},
+                           "",
+                           "standard error in the search scale (decades for log10); Inf when not constrained"})),
+           opt(may_be_nan({"uncertainty/ci95", f64, {"np", "2"}, "", "95% interval in parameter units"})),
+           opt(may_be_nan({"uncertainty/correlation", f64, {"np", "np"}, "1", "parameter correlation matrix"})),
+           opt({"uncertainty/singular_values", f64, {"np"}, "m", "singular values of the weighted Jacobian dr/dz"}),
+           opt(may_be_nan({"uncertainty/residual_variance", f64, {}, "m2", "s^2 = |r|^2 / (m - n); NaN when m <= n"})),
+           opt({"uncertainty/identified", i32, {"np"}, "", "1: identified; 0: not (see verdict)"}),
+           {"uncertainty/verdict", str, {"np"}, "", "identifiability verdict per parameter"},
+       },
+       {{"objective_kind", "", "dynamic (eq. 1), quasi_static (eq. 2) or static (load levels at rest)", true, true}}});
 
   {
     FileSpec s{"finverse/fsi", 1, "fsi.h5", "fin-fsi",

@@ -44,6 +44,7 @@ class DynamicObjective : public ResidualFunction {
   int residual_count() const override {
     return 3 * static_cast<int>(nodes_.size()) * target_.frame_count();
   }
+  std::vector<double> block_times() const override { return target_.times; }
   Eigen::VectorXd residuals(const Eigen::VectorXd& physical) const override;
   const Eigen::VectorXd& sqrt_weights() const override { return sqrt_weights_; }
 

@@ -53,6 +53,8 @@ class FinModelFactory : public ModelFactory {
   RayleighDamping damping() const override { return {base_.rayleigh_mass, base_.rayleigh_stiffness}; }
   Eigen::VectorXd rebuild_key(const Eigen::VectorXd& physical) const override;
   void set_moduli(fem::Model& model, const Eigen::VectorXd& physical) const override;
+  bool moduli_and_poisson_only() const override { return true; }
+  int poisson_index() const override { return nu_; }
   // The mesh's points moved to `positions` (the root drive and loads unchanged: the root
   // displacements are then measured from these positions and the rotation fitted from them).
   std::shared_ptr<const ModelFactory> rebased(const std::vector<fem::Vec3>& positions) const override;

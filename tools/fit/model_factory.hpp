@@ -50,6 +50,12 @@ class ModelFactory {
   // Sets the moduli of a model built by build(rebuild_key(physical)) to those of `physical`.
   virtual void set_moduli(fem::Model& /*model*/, const Eigen::VectorXd& /*physical*/) const {}
 
+  // The linearised increment's premise (fem/linear_increment.hpp): the models of any two p differ
+  // only in element moduli, which set_moduli() brings to p on a model built for any p, and in
+  // one Poisson ratio, parameter poisson_index() (-1: nu is not a parameter). Default: not so.
+  virtual bool moduli_and_poisson_only() const { return false; }
+  virtual int poisson_index() const { return -1; }
+
   // The same factory with its reference (stress-free) configuration moved to `positions`, one per
   // node, the drive re-referenced with it (eq. (2) with a stress-free base). Null: not supported.
   virtual std::shared_ptr<const ModelFactory> rebased(const std::vector<fem::Vec3>& /*positions*/) const {

@@ -1,10 +1,13 @@
 // Quasi-static objective, eq. (2) (see quasi_static_objective.hpp).
 #include "fit/quasi_static_objective.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <sstream>
 
 #include "fit/errors.hpp"
+#include "fit/measured_inertia.hpp"
 #include "fit/node_weights.hpp"
 #include "fit/rotation_relaxation.hpp"
 #include "fit/state_from_positions.hpp"
@@ -21,15 +24,31 @@ struct QuasiStaticObjective::Workspace {
   // stress_free_base: one model per instant, built on that instant's shape, and its increment.
   std::vector<std::unique_ptr<fem::Model>> instant_models;
   std::vector<std::unique_ptr<fem::QuasiStaticIncrement>> instant_increments;
+  // Solve::linear: a model that only carries the moduli of p, and the solver's state.
+  std::unique_ptr<fem::Model> moduli_model;
+  std::unique_ptr<fem::LinearIncrement::Workspace> linear;
   void set_moduli(const ModelFactory& f, const std::vector<std::shared_ptr<const ModelFactory>>& rebased,
                   const Eigen::VectorXd& p) {
-    f.set_moduli(*model, p);
+    if (model) f.set_moduli(*model, p);
+    if (moduli_model) f.set_moduli(*moduli_model, p);
     if (held) f.set_moduli(*held, p);
     for (size_t j = 0; j < instant_models.size(); ++j) rebased[j]->set_moduli(*instant_models[j], p);
   }
 };
 
 QuasiStaticObjective::~QuasiStaticObjective() = default;
+
+QuasiStaticOptions::Solve parse_increment_solve(const std::string& name) {
+  if (name == "newton") return QuasiStaticOptions::Solve::newton;
+  if (name == "linear") return QuasiStaticOptions::Solve::linear;
+  throw InvalidInput("--increment '" + name + "': expected newton or linear");
+}
+
+namespace {
+// Poisson ratios of the linearised increment's basis (fem/tangent_basis.hpp): spread over the
+// physical range so that the 4 x 4 solve per entry is well conditioned.
+constexpr double kBasisPoisson[fem::TangentBasis::kPoissonModels] = {0.1, 0.3, 0.4, 0.49};
+}  // namespace
 
 QuasiStaticObjective::QuasiStaticObjective(std::shared_ptr<const ModelFactory> factory, TargetMotion target,
                                            QuasiStaticOptions options)
@@ -83,25 +102,81 @@ QuasiStaticObjective::QuasiStaticObjective(std::shared_ptr<const ModelFactory> f
       const std::unique_ptr<fem::Model> at_t = rebased->build(rebased->default_parameters());
       fem::NodalState base = at_t->reference_state();
       fem::apply_prescribed(*at_t, t, t, base);
+      if (options_.inertia) load_change_.push_back(inertial_load_change(*at_t, base, target, t, dt_));
       base_.push_back(std::move(base));
       rebased_.push_back(std::move(rebased));
     } else {
       fem::NodalState base = from_positions(x0);
       // The drive's own values at t (t1 = t2: no spin), so that the FE root increment is the drive's.
       fem::apply_prescribed(*model, t, t, base);
+      if (options_.inertia) load_change_.push_back(inertial_load_change(*model, base, target, t, dt_));
       base_.push_back(std::move(base));
     }
     std::vector<fem::Vec3> dx(x0.size());
     for (size_t i = 0; i < dx.size(); ++i) dx[i] = x1[i] - x0[i];
     target_dx_.push_back(std::move(dx));
   }
+  if (options_.solve == QuasiStaticOptions::Solve::linear) set_up_linear(target);
+}
+
+// The linearised increments (fem/linear_increment.hpp): each instant's tangent at its base as
+// element matrices in the modulus-Poisson basis, from the model at four Poisson ratios, checked
+// against a model at the default parameters.
+void QuasiStaticObjective::set_up_linear(const TargetMotion& target) {
+  const std::string& src = target.source;
+  if (!factory_->moduli_and_poisson_only())
+    throw InvalidInput(src +
+                       ": the linear increment needs parameters that are element moduli and one Poisson ratio; "
+                       "this model has others (use the newton increment)");
+  if (!options_.stress_free_base && options_.relax_rotations)
+    throw InvalidInput(src +
+                       ": the linear increment needs bases that do not depend on the parameters: stress-free "
+                       "bases, or rotations not relaxed");
+  const int nu_index = factory_->poisson_index();
+  const Eigen::VectorXd p0 = factory_->default_parameters();
+  const std::vector<double> nus =
+      nu_index < 0 ? std::vector<double>{0.0} : std::vector<double>(std::begin(kBasisPoisson), std::end(kBasisPoisson));
+  const auto build_at = [&](const ModelFactory& f) {
+    std::vector<std::unique_ptr<fem::Model>> models;
+    for (double nu : nus) {
+      Eigen::VectorXd p = p0;
+      if (nu_index >= 0) p(nu_index) = nu;
+      models.push_back(f.build(p));
+    }
+    return models;
+  };
+  if (rebased_.empty()) linear_models_.push_back(build_at(*factory_));
+  for (size_t j = 0; j < instants_.size(); ++j) {
+    const ModelFactory& f = rebased_.empty() ? *factory_ : *rebased_[j];
+    if (!rebased_.empty()) linear_models_.push_back(build_at(f));
+    const auto& models = linear_models_.back();
+    const double t = instants_[j];
+    for (int e = 0; e < static_cast<int>(models[0]->elements().size()); ++e)
+      if (models[0]->element_youngs_modulus(e, t) != models[0]->element_youngs_modulus(e, t + dt_))
+        throw InvalidInput(src + ": the linear increment needs moduli constant over the increment (element " +
+                           std::to_string(e) + "'s changes); use the newton increment");
+    std::vector<const fem::Model*> pointers;
+    for (const auto& m : models) pointers.push_back(m.get());
+    linear_.push_back(std::make_unique<fem::LinearIncrement>(pointers, nus, base_[j], t, t + dt_, load_change(j)));
+    if (nu_index >= 0) {
+      const std::unique_ptr<fem::Model> check = f.build(p0);
+      linear_form_error_ = std::max(linear_form_error_, linear_.back()->basis().form_error(*check, p0(nu_index)));
+    }
+  }
+  if (!(linear_form_error_ <= 1e-8))
+    throw InvalidInput(src +
+                       ": the model's tangent is not of the modulus-Poisson form the linear increment needs "
+                       "(relative error " +
+                       std::to_string(linear_form_error_) + "); use the newton increment");
 }
 
 std::unique_ptr<QuasiStaticObjective::Workspace> QuasiStaticObjective::acquire(const Eigen::VectorXd& p) const {
   if (p.size() != factory_->parameter_count())
     throw InvalidInput("quasi-static objective: " + std::to_string(p.size()) + " parameters, the model has " +
                        std::to_string(factory_->parameter_count()));
-  const Eigen::VectorXd key = factory_->rebuild_key(p);
+  // The linear route's workspaces only carry moduli: any of them serves any p.
+  const bool linear = !linear_.empty();
+  const Eigen::VectorXd key = linear ? Eigen::VectorXd() : factory_->rebuild_key(p);
   {
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto it = idle_.begin(); it != idle_.end(); ++it)
@@ -114,6 +189,13 @@ std::unique_ptr<QuasiStaticObjective::Workspace> QuasiStaticObjective::acquire(c
   }
   auto w = std::make_unique<Workspace>();
   w->key = key;
+  if (linear) {
+    w->moduli_model = factory_->build(factory_->default_parameters());
+    w->linear = std::make_unique<fem::LinearIncrement::Workspace>(options_.static_options.backend);
+    ++builds_;
+    w->set_moduli(*factory_, rebased_, p);
+    return w;
+  }
   w->model = factory_->build(key);
   w->increment = std::make_unique<fem::QuasiStaticIncrement>(*w->model, options_.static_options);
   for (const auto& f : rebased_) {
@@ -142,14 +224,23 @@ std::vector<std::vector<fem::Vec3>> QuasiStaticObjective::increments(const Eigen
   std::unique_ptr<Workspace> w = acquire(p);
   std::vector<std::vector<fem::Vec3>> dx;
   // On an exception the workspace is dropped (its solver may hold a failed factorisation).
+  std::vector<double> moduli;
   for (size_t j = 0; j < instants_.size(); ++j) {
     const double t = instants_[j];
-    if (!w->instant_increments.empty())
-      dx.push_back(w->instant_increments[j]->displacement_increment(base_[j], t, t + dt_));
-    else if (w->relaxation)
-      dx.push_back(w->increment->displacement_increment(w->relaxation->relax(base_[j], t), t, t + dt_));
-    else
-      dx.push_back(w->increment->displacement_increment(base_[j], t, t + dt_));
+    if (w->linear) {
+      const fem::Model& m = *w->moduli_model;
+      moduli.resize(m.elements().size());
+      for (size_t e = 0; e < moduli.size(); ++e) moduli[e] = m.element_youngs_modulus(static_cast<int>(e), t + dt_);
+      const int nu_index = factory_->poisson_index();
+      dx.push_back(linear_[j]->displacement_increment(moduli, nu_index < 0 ? 0.0 : p(nu_index), *w->linear));
+    } else if (!w->instant_increments.empty()) {
+      dx.push_back(w->instant_increments[j]->displacement_increment(base_[j], t, t + dt_, nullptr, load_change(j)));
+    } else if (w->relaxation) {
+      dx.push_back(
+          w->increment->displacement_increment(w->relaxation->relax(base_[j], t), t, t + dt_, nullptr, load_change(j)));
+    } else {
+      dx.push_back(w->increment->displacement_increment(base_[j], t, t + dt_, nullptr, load_change(j)));
+    }
   }
   release(std::move(w));
   return dx;

@@ -10,14 +10,14 @@
 // model in place (model_factory.hpp).
 #pragma once
 
+#include <Eigen/Core>
 #include <atomic>
 #include <list>
 #include <memory>
 #include <mutex>
 #include <vector>
 
-#include <Eigen/Core>
-
+#include "fem/linear_increment.hpp"
 #include "fem/quasi_static_increment.hpp"
 #include "fem/static_solver.hpp"
 #include "fit/model_factory.hpp"
@@ -45,7 +45,20 @@ struct QuasiStaticOptions {
   // artefact whose geometric stiffness makes Newton fail; false (default): the base carries the
   // stress of its deformation from the mesh, exact for the FEM's own states (the twins).
   bool stress_free_base = false;
+  // Eq. (2) with the structure's inertia (issue 45): the mass times the change of the target's
+  // measured acceleration over the increment as a known load (measured_inertia.hpp); false: the
+  // paper's form. Needs a target frame before each instant and one after its increment.
+  bool inertia = false;
+  // How the increment is solved: newton (QuasiStaticIncrement, converged) or linear (its first
+  // Newton step from the base's tangent kept as stored element matrices, fem/linear_increment.hpp:
+  // no element evaluation per evaluation). linear needs a factory whose parameters are moduli and
+  // one Poisson ratio (ModelFactory::moduli_and_poisson_only) and bases that do not depend on
+  // them (stress_free_base, or relax_rotations false).
+  enum class Solve { newton, linear } solve = Solve::newton;
 };
+
+// "newton" / "linear"; throws InvalidInput naming the flag otherwise.
+QuasiStaticOptions::Solve parse_increment_solve(const std::string& name);
 
 class QuasiStaticObjective : public ResidualFunction {
  public:
@@ -60,6 +73,7 @@ class QuasiStaticObjective : public ResidualFunction {
   int residual_count() const override { return 3 * static_cast<int>(nodes_.size() * instants_.size()); }
   Eigen::VectorXd residuals(const Eigen::VectorXd& physical) const override;
   const Eigen::VectorXd& sqrt_weights() const override { return sqrt_weights_; }
+  std::vector<double> block_times() const override { return instants_; }
 
   // dx_FE per instant, [instant][node] (every node): for diagnostics and plots.
   std::vector<std::vector<fem::Vec3>> increments(const Eigen::VectorXd& physical) const;
@@ -73,9 +87,17 @@ class QuasiStaticObjective : public ResidualFunction {
   // The bases from the positions (1-ring rotations, the drive's root values), before relaxation.
   const std::vector<fem::NodalState>& base_states() const { return base_; }
   long model_builds() const { return builds_.load(); }  // models built so far (the lever's effect)
+  // eq. (2) with inertia: the load change -M da per instant (full length); empty otherwise.
+  const std::vector<Eigen::VectorXd>& inertial_load_changes() const { return load_change_; }
+  // Solve::linear: the largest relative error of the stored tangent's form (tangent_basis.hpp).
+  double linear_form_error() const { return linear_form_error_; }
 
  private:
   struct Workspace;
+  void set_up_linear(const TargetMotion& target);
+  const Eigen::VectorXd* load_change(size_t instant) const {
+    return load_change_.empty() ? nullptr : &load_change_[instant];
+  }
   std::unique_ptr<Workspace> acquire(const Eigen::VectorXd& physical) const;
   void release(std::unique_ptr<Workspace> workspace) const;
 
@@ -88,6 +110,12 @@ class QuasiStaticObjective : public ResidualFunction {
   std::vector<fem::NodalState> base_;                 // [instant]
   std::vector<std::shared_ptr<const ModelFactory>> rebased_;  // stress_free_base: [instant]
   std::vector<std::vector<fem::Vec3>> target_dx_;     // [instant][node]
+  std::vector<Eigen::VectorXd> load_change_;          // inertia: [instant]
+  // Solve::linear: the models at four Poisson ratios ([instant][4] with stress-free bases, else
+  // [0][4] shared) and each instant's linearised increment, built once and shared by the threads.
+  std::vector<std::vector<std::unique_ptr<fem::Model>>> linear_models_;
+  std::vector<std::unique_ptr<fem::LinearIncrement>> linear_;
+  double linear_form_error_ = 0;
   mutable std::mutex mutex_;
   mutable std::list<std::unique_ptr<Workspace>> idle_;  // most recently used first
   mutable std::atomic<long> builds_{0};

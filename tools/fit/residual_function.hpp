@@ -26,6 +26,10 @@ class ResidualFunction {
   virtual Eigen::VectorXd residuals(const Eigen::VectorXd& physical) const = 0;
   // sqrt(w) per node-sample (length residual_count() / 3), for the distance objective.
   virtual const Eigen::VectorXd& sqrt_weights() const = 0;
+  // The samples' times (eq. (2) instants, eq. (1) frames, static load levels) when the residuals
+  // are sample-major in equal blocks, one per time; empty: one block (`fin-fit evaluate` prints
+  // the misfit per block).
+  virtual std::vector<double> block_times() const { return {}; }
 };
 
 // The distance objective J of the residuals r (see above); sqrt_weights as sqrt_weights().

@@ -2,18 +2,19 @@
 // is fin-fem's own quasi-static response to known loads is fitted back to its ray modulus, the
 // result is a valid materials.h5; and every kind of bad input the issue lists ends in a one-line
 // error naming the cause, with no materials.h5 left behind.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "../scratch_dir.hpp"
 #include "../strip_fin.hpp"
 #include "core/stage_files.hpp"
 #include "fem/io/file_run.hpp"
+#include "fit/errors.hpp"
 #include "fit/io/file_fit.hpp"
 
 using namespace finverse;
@@ -155,4 +156,55 @@ TEST_F(FileFit, StressFreeBasesFitTheStripToo) {
   std::printf("strip, stress-free bases: E_rays %.6e (truth 1e9)\n", m.best.data[0]);
   EXPECT_NEAR(m.best.data[0] / 1e9, 1.0, 0.02);
   EXPECT_EQ(m.identified.data[0], 1) << m.verdict[0];
+}
+
+// Structural data in (issue 45, deliverable 7): a user's own static test as fin-fit takes it --
+// a structural mesh without the flow's /ibm surface, the nodal forces of every load level in
+// nodal_loads.h5, positions measured at rest at each level (here fin-fem's own static path), the
+// clamp as the default root -- fitted by the static objective and evaluated at given moduli.
+TEST_F(FileFit, StaticLoadLevelsFromStructuralFilesGiveBackTheRayModulus) {
+  stage::Mesh structural = mesh_;
+  structural.ibm_points = {}, structural.ibm_triangles = {}, structural.ibm_source_node = {};
+  structural.ibm_offset_sign = {};
+  structural.ibm_thickness.reset();
+  stage::write(dir_ / "structural_mesh.h5", structural, Provenance{"test", {}, {}});
+  stage::NodalLoads nodal;
+  nodal.time = loads_.time;
+  nodal.nodal_force = loads_.nodal_force;
+  stage::write(dir_ / "nodal_loads.h5", nodal, Provenance{"test", {}, {}});
+  // The measured positions: fin-fem's static path on the same files (levels = the loads' times).
+  fem::io::FileRunOptions run;
+  run.mesh = dir_ / "structural_mesh.h5";
+  run.materials = dir_ / "materials.json";
+  run.loads = dir_ / "nodal_loads.h5";
+  run.out = dir_ / "levels.h5";
+  run.ramp = 0.02;
+  run.run.ramp_steps = 4;
+  run.run.analysis = fem::Analysis::quasi_static;
+  fem::io::run_from_files(run, {});
+  o_.mesh = run.mesh;
+  o_.motion = run.out;
+  o_.loads = run.loads;
+  o_.root_rotation.reset();  // auto: the clamp, for a structural load case
+  o_.objective = "static";
+
+  const auto at_truth = fit::io::evaluate_misfit(o_, {});
+  const auto soft = fit::io::evaluate_misfit(o_, {{"E_rays", 5e8}});
+  std::printf("strip, static levels: misfit %.3e m at the truth, %.3e m at E_rays / 2, %zu levels\n", at_truth.total,
+              soft.total, soft.block_times.size());
+  EXPECT_LT(at_truth.total, 1e-3 * soft.total);
+  EXPECT_EQ(soft.block_misfit.size(), soft.block_times.size());
+  EXPECT_GT(soft.block_times.size(), 1u);
+  try {
+    fit::io::evaluate_misfit(o_, {{"E_fin", 1e9}});
+    ADD_FAILURE() << "an unknown parameter was accepted";
+  } catch (const fit::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("'E_fin'"), std::string::npos) << e.what();
+  }
+
+  fit::io::run_fit_from_files(o_, {});
+  const auto m = stage::read<stage::Materials>(o_.out);
+  EXPECT_NEAR(m.best.data[0] / 1e9, 1.0, 1e-3);
+  EXPECT_EQ(m.identified.data[0], 1) << m.verdict[0];
+  EXPECT_EQ(*m.objective_kind, "static");
 }

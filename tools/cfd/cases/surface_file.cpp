@@ -38,7 +38,8 @@ vtkSmartPointer<vtkPolyData> read_with(const std::filesystem::path& file) {
 
 TriangulatedSurface from_mesh_h5(const std::filesystem::path& file) {
   const auto mesh = stage::read<stage::Mesh>(file);
-  if (mesh.ibm_points.size() == 0) throw Error(file.string() + ": /ibm/points: empty, expected the closed thin body");
+  if (mesh.ibm_points.size() == 0 || mesh.ibm_triangles.size() == 0)
+    throw Error(file.string() + ": /ibm/points: missing, expected the closed thin body (a structural mesh has none)");
   TriangulatedSurface s;
   for (std::size_t v = 0; v < mesh.ibm_points.dim(0); ++v)
     s.points.push_back({mesh.ibm_points(v, 0), mesh.ibm_points(v, 1), mesh.ibm_points(v, 2)});

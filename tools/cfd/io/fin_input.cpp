@@ -31,6 +31,15 @@ double norm(const Vec3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] *
 }  // namespace
 
 ThinBody thin_body_from_mesh(const stage::Mesh& mesh, const std::string& name, double* rest_mismatch) {
+  // Optional in the contract (a structural mesh has no flow surface), required here.
+  for (const auto& [dataset, size] : {std::pair{"points", mesh.ibm_points.size()},
+                                      {"triangles", mesh.ibm_triangles.size()},
+                                      {"source_node", mesh.ibm_source_node.size()},
+                                      {"offset_sign", mesh.ibm_offset_sign.size()}})
+    if (size == 0)
+      throw Error(name + ": /ibm/" + dataset +
+                  ": missing, expected the closed thin body the flow immerses (fin-mesh "
+                  "writes it; a structural mesh has none)");
   const std::size_t nv = mesh.points.dim(0), nvi = mesh.ibm_points.dim(0);
   const auto mid = triangles_of(mesh.triangles);
   for (std::size_t t = 0; t < mid.size(); ++t)

@@ -1,6 +1,7 @@
 // fin-fit run from stage files (see file_fit.hpp).
 #include "fit/io/file_fit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "core/stage_identity.hpp"
 #include "fem/errors.hpp"
 #include "fem/io/material_spec.hpp"
+#include "fem/io/nodal_force_file.hpp"
 #include "fem/io/periodic_motion.hpp"
 #include "fit/dynamic_objective.hpp"
 #include "fit/errors.hpp"
@@ -20,6 +22,7 @@
 #include "fit/io/materials_file.hpp"
 #include "fit/parameter_space.hpp"
 #include "fit/quasi_static_objective.hpp"
+#include "fit/static_objective.hpp"
 #include "fit/target_motion.hpp"
 
 namespace finverse::fit::io {
@@ -62,11 +65,16 @@ std::vector<double> quasi_static_instants(const FileFitOptions& o, const TargetM
 
 }  // namespace
 
-FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& config) {
+FitProblem load_fit_problem(const FileFitOptions& o) {
   const auto mesh = stage::read<stage::Mesh>(o.mesh);
   auto motion = stage::read<stage::Motion>(o.motion);
   std::optional<stage::Loads> loads;
-  if (o.loads) loads = stage::read<stage::Loads>(*o.loads);
+  bool structural = false;  // nodal_loads.h5: a structural load case, no flow
+  if (o.loads) {
+    auto file = fem::io::read_nodal_force_file(*o.loads);
+    loads = std::move(file.loads);
+    structural = file.structural;
+  }
   // Stages that disagree (issue 33): the motion on another mesh, loads from another mesh or motion.
   check_made_from(o.motion, o.mesh);
   if (o.loads) check_made_from(*o.loads, o.mesh), check_made_from(*o.loads, o.motion);
@@ -87,14 +95,20 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
   drive.root_motion = motion;
   drive.motion_source = o.motion.string();
   drive.ramp = o.ramp;
-  drive.root_rotation = o.root_rotation;
+  // A clamp suits a structure (nodal_loads.h5, load levels); a swimming fin's root turns.
+  const bool clamp = structural || o.objective == "static";
+  drive.root_rotation = o.root_rotation.value_or(clamp ? fem::RootRotation::zero : fem::RootRotation::fit);
+  if (!o.root_rotation && clamp) log::info("fin-fit: clamped root (no root rotation) for a structural load case");
   auto factory = std::make_shared<FinModelFactory>(mesh, base, space.names(), drive, o.mesh.string());
+  FitProblem problem{space, factory, nullptr, ""};
 
-  std::unique_ptr<ResidualFunction> objective;
+  std::unique_ptr<ResidualFunction>& objective = problem.objective;
   std::ostringstream what;
   if (o.objective == "quasi_static") {
     QuasiStaticOptions qs;
     qs.stress_free_base = o.stress_free_base;
+    qs.inertia = o.inertia;
+    qs.solve = o.increment;
     qs.dt = o.dt > 0 ? o.dt : target.frame_spacing();
     double t_lo = target.times.front(), t_hi = target.times.back();
     if (loads) {
@@ -103,7 +117,8 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
     }
     qs.instants = quasi_static_instants(o, target, qs.dt, t_lo, t_hi);
     what << "eq. (2) quasi-static increments of " << sci(qs.dt) << " s at " << qs.instants.size() << " instant(s)"
-         << (qs.stress_free_base ? " from stress-free bases" : "");
+         << (qs.stress_free_base ? " from stress-free bases" : "") << (qs.inertia ? ", with inertia" : "")
+         << (qs.solve == QuasiStaticOptions::Solve::linear ? ", linearised at the bases" : "");
     objective = std::make_unique<QuasiStaticObjective>(factory, std::move(target), qs);
   } else if (o.objective == "dynamic") {
     DynamicObjectiveOptions dy;
@@ -116,15 +131,61 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
     what << "eq. (1) dynamic run from rest at t = " << sci(dy.start_time) << " s, compared at "
          << compared.frame_count() << " frames";
     objective = std::make_unique<DynamicObjective>(factory, std::move(compared), dy);
+  } else if (o.objective == "static") {
+    if (!loads) throw InvalidInput("--objective static: needs --loads (the nodal forces of every load level)");
+    StaticObjectiveOptions so;
+    so.start_level = factory->start_time();
+    what << "static equilibrium at " << target.frame_count() << " load level(s) from the unloaded reference";
+    objective = std::make_unique<StaticObjective>(factory, std::move(target), so);
   } else {
-    throw InvalidInput("--objective '" + o.objective + "': expected quasi_static or dynamic");
+    throw InvalidInput("--objective '" + o.objective + "': expected quasi_static, dynamic or static");
   }
+
+  problem.description = what.str();
+  return problem;
+}
+
+MisfitReport evaluate_misfit(const FileFitOptions& o, const std::vector<std::pair<std::string, double>>& at) {
+  const FitProblem problem = load_fit_problem(o);
+  MisfitReport m;
+  m.description = problem.description;
+  m.names = problem.space.names();
+  m.values = problem.factory->default_parameters();
+  for (const auto& [name, value] : at) {
+    const auto it = std::find(m.names.begin(), m.names.end(), name);
+    if (it == m.names.end()) {
+      std::string known;
+      for (const auto& n : m.names) known += (known.empty() ? "" : ", ") + n;
+      throw InvalidInput("--at: '" + name + "' is not a parameter of this fit (" + known + ")");
+    }
+    m.values(it - m.names.begin()) = value;
+  }
+  const Eigen::VectorXd r = problem.objective->residuals(m.values);
+  const Eigen::VectorXd& w = problem.objective->sqrt_weights();
+  m.total = mean_distance(r, w);
+  m.block_times = problem.objective->block_times();
+  const Eigen::Index blocks = static_cast<Eigen::Index>(m.block_times.size());
+  if (blocks > 0 && w.size() % blocks == 0) {
+    const Eigen::Index per = w.size() / blocks;
+    for (Eigen::Index b = 0; b < blocks; ++b)
+      m.block_misfit.push_back(mean_distance(r.segment(3 * b * per, 3 * per), w.segment(b * per, per)));
+  } else {
+    m.block_times.clear();
+  }
+  return m;
+}
+
+FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& config) {
+  FitProblem problem = load_fit_problem(o);
+  const ParameterSpace& space = problem.space;
+  const auto& factory = problem.factory;
+  const ResidualFunction* objective = problem.objective.get();
 
   // One evaluation at the materials file's values before any generation: an unconstrained root
   // node set, a singular model or a diverging solve is an input problem, reported as such.
   try {
     const Eigen::VectorXd r = objective->residuals(factory->default_parameters());
-    log::info("fin-fit: " + what.str() + "; " + std::to_string(space.size()) + " parameters, " +
+    log::info("fin-fit: " + problem.description + "; " + std::to_string(space.size()) + " parameters, " +
               std::to_string(objective->residual_count()) + " residuals; objective at the materials file's values " +
               sci(mean_distance(r, objective->sqrt_weights())) + " m");
   } catch (const fem::SingularMatrix& e) {

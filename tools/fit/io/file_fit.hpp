@@ -11,22 +11,24 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "fem/root_motion.hpp"
+#include "fit/fin_parameters.hpp"
 #include "fit/fit_driver.hpp"
 #include "fit/fit_result.hpp"
+#include "fit/quasi_static_objective.hpp"
 
 namespace finverse::fit::io {
 
 struct FileFitOptions {
   std::filesystem::path mesh, motion, materials, out;
   std::optional<std::filesystem::path> loads, parameters, summary;
-  std::string objective = "quasi_static";  // or "dynamic"
+  std::string objective = "quasi_static";  // "dynamic" (eq. (1)) or "static" (load levels)
   // quasi_static: explicit instants [s], else `instant_count` instants spread evenly over the
   // target's span starting at mid-span (1: the paper's mid-swing); dt 0 = the frame spacing.
   std::vector<double> instants;
@@ -38,12 +40,38 @@ struct FileFitOptions {
   double periods = 1;
   double ramp = 0;  // s of ramp from rest before the first sample (0: ten frame intervals)
   // Root rotations of the drive: fit (root nodes + the rays' tangents at the root) or zero (a
-  // clamp that does not turn), fem/root_motion.hpp.
-  fem::RootRotation root_rotation = fem::RootRotation::fit;
+  // clamp that does not turn), fem/root_motion.hpp; unset: zero for a structural load case
+  // (nodal_loads.h5) or static load levels, fit otherwise.
+  std::optional<fem::RootRotation> root_rotation;
   // quasi_static: the base as the stress-free reference of the increment (QuasiStaticOptions).
   bool stress_free_base = false;
+  // quasi_static: eq. (2) with inertia, and how each increment is solved (QuasiStaticOptions).
+  bool inertia = false;
+  QuasiStaticOptions::Solve increment = QuasiStaticOptions::Solve::newton;
   FitOptions fit;
 };
+
+// The fit as `fin-fit run` sets it up: the parameter space, the fin model factory and the
+// objective, with a one-line description of the objective. Reads and checks every input file.
+struct FitProblem {
+  ParameterSpace space;
+  std::shared_ptr<FinModelFactory> factory;
+  std::unique_ptr<ResidualFunction> objective;
+  std::string description;
+};
+FitProblem load_fit_problem(const FileFitOptions& options);
+
+// `fin-fit evaluate`: the objective at given parameter values (the materials file's where not
+// given), in total and per instant / frame / load level. Throws InvalidInput for a name that is
+// not a parameter.
+struct MisfitReport {
+  std::string description;
+  std::vector<std::string> names;
+  Eigen::VectorXd values;
+  double total = 0;  // distance objective J [m]
+  std::vector<double> block_times, block_misfit;
+};
+MisfitReport evaluate_misfit(const FileFitOptions& options, const std::vector<std::pair<std::string, double>>& at);
 
 // Throws fit::InvalidInput / fem::InvalidInput / finverse::Error naming the file for bad input.
 FitResult run_fit_from_files(const FileFitOptions& options, const nlohmann::json& config);

@@ -35,11 +35,15 @@ FitOptions with_progress(FitOptions f, const std::string& label) {
   return f;
 }
 
+// tolerance 0: the errors are reported, not graded.
 void report_fit(Summary& s, const std::string& prefix, const FitResult& r, double tolerance,
                 const std::string& paper_note) {
   const Eigen::VectorXd truth = r.space.truth();
   for (int i = 0; i < r.space.size(); ++i) {
-    s.relative(prefix + "_" + r.space[i].name, r.best_x(i), truth(i), tolerance, paper_note);
+    if (tolerance > 0)
+      s.relative(prefix + "_" + r.space[i].name, r.best_x(i), truth(i), tolerance, paper_note);
+    else
+      s.info(prefix + "_" + r.space[i].name + "_error", (r.best_x(i) - truth(i)) / truth(i));
     s.info(prefix + "_" + r.space[i].name + "_identified", r.uncertainty.identified.empty() ? 0 : r.uncertainty.identified[i]);
   }
   s.info(prefix + "_objective", r.best_objective, "chord");
@@ -81,7 +85,17 @@ Summary run_hybrid_plate_fit(const HybridPlateFitOptions& o) {
   t0 = std::chrono::steady_clock::now();
   const FitResult rq = run_fit(space, quasi, with_progress(o.fit, "fit_hybrid_plate eq. (2)"), "quasi_static");
   const double wall_quasi = seconds_since(t0);
-  report_fit(s, "quasi_static", rq, 0.05, std::string(kTable3Source) + ": errors up to 19.5 %; goal 5 %");
+  // The paper's form drops the plate's inertia, against a dynamic truth (its bias is the point).
+  report_fit(s, "quasi_static", rq, 0, std::string(kTable3Source) + ": errors up to 19.5 %");
+
+  // Eq. (2) with inertia (issue 45 goal 5): the same fit with M times the truth's measured
+  // acceleration change as a known load.
+  qs.inertia = true;
+  const QuasiStaticObjective inertial(t.factory, t.qs_truth, qs);
+  const FitResult ri =
+      run_fit(space, inertial, with_progress(o.fit, "fit_hybrid_plate eq. (2) with inertia"), "quasi_static");
+  report_fit(s, "quasi_static_inertia", ri, 0.05,
+             std::string(kTable3Source) + ": the paper's eq. (2) errs up to 19.5 %; issue 45 goal 5 %");
   if (!o.materials_out.empty())
     io::write_materials(o.materials_out, rq, Provenance{"fin-fit", s.parameters(), {o.case_file}});
 

@@ -1,6 +1,7 @@
 // Fit validations on the seed paper's hybrid plate (sec. 3.4; issue 31, validations 2, 3, 5), a
 // twin set up by hybrid_plate_setup.hpp:
-//   hybrid_plate     eq. (1) over the last period and eq. (2) at mid-swing (T/400) in one run:
+//   hybrid_plate     eq. (1) over the last period, eq. (2) at mid-swing (T/400) in the paper's form
+//                    and with inertia (measured_inertia.hpp) in one run:
 //                    every parameter's error and the wall-time ratio of the two fits;
 //   noise            the target with fin-track's noise (mean vertex error 0.3 % c), several seeds:
 //                    errors, identified fraction and 95 % interval coverage;
