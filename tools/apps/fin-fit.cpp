@@ -75,6 +75,67 @@ int print_misfit(const finverse::fit::io::MisfitReport& m) {
   return 0;
 }
 
+// The fit problem's flags, shared by run and evaluate (only one subcommand is parsed).
+struct ProblemFlags {
+  finverse::fit::io::FileFitOptions o;
+  std::string mesh, motion, materials, loads, parameters;
+  std::string root_rotation = "auto", base = "carried", increment = "newton";
+};
+
+void add_problem_options(CLI::App* c, ProblemFlags& f) {
+  c->add_option("--mesh", f.mesh, "mesh.h5 (finverse/mesh; a structural mesh needs no /ibm surface)")->required();
+  c->add_option("--motion", f.motion,
+                "motion.h5: the target positions per time or load level; its root nodes drive "
+                "the model")
+      ->required();
+  c->add_option("--loads", f.loads,
+                "loads.h5 of fin-cfd, or nodal_loads.h5 (a structural load case: times or load "
+                "levels and nodal forces); eq. (2) needs loads for the modulus scale");
+  c->add_option("--materials", f.materials, "materials JSON: densities and the values of parameters not fitted")
+      ->required();
+  c->add_option("--parameters", f.parameters,
+                "parameter specification JSON (default: E_membrane, E_ray<id> for every ray, nu)");
+  c->add_option("--objective", f.o.objective,
+                "quasi_static (paper eq. 2), dynamic (eq. 1) or static (load levels measured at rest)")
+      ->check(CLI::IsMember({"quasi_static", "dynamic", "static"}))
+      ->capture_default_str();
+  c->add_option("--instants", f.o.instants, "quasi_static: instants t_j [s] (default: --instant-count spread)");
+  c->add_option("--instant-count", f.o.instant_count, "quasi_static: instants spread over the span from mid-swing")
+      ->capture_default_str();
+  c->add_option("--dt", f.o.dt, "quasi_static: increment [s] (0: the motion's frame spacing)")->capture_default_str();
+  c->add_option("--substeps", f.o.substeps, "dynamic: time steps per frame interval")->capture_default_str();
+  c->add_option("--periods", f.o.periods, "dynamic: periods compared at the end of the motion")->capture_default_str();
+  c->add_option("--ramp", f.o.ramp, "s (or load level) of ramp from rest before the first frame (0: ten intervals)")
+      ->capture_default_str();
+  c->add_option("--root-rotation", f.root_rotation,
+                "root rotations: fit (root nodes + the rays' tangents at the root), zero (a clamp that does not "
+                "turn) or auto (zero with nodal_loads.h5 or --objective static, else fit)")
+      ->check(CLI::IsMember({"auto", "fit", "per_ray", "zero"}))
+      ->capture_default_str();
+  c->add_option("--base", f.base,
+                "quasi_static: the base at t carries its stress from the mesh (carried) or is the stress-free "
+                "reference of the increment (stress_free)")
+      ->check(CLI::IsMember({"carried", "stress_free"}))
+      ->capture_default_str();
+  c->add_flag("--inertia", f.o.inertia,
+              "quasi_static: keep the structure's mass times the motion's measured acceleration as a known load "
+              "(eq. (2) with inertia; default: the paper's form without it)");
+  c->add_option("--increment", f.increment,
+                "quasi_static: newton (the converged increment) or linear (its first Newton step from the base's "
+                "stored tangent: no element evaluation per evaluation, docs/studies/fit_evaluation_speed.md)")
+      ->check(CLI::IsMember({"newton", "linear"}))
+      ->capture_default_str();
+}
+
+// The help's closing paragraph for run and evaluate: how to give one's own data.
+constexpr const char* kOwnData =
+    "Your own FEM or experiment: write mesh.h5 with the structural datasets only (points, triangles, shell/*, "
+    "beams/*, root_nodes; no /ibm), motion.h5 with the measured positions of every mesh node at each time or "
+    "load level (time, points), and nodal_loads.h5 with the nodal forces at the same times or levels (time, "
+    "nodal_force); `fin-contract --markdown` lists every dataset. Static tests: --objective static (the "
+    "model's equilibrium at each level from the unloaded reference; the clamp is the default root); "
+    "`fin-fit evaluate` prints the misfit at given moduli before a fit.";
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -82,69 +143,19 @@ int main(int argc, char** argv) {
   finverse::cli::Standard standard(app, "fin-fit");
   app.require_subcommand(1);
 
-  finverse::fit::io::FileFitOptions o;
-  std::string mesh, motion, materials, out, loads, parameters, summary, checkpoint;
+  ProblemFlags flags;
+  finverse::fit::io::FileFitOptions& o = flags.o;
+  std::string out, summary, checkpoint;
   std::vector<std::string> methods{"ga"};
-  std::string root_rotation = "auto", base = "carried", increment = "newton";
   bool no_polish = false;
-  // The fit problem's flags, shared by run and evaluate (only one subcommand is parsed).
-  const auto add_problem_options = [&](CLI::App* c) {
-    c->add_option("--mesh", mesh, "mesh.h5 (finverse/mesh; a structural mesh needs no /ibm surface)")->required();
-    c->add_option("--motion", motion,
-                  "motion.h5: the target positions per time or load level; its root nodes drive "
-                  "the model")
-        ->required();
-    c->add_option("--loads", loads,
-                  "loads.h5 of fin-cfd, or nodal_loads.h5 (a structural load case: times or load "
-                  "levels and nodal forces); eq. (2) needs loads for the modulus scale");
-    c->add_option("--materials", materials, "materials JSON: densities and the values of parameters not fitted")
-        ->required();
-    c->add_option("--parameters", parameters,
-                  "parameter specification JSON (default: E_membrane, E_ray<id> for every ray, nu)");
-    c->add_option("--objective", o.objective,
-                  "quasi_static (paper eq. 2), dynamic (eq. 1) or static (load levels measured at rest)")
-        ->check(CLI::IsMember({"quasi_static", "dynamic", "static"}))
-        ->capture_default_str();
-    c->add_option("--instants", o.instants, "quasi_static: instants t_j [s] (default: --instant-count spread)");
-    c->add_option("--instant-count", o.instant_count, "quasi_static: instants spread over the span from mid-swing")
-        ->capture_default_str();
-    c->add_option("--dt", o.dt, "quasi_static: increment [s] (0: the motion's frame spacing)")->capture_default_str();
-    c->add_option("--substeps", o.substeps, "dynamic: time steps per frame interval")->capture_default_str();
-    c->add_option("--periods", o.periods, "dynamic: periods compared at the end of the motion")->capture_default_str();
-    c->add_option("--ramp", o.ramp, "s (or load level) of ramp from rest before the first frame (0: ten intervals)")
-        ->capture_default_str();
-    c->add_option("--root-rotation", root_rotation,
-                  "root rotations: fit (root nodes + the rays' tangents at the root), zero (a clamp that does not "
-                  "turn) or auto (zero with nodal_loads.h5 or --objective static, else fit)")
-        ->check(CLI::IsMember({"auto", "fit", "per_ray", "zero"}))
-        ->capture_default_str();
-    c->add_option("--base", base,
-                  "quasi_static: the base at t carries its stress from the mesh (carried) or is the stress-free "
-                  "reference of the increment (stress_free)")
-        ->check(CLI::IsMember({"carried", "stress_free"}))
-        ->capture_default_str();
-    c->add_flag("--inertia", o.inertia,
-                "quasi_static: keep the structure's mass times the motion's measured acceleration as a known load "
-                "(eq. (2) with inertia; default: the paper's form without it)");
-    c->add_option("--increment", increment,
-                  "quasi_static: newton (the converged increment) or linear (its first Newton step from the base's "
-                  "stored tangent: no element evaluation per evaluation, docs/studies/fit_evaluation_speed.md)")
-        ->check(CLI::IsMember({"newton", "linear"}))
-        ->capture_default_str();
-  };
-  const char* own_data =
-      "Your own FEM or experiment: write mesh.h5 with the structural datasets only (points, triangles, shell/*, "
-      "beams/*, root_nodes; no /ibm), motion.h5 with the measured positions of every mesh node at each time or "
-      "load level (time, points), and nodal_loads.h5 with the nodal forces at the same times or levels (time, "
-      "nodal_force); `fin-contract --markdown` lists every dataset. Static tests: --objective static (the "
-      "model's equilibrium at each level from the unloaded reference; the clamp is the default root); "
-      "`fin-fit evaluate` prints the misfit at given moduli before a fit.";
   auto* rn = app.add_subcommand("run", "fit from stage files (mesh, motion, loads, materials) to materials.h5");
-  add_problem_options(rn);
-  rn->footer(own_data);
+  add_problem_options(rn, flags);
+  rn->footer(kOwnData);
   rn->add_option("--out", out, "materials.h5 (finverse/materials)")->required();
   rn->add_option("--summary", summary, "also write this JSON digest (values, intervals, wall times)");
-  rn->add_option("--methods", methods, "optimisers, run in this order: ga, cmaes")->delimiter(',')->capture_default_str();
+  rn->add_option("--methods", methods, "optimisers, run in this order: ga, cmaes")
+      ->delimiter(',')
+      ->capture_default_str();
   rn->add_option("--runs", o.fit.runs, "independent seeded runs per method")->capture_default_str();
   rn->add_option("--population", o.fit.population, "GA population (0: 8 per unknown)")->capture_default_str();
   rn->add_option("--generations", o.fit.max_generations, "generation cap per run")->capture_default_str();
@@ -154,15 +165,16 @@ int main(int argc, char** argv) {
   rn->add_option("--seed", o.fit.seed, "seed of the first run (run k uses seed + k)")->capture_default_str();
   rn->add_flag("--no-polish", no_polish, "skip the Levenberg-Marquardt polish (and with it the uncertainty)");
   rn->add_option("--polish-evaluations", o.fit.polish_options.max_evaluations,
-                 "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")->capture_default_str();
+                 "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")
+      ->capture_default_str();
   rn->add_option("--checkpoint", checkpoint, "checkpoint file, written after every generation");
   rn->add_flag("--resume", o.fit.resume, "continue from --checkpoint (same inputs and options)");
 
   // The misfit at given values, without a fit.
   std::vector<std::string> at_values;
   auto* ev = app.add_subcommand("evaluate", "the objective at given parameter values, in total and per instant");
-  add_problem_options(ev);
-  ev->footer(own_data);
+  add_problem_options(ev, flags);
+  ev->footer(kOwnData);
   ev->add_option("--at", at_values,
                  "NAME=VALUE (SI), e.g. --at E_membrane=2e6 --at nu=0.4; the materials file's "
                  "values for the others")
@@ -197,7 +209,8 @@ int main(int argc, char** argv) {
     c->add_option("--generations", hp.fit.max_generations, "generation cap")->capture_default_str();
     c->add_option("--seed", hp.fit.seed, "seed of the first run")->capture_default_str();
     c->add_option("--polish-evaluations", hp.fit.polish_options.max_evaluations,
-                  "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")->capture_default_str();
+                  "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")
+        ->capture_default_str();
     c->add_option("--noise-seeds", hp.noise_seeds, "noise: seeds")->capture_default_str();
     c->add_option("--materials-out", hp.materials_out, "hybrid_plate: also write the eq. (2) fit as materials.h5");
     c->add_option("--noise-objective", hp.noise_objective, "noise: dynamic or quasi_static")->capture_default_str();
@@ -219,7 +232,8 @@ int main(int argc, char** argv) {
   uc->add_option("--generations", up.fit.max_generations, "generation cap")->capture_default_str();
   uc->add_option("--seed", up.fit.seed, "seed of the first run")->capture_default_str();
   uc->add_option("--polish-evaluations", up.fit.polish_options.max_evaluations,
-                 "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")->capture_default_str();
+                 "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")
+      ->capture_default_str();
 
   // A fin twin's materials.h5 against the modulus field its target was computed with.
   std::string graded, truth_file, twin_name = "fit_trout_twin";
@@ -251,9 +265,9 @@ int main(int argc, char** argv) {
       return finish(std::move(summary), fl.name, out_dir, wall);
     }
     if (*gc) {
-      auto summary = finverse::fit::validation::grade_fin_twin(
-          finverse::stage::read<finverse::stage::Materials>(graded), finverse::fem::io::read_material_spec(truth_file),
-          twin_name);
+      auto summary =
+          finverse::fit::validation::grade_fin_twin(finverse::stage::read<finverse::stage::Materials>(graded),
+                                                    finverse::fem::io::read_material_spec(truth_file), twin_name);
       summary.parameters()["materials_h5"] = graded;
       summary.parameters()["truth"] = truth_file;
       return finish(std::move(summary), twin_name, out_dir, 0.0);
@@ -278,18 +292,18 @@ int main(int argc, char** argv) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return finish(std::move(summary), "fit_" + name, out_dir, wall);
     }
-    o.mesh = mesh;
-    o.motion = motion;
-    o.materials = materials;
+    o.mesh = flags.mesh;
+    o.motion = flags.motion;
+    o.materials = flags.materials;
     o.out = out;
-    if (!loads.empty()) o.loads = loads;
-    if (!parameters.empty()) o.parameters = parameters;
+    if (!flags.loads.empty()) o.loads = flags.loads;
+    if (!flags.parameters.empty()) o.parameters = flags.parameters;
     if (!summary.empty()) o.summary = summary;
     if (!checkpoint.empty()) o.fit.checkpoint = checkpoint;
     o.fit.methods = methods;
-    if (root_rotation != "auto") o.root_rotation = finverse::fem::parse_root_rotation(root_rotation);
-    o.stress_free_base = base == "stress_free";
-    o.increment = finverse::fit::parse_increment_solve(increment);
+    if (flags.root_rotation != "auto") o.root_rotation = finverse::fem::parse_root_rotation(flags.root_rotation);
+    o.stress_free_base = flags.base == "stress_free";
+    o.increment = finverse::fit::parse_increment_solve(flags.increment);
     if (*ev) return print_misfit(finverse::fit::io::evaluate_misfit(o, parse_at(at_values)));
     o.fit.polish = !no_polish;
     o.fit.threads = finverse::cli::threads_in_use();

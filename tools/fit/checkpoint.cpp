@@ -99,6 +99,7 @@ RunResult run_result_from_json(const nlohmann::json& j) {
 }
 
 nlohmann::json uncertainty_to_json(const Uncertainty& u) {
+  const double misfit[3] = {u.misfit_correlation_length, u.misfit_neighbour_correlation, u.effective_residuals};
   return {{"standard_error", pack_vector(u.standard_error)},
           {"lower95", pack_vector(u.lower95)},
           {"upper95", pack_vector(u.upper95)},
@@ -108,7 +109,9 @@ nlohmann::json uncertainty_to_json(const Uncertainty& u) {
           {"residual_variance", pack_doubles(&u.residual_variance, 1)},
           {"degrees_of_freedom", u.degrees_of_freedom},
           {"identified", u.identified},
-          {"verdict", u.verdict}};
+          {"verdict", u.verdict},
+          {"systematic_misfit", u.systematic_misfit},
+          {"misfit", pack_doubles(misfit, 3)}};
 }
 
 Uncertainty uncertainty_from_json(const nlohmann::json& j) {
@@ -126,6 +129,11 @@ Uncertainty uncertainty_from_json(const nlohmann::json& j) {
   u.degrees_of_freedom = j.at("degrees_of_freedom").get<int>();
   u.identified = j.at("identified").get<std::vector<int>>();
   u.verdict = j.at("verdict").get<std::vector<std::string>>();
+  u.systematic_misfit = j.at("systematic_misfit").get<bool>();
+  const std::vector<double> misfit = unpack_doubles(j.at("misfit"));
+  u.misfit_correlation_length = misfit.at(0);
+  u.misfit_neighbour_correlation = misfit.at(1);
+  u.effective_residuals = misfit.at(2);
   return u;
 }
 

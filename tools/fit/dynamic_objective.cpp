@@ -12,13 +12,8 @@ namespace finverse::fit {
 DynamicObjective::DynamicObjective(std::shared_ptr<const ModelFactory> factory, TargetMotion target,
                                    DynamicObjectiveOptions options)
     : factory_(std::move(factory)), target_(std::move(target)) {
-  if (!factory_) throw InvalidInput("dynamic objective: no model factory");
-  check_target(target_);
+  const std::unique_ptr<fem::Model> model = nominal_model_for(factory_.get(), target_, "dynamic objective");
   const std::string& src = target_.source;
-  const std::unique_ptr<fem::Model> model = factory_->build(factory_->default_parameters());
-  if (target_.node_count() != model->node_count())
-    throw InvalidInput(src + ": the target has " + std::to_string(target_.node_count()) + " nodes, the model " +
-                       std::to_string(model->node_count()));
   const auto& t = target_.times;
   // The integrator's output interval is fixed: unequal frames would be silently mis-timed.
   const double h = t.size() > 1 ? t[1] - t[0] : t[0] - options.start_time;
@@ -57,6 +52,7 @@ DynamicObjective::DynamicObjective(std::shared_ptr<const ModelFactory> factory, 
                  ? default_node_weights(*model, prescribed)
                  : checked_node_weights(options.node_weights, model->node_count(), prescribed, "dynamic objective");
   nodes_ = fit::compared_nodes(weights_);
+  points_ = compared_points(*model, nodes_);
   sqrt_weights_.resize(static_cast<Eigen::Index>(nodes_.size() * t.size()));
   for (size_t k = 0, i = 0; k < t.size(); ++k)
     for (int n : nodes_) sqrt_weights_(static_cast<Eigen::Index>(i++)) = std::sqrt(weights_(n));

@@ -44,6 +44,9 @@ class DynamicObjective : public ResidualFunction {
   int residual_count() const override {
     return 3 * static_cast<int>(nodes_.size()) * target_.frame_count();
   }
+  std::optional<ResidualLayout> residual_layout() const override {
+    return ResidualLayout{static_cast<int>(target_.times.size()), points_};
+  }
   std::vector<double> block_times() const override { return target_.times; }
   Eigen::VectorXd residuals(const Eigen::VectorXd& physical) const override;
   const Eigen::VectorXd& sqrt_weights() const override { return sqrt_weights_; }
@@ -61,6 +64,7 @@ class DynamicObjective : public ResidualFunction {
   fem::RunOptions run_options_;
   Eigen::VectorXd weights_, sqrt_weights_;
   std::vector<int> nodes_;
+  Eigen::Matrix3Xd points_;  // the compared nodes' reference positions (residual_layout)
 };
 
 }  // namespace finverse::fit

@@ -16,7 +16,7 @@ namespace finverse::fit {
 namespace {
 
 constexpr const char* checkpoint_format = "finverse/fit-checkpoint";
-constexpr int checkpoint_version = 1;
+constexpr int checkpoint_version = 2;  // 2: the uncertainty's misfit correlation
 
 // Everything the result depends on; a checkpoint is only resumed for the same fingerprint.
 // Threads are left out on purpose: the result does not depend on them.
@@ -61,6 +61,7 @@ FitResult run_fit(const ParameterSpace& space, const ResidualFunction& function,
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   const int n = space.size();
+  const std::optional<ResidualLayout> layout = function.residual_layout();  // for the intervals
   if (function.parameter_count() != n)
     throw InvalidInput("fit: the residual function takes " + std::to_string(function.parameter_count()) +
                        " parameters, the parameter space has " + std::to_string(n));
@@ -166,7 +167,8 @@ FitResult run_fit(const ParameterSpace& space, const ResidualFunction& function,
       done.run.polish_evaluations = lm.evaluations;
       done.run.polish_wall_seconds = lm.wall_seconds;
       if (lm.jacobian.size() > 0)
-        done.uncertainty = compute_uncertainty(space, lm.z, lm.residuals, lm.jacobian, options.uncertainty);
+        done.uncertainty = compute_uncertainty(space, lm.z, lm.residuals, lm.jacobian, options.uncertainty,
+                                               layout ? &*layout : nullptr);
     }
     completed.push_back(std::move(done));
     current.reset();
@@ -209,7 +211,8 @@ FitResult run_fit(const ParameterSpace& space, const ResidualFunction& function,
       result.best_sum_of_squares = b.residuals[0].squaredNorm();
       const Eigen::MatrixXd jac = finite_difference_jacobian(space, function, z, b.residuals[0], lm_options.fd_step,
                                                              lm_options.central, options.threads, &result.evaluations);
-      result.uncertainty = compute_uncertainty(space, z, b.residuals[0], jac, options.uncertainty);
+      result.uncertainty =
+          compute_uncertainty(space, z, b.residuals[0], jac, options.uncertainty, layout ? &*layout : nullptr);
     } else {
       result.best_sum_of_squares = std::numeric_limits<double>::infinity();
     }

@@ -51,6 +51,11 @@ struct Uncertainty {
   int degrees_of_freedom = 0;
   std::vector<int> identified;      // 1 / 0 per parameter
   std::vector<std::string> verdict; // "identified" | "interval spans more than a decade" | "at bound" | ...
+  // The residual's spatial correlation (correlated_residual.hpp), when its layout was known.
+  bool systematic_misfit = false;
+  double misfit_correlation_length = 0;  // m; 0: white
+  double misfit_neighbour_correlation = 0;
+  double effective_residuals = 0;
 };
 
 struct FitResult {

@@ -3,6 +3,8 @@
 
 #include <array>
 
+#include "fit/errors.hpp"
+
 namespace finverse::fit {
 
 std::vector<int> translation_prescribed_nodes(const fem::Model& model) {
@@ -13,6 +15,17 @@ std::vector<int> translation_prescribed_nodes(const fem::Model& model) {
   for (int n = 0; n < model.node_count(); ++n)
     if (held[n][0] && held[n][1] && held[n][2]) nodes.push_back(n);
   return nodes;
+}
+
+std::unique_ptr<fem::Model> nominal_model_for(const ModelFactory* factory, const TargetMotion& target,
+                                              const std::string& what) {
+  if (!factory) throw InvalidInput(what + ": no model factory");
+  check_target(target);
+  std::unique_ptr<fem::Model> model = factory->build(factory->default_parameters());
+  if (target.node_count() != model->node_count())
+    throw InvalidInput(target.source + ": the target has " + std::to_string(target.node_count()) +
+                       " nodes, the model " + std::to_string(model->node_count()));
+  return model;
 }
 
 }  // namespace finverse::fit

@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "fem/model.hpp"
+#include "fit/target_motion.hpp"
 
 namespace finverse::fit {
 
@@ -62,6 +63,12 @@ class ModelFactory {
     return nullptr;
   }
 };
+
+// The objectives' common start: checks the factory (InvalidInput "<what>: no model factory") and
+// the target (check_target), builds the model at the default parameters and refuses a target of
+// another node count (naming target.source). Returns that nominal model.
+std::unique_ptr<fem::Model> nominal_model_for(const ModelFactory* factory, const TargetMotion& target,
+                                              const std::string& what);
 
 // The nodes of a model with all three translations prescribed or fixed (a helper for factories).
 std::vector<int> translation_prescribed_nodes(const fem::Model& model);

@@ -61,4 +61,10 @@ std::vector<int> compared_nodes(const Eigen::VectorXd& weights) {
   return nodes;
 }
 
+Eigen::Matrix3Xd compared_points(const fem::Model& model, const std::vector<int>& nodes) {
+  Eigen::Matrix3Xd p(3, static_cast<Eigen::Index>(nodes.size()));
+  for (size_t i = 0; i < nodes.size(); ++i) p.col(static_cast<Eigen::Index>(i)) = model.reference_positions()[nodes[i]];
+  return p;
+}
+
 }  // namespace finverse::fit

@@ -29,4 +29,7 @@ Eigen::VectorXd checked_node_weights(const Eigen::VectorXd& weights, int node_co
 // The nodes with w_i > 0, ascending: those the residuals compare.
 std::vector<int> compared_nodes(const Eigen::VectorXd& weights);
 
+// Their reference positions, one column per compared node (ResidualLayout::points).
+Eigen::Matrix3Xd compared_points(const fem::Model& model, const std::vector<int>& nodes);
+
 }  // namespace finverse::fit

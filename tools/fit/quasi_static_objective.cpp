@@ -53,14 +53,9 @@ constexpr double kBasisPoisson[fem::TangentBasis::kPoissonModels] = {0.1, 0.3, 0
 QuasiStaticObjective::QuasiStaticObjective(std::shared_ptr<const ModelFactory> factory, TargetMotion target,
                                            QuasiStaticOptions options)
     : factory_(std::move(factory)), options_(std::move(options)) {
-  if (!factory_) throw InvalidInput("quasi-static objective: no model factory");
-  check_target(target);
-  const std::string& src = target.source;
   // Topology, drive, weights and bases do not depend on the parameters: one nominal model.
-  const std::unique_ptr<fem::Model> model = factory_->build(factory_->default_parameters());
-  if (target.node_count() != model->node_count())
-    throw InvalidInput(src + ": the target has " + std::to_string(target.node_count()) + " nodes, the model " +
-                       std::to_string(model->node_count()));
+  const std::unique_ptr<fem::Model> model = nominal_model_for(factory_.get(), target, "quasi-static objective");
+  const std::string& src = target.source;
 
   instants_ = options_.instants;
   if (instants_.empty()) instants_.push_back(target.times[target.times.size() / 2]);
@@ -87,6 +82,7 @@ QuasiStaticObjective::QuasiStaticObjective(std::shared_ptr<const ModelFactory> f
                  : checked_node_weights(options_.node_weights, model->node_count(), prescribed,
                                         "quasi-static objective");
   nodes_ = fit::compared_nodes(weights_);
+  points_ = compared_points(*model, nodes_);
   sqrt_weights_.resize(static_cast<Eigen::Index>(nodes_.size() * instants_.size()));
   for (size_t j = 0, k = 0; j < instants_.size(); ++j)
     for (int n : nodes_) sqrt_weights_(static_cast<Eigen::Index>(k++)) = std::sqrt(weights_(n));

@@ -73,6 +73,9 @@ class QuasiStaticObjective : public ResidualFunction {
   int residual_count() const override { return 3 * static_cast<int>(nodes_.size() * instants_.size()); }
   Eigen::VectorXd residuals(const Eigen::VectorXd& physical) const override;
   const Eigen::VectorXd& sqrt_weights() const override { return sqrt_weights_; }
+  std::optional<ResidualLayout> residual_layout() const override {
+    return ResidualLayout{static_cast<int>(instants_.size()), points_};
+  }
   std::vector<double> block_times() const override { return instants_; }
 
   // dx_FE per instant, [instant][node] (every node): for diagnostics and plots.
@@ -107,6 +110,7 @@ class QuasiStaticObjective : public ResidualFunction {
   double dt_ = 0;
   Eigen::VectorXd weights_, sqrt_weights_;
   std::vector<int> nodes_;
+  Eigen::Matrix3Xd points_;                           // the compared nodes' reference positions (residual_layout)
   std::vector<fem::NodalState> base_;                 // [instant]
   std::vector<std::shared_ptr<const ModelFactory>> rebased_;  // stress_free_base: [instant]
   std::vector<std::vector<fem::Vec3>> target_dx_;     // [instant][node]

@@ -9,9 +9,11 @@
 // paper's unweighted forms on a uniform mesh.
 #pragma once
 
+#include <Eigen/Core>
+#include <optional>
 #include <vector>
 
-#include <Eigen/Core>
+#include "fit/residual_layout.hpp"
 
 namespace finverse::fit {
 
@@ -30,6 +32,9 @@ class ResidualFunction {
   // are sample-major in equal blocks, one per time; empty: one block (`fin-fit evaluate` prints
   // the misfit per block).
   virtual std::vector<double> block_times() const { return {}; }
+  // Where each residual sits, for the intervals' correlated-misfit estimate (residual_layout.hpp);
+  // none: the residuals are taken as independent.
+  virtual std::optional<ResidualLayout> residual_layout() const { return std::nullopt; }
 };
 
 // The distance objective J of the residuals r (see above); sqrt_weights as sqrt_weights().

@@ -20,13 +20,8 @@ StaticObjective::~StaticObjective() = default;
 StaticObjective::StaticObjective(std::shared_ptr<const ModelFactory> factory, TargetMotion target,
                                  StaticObjectiveOptions options)
     : factory_(std::move(factory)), target_(std::move(target)), options_(std::move(options)) {
-  if (!factory_) throw InvalidInput("static objective: no model factory");
-  check_target(target_);
+  const std::unique_ptr<fem::Model> model = nominal_model_for(factory_.get(), target_, "static objective");
   const std::string& src = target_.source;
-  const std::unique_ptr<fem::Model> model = factory_->build(factory_->default_parameters());
-  if (target_.node_count() != model->node_count())
-    throw InvalidInput(src + ": the target has " + std::to_string(target_.node_count()) + " nodes, the model " +
-                       std::to_string(model->node_count()));
   if (!(options_.start_level < target_.times.front())) {
     std::ostringstream os;
     os << src << ": the first load level " << target_.times.front() << " must follow the unloaded reference at "
@@ -45,6 +40,7 @@ StaticObjective::StaticObjective(std::shared_ptr<const ModelFactory> factory, Ta
                  ? default_node_weights(*model, prescribed)
                  : checked_node_weights(options_.node_weights, model->node_count(), prescribed, "static objective");
   nodes_ = fit::compared_nodes(weights_);
+  points_ = compared_points(*model, nodes_);
   sqrt_weights_.resize(static_cast<Eigen::Index>(nodes_.size() * target_.times.size()));
   for (size_t k = 0, i = 0; k < target_.times.size(); ++k)
     for (int n : nodes_) sqrt_weights_(static_cast<Eigen::Index>(i++)) = std::sqrt(weights_(n));

@@ -43,6 +43,9 @@ class StaticObjective : public ResidualFunction {
   int residual_count() const override { return 3 * static_cast<int>(nodes_.size() * target_.times.size()); }
   Eigen::VectorXd residuals(const Eigen::VectorXd& physical) const override;
   const Eigen::VectorXd& sqrt_weights() const override { return sqrt_weights_; }
+  std::optional<ResidualLayout> residual_layout() const override {
+    return ResidualLayout{static_cast<int>(target_.times.size()), points_};
+  }
   std::vector<double> block_times() const override { return target_.times; }
 
   // The model's positions at every level, [level][node].
@@ -59,6 +62,7 @@ class StaticObjective : public ResidualFunction {
   StaticObjectiveOptions options_;
   Eigen::VectorXd weights_, sqrt_weights_;
   std::vector<int> nodes_;
+  Eigen::Matrix3Xd points_;  // the compared nodes' reference positions (residual_layout)
   mutable std::mutex mutex_;
   mutable std::list<std::unique_ptr<Workspace>> idle_;
 };

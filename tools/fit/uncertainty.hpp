@@ -4,12 +4,20 @@
 // singular direction gives infinite standard errors instead of a huge, confident-looking number.
 // A parameter is reported identified only when its direction is not singular, it is not at a
 // bound, and its 95 % interval spans at most a decade (log10) or the bounds' width (linear).
+//
+// With the residual's layout (issue 45, deliverable 6) the residual's spatial correlation is
+// estimated (correlated_residual.hpp). When neighbouring residuals err alike -- the misfit is the
+// model's, not independent noise -- the covariance is the sandwich with that correlation and the
+// t quantile takes the effective number of residuals; every verdict then begins with "model
+// misfit dominates: ", and a parameter that moving across its whole bounds would change the
+// residual by less than that misfit is "insensitive", never identified.
 #pragma once
 
 #include <Eigen/Core>
 
 #include "fit/fit_result.hpp"
 #include "fit/parameter_space.hpp"
+#include "fit/residual_layout.hpp"
 
 namespace finverse::fit {
 
@@ -19,11 +27,14 @@ struct UncertaintyOptions {
                                      // this is insensitive
   double bound_tolerance = 1e-3;     // at a bound: within this fraction of the scaled range
   double confidence = 0.95;
+  // Correlation of neighbouring residuals from which the misfit counts as systematic.
+  double systematic_correlation = 0.5;
 };
 
-// z: the scaled optimum; r = r(z) (m entries); jacobian: m x n.
-Uncertainty compute_uncertainty(const ParameterSpace& space, const Eigen::VectorXd& z,
-                                const Eigen::VectorXd& r, const Eigen::MatrixXd& jacobian,
-                                const UncertaintyOptions& options = {});
+// z: the scaled optimum; r = r(z) (m entries); jacobian: m x n; layout: where each residual sits
+// (null: independent residuals assumed).
+Uncertainty compute_uncertainty(const ParameterSpace& space, const Eigen::VectorXd& z, const Eigen::VectorXd& r,
+                                const Eigen::MatrixXd& jacobian, const UncertaintyOptions& options = {},
+                                const ResidualLayout* layout = nullptr);
 
 }  // namespace finverse::fit

@@ -427,6 +427,21 @@ fit::FinDrive fin_drive(const stage::Mesh& mesh) {
   return d;
 }
 
+// Target: the factory's own quasi-static march at its defaults (positions only), t = 0 .. 0.2.
+fit::TargetMotion own_quasi_static_march(const fit::FinModelFactory& factory) {
+  const auto model = factory.build(factory.default_parameters());
+  fem::RunOptions run;
+  run.start_time = factory.start_time();
+  std::vector<double> times;
+  for (int k = 0; k <= 20; ++k) times.push_back(0.01 * k);
+  fit::TargetMotion target;
+  for (const auto& fr : fem::run_structural_analysis(*model, run, times)) {
+    target.times.push_back(fr.time);
+    target.positions.push_back(fr.state.position);
+  }
+  return target;
+}
+
 }  // namespace
 
 TEST(FinParameters, DefaultSpaceAndNames) {
@@ -468,17 +483,8 @@ TEST(FinParameters, InPlaceModuliEqualARebuild) {
   const auto factory = std::make_shared<fit::FinModelFactory>(
       mesh, fin_materials(), std::vector<std::string>{"E_membrane", "E_ray3", "E_ray5", "E_ray7", "nu"}, drive);
   EXPECT_NEAR(factory->ramp(), 0.1, 1e-15);  // ten intervals, as fin-fem run
-  // Target: the factory's own quasi-static march (positions only).
   const auto model = factory->build(factory->default_parameters());
-  fem::RunOptions run;
-  run.start_time = factory->start_time();
-  std::vector<double> times;
-  for (int k = 0; k <= 20; ++k) times.push_back(0.01 * k);
-  fit::TargetMotion target;
-  for (const auto& fr : fem::run_structural_analysis(*model, run, times)) {
-    target.times.push_back(fr.time);
-    target.positions.push_back(fr.state.position);
-  }
+  const fit::TargetMotion target = own_quasi_static_march(*factory);
   const fit::QuasiStaticObjective cached(factory, target, {.instants = {0.05, 0.1}});
   const fit::QuasiStaticObjective fresh(factory, target, {.instants = {0.05, 0.1}, .cached_models = 0});
   std::vector<Eigen::VectorXd> ps;
@@ -629,16 +635,7 @@ TEST(QuasiStaticObjective, LinearIncrementFollowsNewtonOnTheFin) {
   const auto factory = std::make_shared<fit::FinModelFactory>(
       mesh, fin_materials(), std::vector<std::string>{"E_membrane", "E_ray3", "E_ray5", "E_ray7", "nu"},
       fin_drive(mesh));
-  const auto model = factory->build(factory->default_parameters());
-  fem::RunOptions run;
-  run.start_time = factory->start_time();
-  std::vector<double> times;
-  for (int k = 0; k <= 20; ++k) times.push_back(0.01 * k);
-  fit::TargetMotion target;
-  for (const auto& fr : fem::run_structural_analysis(*model, run, times)) {
-    target.times.push_back(fr.time);
-    target.positions.push_back(fr.state.position);
-  }
+  const fit::TargetMotion target = own_quasi_static_march(*factory);
   fit::QuasiStaticOptions newton{.instants = {0.05, 0.1}, .stress_free_base = true};
   fit::QuasiStaticOptions linear = newton;
   linear.solve = fit::QuasiStaticOptions::Solve::linear;

@@ -3,15 +3,14 @@
 // decades, and the scale direction of a ratio-only model are all reported not identified.
 #include <gtest/gtest.h>
 
-#include "fit_test_util.hpp"
-
+#include <Eigen/Dense>
 #include <cmath>
 #include <random>
 
-#include <Eigen/Dense>
-
+#include "fit/correlated_residual.hpp"
 #include "fit/levenberg_marquardt.hpp"
 #include "fit/uncertainty.hpp"
+#include "fit_test_util.hpp"
 
 namespace fit = finverse::fit;
 
@@ -146,4 +145,50 @@ TEST(Uncertainty, FiniteDifferenceJacobianOfALinearModel) {
       fit::finite_difference_jacobian(space, f, z, f.residuals(z), 1e-4, false, 2, &evaluations);
   EXPECT_EQ(evaluations, 2);
   EXPECT_NEAR((j - lin.a).norm(), 0, 1e-9);
+}
+
+// Issue 45, deliverable 6: a smooth residual over a grid of nodes (a model's misfit) is found
+// systematic and widens the intervals; independent noise is found white and changes nothing.
+TEST(Uncertainty, SystematicMisfitWidensTheIntervalsAndSaysSo) {
+  const int side = 12, n = side * side;
+  fit::ResidualLayout layout{2, Eigen::Matrix3Xd(3, n)};
+  for (int i = 0; i < side; ++i)
+    for (int k = 0; k < side; ++k) layout.points.col(i * side + k) = Eigen::Vector3d(i / 11.0, 0, k / 11.0);
+  const Eigen::Index m = 3 * 2 * n;
+  Eigen::MatrixXd J(m, 2);
+  Eigen::VectorXd smooth(m), noise(m);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> g(0, 1);
+  for (int b = 0; b < 2; ++b)
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const Eigen::Index r = 3 * (b * n + i) + c;
+        const Eigen::Vector3d x = layout.points.col(i);
+        J(r, 0) = x.x() * (c == 1);
+        J(r, 1) = x.x() * x.x() * (c == 1) + 0.1 * g(rng);
+        smooth(r) = 1e-3 * std::sin(3 * x.x() + 2 * x.z() + c);
+        noise(r) = 1e-3 * g(rng);
+      }
+  const fit::ParameterSpace space({param("a", -10, 10, fit::Scale::linear), param("b", -10, 10, fit::Scale::linear)});
+  const Eigen::VectorXd z = Eigen::VectorXd::Zero(2);
+
+  const auto white = fit::estimate_residual_correlation(noise, layout);
+  EXPECT_FALSE(white.systematic);
+  EXPECT_LT(std::abs(white.neighbour), 0.2);
+  const auto u0 = fit::compute_uncertainty(space, z, noise, J);
+  const auto u1 = fit::compute_uncertainty(space, z, noise, J, {}, &layout);
+  EXPECT_EQ(u0.upper95, u1.upper95);
+  EXPECT_EQ(u1.verdict[0], "identified");
+
+  const auto field = fit::estimate_residual_correlation(smooth, layout);
+  EXPECT_TRUE(field.systematic);
+  EXPECT_GT(field.length, 2 * field.spacing);
+  EXPECT_LT(field.effective_residuals, 0.2 * static_cast<double>(m));
+  const auto plain = fit::compute_uncertainty(space, z, smooth, J);
+  const auto honest = fit::compute_uncertainty(space, z, smooth, J, {}, &layout);
+  EXPECT_TRUE(honest.systematic_misfit);
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_GT(honest.upper95(j) - honest.lower95(j), 2 * (plain.upper95(j) - plain.lower95(j))) << j;
+    EXPECT_EQ(honest.verdict[j].rfind("model misfit dominates: ", 0), 0u) << honest.verdict[j];
+  }
 }

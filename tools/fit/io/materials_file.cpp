@@ -122,6 +122,11 @@ nlohmann::json fit_summary_json(const FitResult& r) {
   j["threads"] = r.threads;
   const auto truth = r.space.truth();
   const bool have_u = r.uncertainty.standard_error.size() == r.space.size();
+  if (have_u)
+    j["misfit"] = {{"systematic", r.uncertainty.systematic_misfit},
+                   {"correlation_length_m", r.uncertainty.misfit_correlation_length},
+                   {"neighbour_correlation", r.uncertainty.misfit_neighbour_correlation},
+                   {"effective_residuals", r.uncertainty.effective_residuals}};
   for (int i = 0; i < r.space.size(); ++i) {
     const auto& p = r.space[i];
     json e{{"name", p.name}, {"unit", p.unit}, {"scale", to_string(p.scale)}, {"lower", p.lower},
