@@ -10,17 +10,14 @@
 //   fin-fit flap --reference data/reference/hessenthaler2017.json    flap modulus (issue 34)
 #include <CLI/CLI.hpp>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <limits>
 #include <string>
 #include <vector>
 
 #include "core/cli.hpp"
 #include "core/summary.hpp"
-#include "fit/errors.hpp"
 #include "fit/io/file_fit.hpp"
 #include "fit/validation/fin_twin_grade.hpp"
 #include "fit/validation/hessenthaler_flap_fit.hpp"
@@ -46,33 +43,6 @@ int finish(finverse::Summary summary, const std::string& name, const std::filesy
   std::cerr << "fin-fit " << name << ": " << (summary.pass() ? "pass" : "FAIL") << ", " << wall << " s, wrote "
             << path.string() << "\n";
   return summary.pass() ? 0 : 1;
-}
-
-// "NAME=VALUE" pairs of --at; throws a one-line error naming the bad entry.
-std::vector<std::pair<std::string, double>> parse_at(const std::vector<std::string>& entries) {
-  std::vector<std::pair<std::string, double>> at;
-  for (const auto& e : entries) {
-    const auto eq = e.find('=');
-    double v = std::numeric_limits<double>::quiet_NaN();
-    try {
-      if (eq != std::string::npos) v = std::stod(e.substr(eq + 1));
-    } catch (const std::exception&) {
-    }
-    if (eq == std::string::npos || eq == 0 || !std::isfinite(v))
-      throw finverse::fit::InvalidInput("--at '" + e + "': expected NAME=VALUE with a finite value");
-    at.emplace_back(e.substr(0, eq), v);
-  }
-  return at;
-}
-
-int print_misfit(const finverse::fit::io::MisfitReport& m) {
-  std::printf("fin-fit evaluate: %s\n", m.description.c_str());
-  for (std::size_t i = 0; i < m.names.size(); ++i)
-    std::printf("  %-14s %.6g\n", m.names[i].c_str(), m.values(static_cast<Eigen::Index>(i)));
-  std::printf("misfit (weighted mean distance) %.6e m\n", m.total);
-  for (std::size_t b = 0; b < m.block_times.size(); ++b)
-    std::printf("  t = %-12.6g %.6e m\n", m.block_times[b], m.block_misfit[b]);
-  return 0;
 }
 
 // The fit problem's flags, shared by run and evaluate (only one subcommand is parsed).
@@ -136,6 +106,32 @@ constexpr const char* kOwnData =
     "model's equilibrium at each level from the unloaded reference; the clamp is the default root); "
     "`fin-fit evaluate` prints the misfit at given moduli before a fit.";
 
+// The hybrid plate validation cases' flags (hybrid_plate, noise, identifiability).
+void add_hybrid_plate_options(CLI::App* c, finverse::fit::validation::HybridPlateFitOptions& hp, std::string& case_file,
+                              std::string& out_dir) {
+  c->add_option("--case", case_file, "hybrid plate case, e.g. data/cases/hybrid_plate_small_heave.json")->required();
+  c->add_option("--out-dir", out_dir, "directory that receives <case>/summary.json")->capture_default_str();
+  c->add_option("--nx", hp.nx, "plate cells along the chord")->capture_default_str();
+  c->add_option("--nz", hp.nz, "plate cells along the span")->capture_default_str();
+  c->add_option("--periods", hp.periods, "periods simulated from rest")->capture_default_str();
+  c->add_option("--steps-per-period", hp.steps_per_period, "time steps per period")->capture_default_str();
+  c->add_option("--compared-frames", hp.compared_frames, "eq. (1): frames compared over the last period")
+      ->capture_default_str();
+  c->add_option("--instants", hp.instants, "eq. (2): mid-swing instants")->capture_default_str();
+  c->add_option("--load-density", hp.load_scale, "fluid density of the thin-airfoil loads (case: 1)")
+      ->capture_default_str();
+  c->add_option("--runs", hp.fit.runs, "independent GA runs")->capture_default_str();
+  c->add_option("--population", hp.fit.population, "GA population")->capture_default_str();
+  c->add_option("--generations", hp.fit.max_generations, "generation cap")->capture_default_str();
+  c->add_option("--seed", hp.fit.seed, "seed of the first run")->capture_default_str();
+  c->add_option("--polish-evaluations", hp.fit.polish_options.max_evaluations,
+                "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")
+      ->capture_default_str();
+  c->add_option("--noise-seeds", hp.noise_seeds, "noise: seeds")->capture_default_str();
+  c->add_option("--materials-out", hp.materials_out, "hybrid_plate: also write the eq. (2) fit as materials.h5");
+  c->add_option("--noise-objective", hp.noise_objective, "noise: dynamic or quasi_static")->capture_default_str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -193,27 +189,7 @@ int main(int argc, char** argv) {
            {"noise", "hybrid plate twin with noisy target: errors and 95% interval coverage"},
            {"identifiability", "hybrid plate, eq. (2) without loads: the modulus scale must be flagged"}}) {
     auto* c = app.add_subcommand(name, what);
-    c->add_option("--case", case_file, "hybrid plate case, e.g. data/cases/hybrid_plate_small_heave.json")->required();
-    c->add_option("--out-dir", out_dir, "directory that receives <case>/summary.json")->capture_default_str();
-    c->add_option("--nx", hp.nx, "plate cells along the chord")->capture_default_str();
-    c->add_option("--nz", hp.nz, "plate cells along the span")->capture_default_str();
-    c->add_option("--periods", hp.periods, "periods simulated from rest")->capture_default_str();
-    c->add_option("--steps-per-period", hp.steps_per_period, "time steps per period")->capture_default_str();
-    c->add_option("--compared-frames", hp.compared_frames, "eq. (1): frames compared over the last period")
-        ->capture_default_str();
-    c->add_option("--instants", hp.instants, "eq. (2): mid-swing instants")->capture_default_str();
-    c->add_option("--load-density", hp.load_scale, "fluid density of the thin-airfoil loads (case: 1)")
-        ->capture_default_str();
-    c->add_option("--runs", hp.fit.runs, "independent GA runs")->capture_default_str();
-    c->add_option("--population", hp.fit.population, "GA population")->capture_default_str();
-    c->add_option("--generations", hp.fit.max_generations, "generation cap")->capture_default_str();
-    c->add_option("--seed", hp.fit.seed, "seed of the first run")->capture_default_str();
-    c->add_option("--polish-evaluations", hp.fit.polish_options.max_evaluations,
-                  "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")
-        ->capture_default_str();
-    c->add_option("--noise-seeds", hp.noise_seeds, "noise: seeds")->capture_default_str();
-    c->add_option("--materials-out", hp.materials_out, "hybrid_plate: also write the eq. (2) fit as materials.h5");
-    c->add_option("--noise-objective", hp.noise_objective, "noise: dynamic or quasi_static")->capture_default_str();
+    add_hybrid_plate_options(c, hp, case_file, out_dir);
     cases.push_back(c);
   }
 
@@ -304,7 +280,11 @@ int main(int argc, char** argv) {
     if (flags.root_rotation != "auto") o.root_rotation = finverse::fem::parse_root_rotation(flags.root_rotation);
     o.stress_free_base = flags.base == "stress_free";
     o.increment = finverse::fit::parse_increment_solve(flags.increment);
-    if (*ev) return print_misfit(finverse::fit::io::evaluate_misfit(o, parse_at(at_values)));
+    if (*ev) {
+      namespace io = finverse::fit::io;
+      std::fputs(io::format_misfit(io::evaluate_misfit(o, io::parse_parameter_values(at_values))).c_str(), stdout);
+      return 0;
+    }
     o.fit.polish = !no_polish;
     o.fit.threads = finverse::cli::threads_in_use();
     const auto result = finverse::fit::io::run_fit_from_files(o, finverse::cli::effective_config(app));

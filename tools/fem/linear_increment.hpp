@@ -1,16 +1,11 @@
-// Eq. (2)'s increment linearised at its base (issue 45, deliverable 5): the first Newton step of
-// QuasiStaticIncrement, its consistent predictor for the prescribed motion and the load increment
-// in one solve,
+// Eq. (2)'s increment linearised at its base (issue 45): the first Newton step of
+// QuasiStaticIncrement, predictor for the prescribed motion and load increment in one solve,
 //     K_ff du_f = [f_ext(t_next) - f_ext(t) + g]_f - [K dp]_f,
-// with K = K(E, nu) the tangent at the base (tangent_basis.hpp), dp the prescribed DOFs' increment
-// and g a known load change (the inertial -M da of eq. (2) with inertia). Per evaluation: one
-// weighted gather of stored element matrices, one numeric factorisation with the pattern's
-// symbolic analysis reused, one solve; no element is evaluated. Against the converged Newton
-// increment it errs to second order in the increment (the root's rotation over one frame);
-// measured in docs/studies/fit_evaluation_speed.md.
-//
-// The moduli must be constant over [t, t_next] (no modulation): the base's internal force then
-// cancels against the offset that takes the base as in equilibrium, as in QuasiStaticIncrement.
+// K = K(E, nu) at the base from a TangentBasis, dp the prescribed increment, g a known load
+// change. One weighted gather, one numeric factorisation (symbolic reused), one solve. Its error
+// is second order in the increment; on the fin it is 4-5 % at the file's moduli because the
+// membrane's response over a frame is nonlinear (docs/studies/fit_evaluation_speed.md). The moduli
+// must be constant over [t, t_next], so that the base's internal force cancels against the offset.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,23 +1,13 @@
 // The tangent stiffness of a model at one fixed configuration as an explicit function of its
 // element moduli and one Poisson ratio: the stored form behind a fast eq. (2) evaluation
-// (issue 45, deliverable 5).
-//
-// With nu fixed, the corotational elements' forces and tangents (geometric stiffness included)
-// are linear in E (stiffness_field.hpp). In nu: the shell's bending (DKT) and basic membrane
-// stiffness are E/(1 - nu^2) (D0 + nu D1), its shear modulus E/(2 (1 + nu)) among them; the
-// optimal membrane's higher-order part carries beta0 = (1 - 4 nu^2)/2 (Felippa) on top, which
-// brings (1 - 4 nu^2)/(1 - nu^2) = 4 - 3/(1 - nu^2) and nu times it; a beam's axial and bending
-// stiffness is E, its torsion G = E/(2 (1 + nu)) = E/2 (1 - nu)/(1 - nu^2). So every element's
-// tangent is
-//     K_e(E_e, nu) = E_e (B0_e + nu B1_e + B2_e / (1 - nu^2) + B3_e nu / (1 - nu^2))
-// for nu < 0.497 (above it the membrane's beta0 is floored at 0.01). The four B_e come from the
-// element tangents of the same model built at four Poisson ratios (same configuration, same
-// time), each divided by its element modulus: one 4 x 4 solve for every entry. form_error()
-// checks the form against a model at a fifth ratio: an element family outside it (the
-// plane-strain solid's E/((1 + nu)(1 - 2 nu))) shows there as a large error.
-// combine() then weighs the stored element matrices and gathers them into the assembler's
-// free-DOF pattern: no element is evaluated, and the symbolic factorisation of the pattern is
-// reused by the caller's solver.
+// (issue 45). Corotational forces and tangents are linear in E at fixed nu (stiffness_field.hpp),
+// and in nu every element is a combination of 1, nu, 1/(1 - nu^2), nu/(1 - nu^2) (plane stress,
+// the shear modulus, a beam's E, the optimal membrane's beta0 = (1 - 4 nu^2)/2), so
+//     K_e(E_e, nu) = E_e (B0_e + nu B1_e + B2_e / (1 - nu^2) + B3_e nu / (1 - nu^2)),  nu < 0.497.
+// The B_e come from the model built at four Poisson ratios (one 4 x 4 solve per entry);
+// form_error() checks a fifth. combine() weighs the stored element matrices and gathers them into
+// the assembler's pattern: no element is evaluated. Derivation and checks:
+// docs/studies/fit_evaluation_speed.md.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,18 +1,10 @@
 // How the residual at the optimum is correlated in space, and the parameter covariance that
-// follows (issue 45, deliverable 6: intervals that know the model is not exact).
-//
-// The Gauss-Newton covariance s^2 (J^T J)^-1 assumes independent residuals. What is left at the
-// optimum when the model is not exact (another code's discretisation, a tracked drive, an effect
-// the model lacks) is a smooth field over the fin: neighbouring nodes err alike, the residuals
-// carry far fewer independent pieces of information than their count, and the intervals come out
-// too narrow to hold the truth (docs/studies/fit_model_misfit.md). Here the residual is taken as
-// a stationary field per sample and component with the exponential correlation
-// R_ij = exp(-d_ij / l) (d: distance between the nodes' reference positions), l estimated from the
-// residual itself by the distance at which its empirical correlation falls to 1/e; the
-// covariance is then the sandwich
+// follows (issue 45, deliverable 6: intervals that know the model is not exact). The residual is
+// taken as a stationary field per sample and component with R_ij = exp(-d_ij / l), l where its
+// empirical correlation falls to 1/e; the covariance is the sandwich
 //     C = (J^T J)^-1 J^T (s^2 R) J (J^T J)^-1,   s^2 = |r|^2 / m,
-// with (tr R)^2 / tr(R^2) effective residuals for the t quantile. A white residual gives l = 0,
-// R = I and the usual covariance back.
+// with (tr R)^2 / tr(R^2) effective residuals for the t quantile. A white residual gives l = 0
+// and the usual covariance back. Why and what it does: docs/studies/fit_model_misfit.md.
 #pragma once
 
 #include <Eigen/Core>

@@ -5,12 +5,9 @@
 // A parameter is reported identified only when its direction is not singular, it is not at a
 // bound, and its 95 % interval spans at most a decade (log10) or the bounds' width (linear).
 //
-// With the residual's layout (issue 45, deliverable 6) the residual's spatial correlation is
-// estimated (correlated_residual.hpp). When neighbouring residuals err alike -- the misfit is the
-// model's, not independent noise -- the covariance is the sandwich with that correlation and the
-// t quantile takes the effective number of residuals; every verdict then begins with "model
-// misfit dominates: ", and a parameter that moving across its whole bounds would change the
-// residual by less than that misfit is "insensitive", never identified.
+// With the residual's layout, a spatially correlated (systematic) misfit gives the sandwich
+// covariance of correlated_residual.hpp, verdicts prefixed "model misfit dominates: ", and
+// "insensitive" for a parameter whose whole range moves the residual less than that misfit.
 #pragma once
 
 #include <Eigen/Core>

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -143,6 +144,35 @@ FitProblem load_fit_problem(const FileFitOptions& o) {
 
   problem.description = what.str();
   return problem;
+}
+
+std::string format_misfit(const MisfitReport& m) {
+  std::ostringstream os;
+  os << "fin-fit evaluate: " << m.description << "\n";
+  for (std::size_t i = 0; i < m.names.size(); ++i)
+    os << "  " << std::left << std::setw(14) << m.names[i] << " " << std::setprecision(6)
+       << m.values(static_cast<Eigen::Index>(i)) << "\n";
+  os << "misfit (weighted mean distance) " << sci(m.total, 6) << " m\n";
+  for (std::size_t b = 0; b < m.block_times.size(); ++b)
+    os << "  t = " << std::left << std::setw(12) << std::setprecision(6) << m.block_times[b] << " "
+       << sci(m.block_misfit[b], 6) << " m\n";
+  return os.str();
+}
+
+std::vector<std::pair<std::string, double>> parse_parameter_values(const std::vector<std::string>& entries) {
+  std::vector<std::pair<std::string, double>> at;
+  for (const auto& e : entries) {
+    const auto eq = e.find('=');
+    double v = std::numeric_limits<double>::quiet_NaN();
+    try {
+      if (eq != std::string::npos) v = std::stod(e.substr(eq + 1));
+    } catch (const std::exception&) {
+    }
+    if (eq == std::string::npos || eq == 0 || !std::isfinite(v))
+      throw InvalidInput("--at '" + e + "': expected NAME=VALUE with a finite value");
+    at.emplace_back(e.substr(0, eq), v);
+  }
+  return at;
 }
 
 MisfitReport evaluate_misfit(const FileFitOptions& o, const std::vector<std::pair<std::string, double>>& at) {

@@ -72,6 +72,10 @@ struct MisfitReport {
   std::vector<double> block_times, block_misfit;
 };
 MisfitReport evaluate_misfit(const FileFitOptions& options, const std::vector<std::pair<std::string, double>>& at);
+// The report as fin-fit evaluate prints it: the parameters, the misfit, the misfit per block.
+std::string format_misfit(const MisfitReport& report);
+// "NAME=VALUE" entries (fin-fit evaluate --at); throws InvalidInput naming a malformed one.
+std::vector<std::pair<std::string, double>> parse_parameter_values(const std::vector<std::string>& entries);
 
 // Throws fit::InvalidInput / fem::InvalidInput / finverse::Error naming the file for bad input.
 FitResult run_fit_from_files(const FileFitOptions& options, const nlohmann::json& config);
