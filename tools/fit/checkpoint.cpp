@@ -99,7 +99,8 @@ RunResult run_result_from_json(const nlohmann::json& j) {
 }
 
 nlohmann::json uncertainty_to_json(const Uncertainty& u) {
-  const double misfit[3] = {u.misfit_correlation_length, u.misfit_neighbour_correlation, u.effective_residuals};
+  const double misfit[4] = {u.misfit_correlation_length, u.misfit_neighbour_correlation, u.effective_residuals,
+                            u.effective_channels};
   return {{"standard_error", pack_vector(u.standard_error)},
           {"lower95", pack_vector(u.lower95)},
           {"upper95", pack_vector(u.upper95)},
@@ -111,7 +112,7 @@ nlohmann::json uncertainty_to_json(const Uncertainty& u) {
           {"identified", u.identified},
           {"verdict", u.verdict},
           {"systematic_misfit", u.systematic_misfit},
-          {"misfit", pack_doubles(misfit, 3)}};
+          {"misfit", pack_doubles(misfit, 4)}};
 }
 
 Uncertainty uncertainty_from_json(const nlohmann::json& j) {
@@ -134,6 +135,7 @@ Uncertainty uncertainty_from_json(const nlohmann::json& j) {
   u.misfit_correlation_length = misfit.at(0);
   u.misfit_neighbour_correlation = misfit.at(1);
   u.effective_residuals = misfit.at(2);
+  if (misfit.size() > 3) u.effective_channels = misfit.at(3);  // written since the channel model
   return u;
 }
 

@@ -34,6 +34,16 @@ double median_nearest_distance(const Eigen::Matrix3Xd& p) {
   return nearest[n / 2];
 }
 
+// K: the residual's channels (sample x component) against each other at the same node.
+Eigen::MatrixXd channel_covariance(const Eigen::VectorXd& r, const ResidualLayout& layout) {
+  const Eigen::Index n = layout.points.cols(), k = 3 * static_cast<Eigen::Index>(layout.blocks);
+  Eigen::MatrixXd x(k, n);
+  for (int b = 0; b < layout.blocks; ++b)
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) x(3 * b + c, i) = r(row(layout, b, i, c));
+  return x * x.transpose() / static_cast<double>(n);
+}
+
 }  // namespace
 
 ResidualCorrelation estimate_residual_correlation(const Eigen::VectorXd& r, const ResidualLayout& layout,
@@ -42,6 +52,9 @@ ResidualCorrelation estimate_residual_correlation(const Eigen::VectorXd& r, cons
   ResidualCorrelation out;
   const Eigen::Index n = layout.points.cols();
   out.spacing = median_nearest_distance(layout.points);
+  out.channels = channel_covariance(r, layout);
+  const double trace_k = out.channels.trace(), trace_k2 = out.channels.squaredNorm();
+  out.effective_channels = trace_k2 > 0 ? trace_k * trace_k / trace_k2 : 3.0 * layout.blocks;
   const double s2 = r.squaredNorm() / static_cast<double>(r.size());
   out.effective_residuals = static_cast<double>(r.size());
   if (!(out.spacing > 0) || !(s2 > 0)) return out;
@@ -74,34 +87,50 @@ ResidualCorrelation estimate_residual_correlation(const Eigen::VectorXd& r, cons
         break;
       }
   }
-  // Effective residuals: (tr R)^2 / tr(R^2) with R block-diagonal over samples and components.
+  // Effective residuals of K (x) R: (tr K)^2 (tr R)^2 / (tr K^2 tr R^2).
   double trace_r2 = 0;
   for (Eigen::Index i = 0; i < n; ++i)
     for (Eigen::Index j = 0; j < n; ++j) {
       const double v = std::exp(-(layout.points.col(i) - layout.points.col(j)).norm() / out.length);
       trace_r2 += v * v;
     }
-  const double blocks3 = 3.0 * layout.blocks;
-  out.effective_residuals = blocks3 * static_cast<double>(n) * static_cast<double>(n) / trace_r2;
+  out.effective_residuals = out.effective_channels * static_cast<double>(n) * static_cast<double>(n) / trace_r2;
   return out;
 }
 
-Eigen::MatrixXd correlated_gram(const Eigen::MatrixXd& jacobian, const ResidualLayout& layout, double length) {
+Eigen::MatrixXd correlated_gram(const Eigen::MatrixXd& jacobian, const ResidualLayout& layout,
+                                const ResidualCorrelation& correlation) {
   check(jacobian.rows(), layout);
-  const Eigen::Index n = layout.points.cols(), p = jacobian.cols();
-  if (!(length > 0)) return jacobian.transpose() * jacobian;
-  Eigen::MatrixXd R(n, n);
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index j = 0; j < n; ++j)
-      R(i, j) = std::exp(-(layout.points.col(i) - layout.points.col(j)).norm() / length);
-  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(p, p);
-  Eigen::MatrixXd Jc(n, p);
+  const Eigen::Index n = layout.points.cols(), p = jacobian.cols(), k = 3 * static_cast<Eigen::Index>(layout.blocks);
+  if (correlation.channels.rows() != k || correlation.channels.cols() != k)
+    throw InvalidInput("residual correlation: channel covariance is " + std::to_string(correlation.channels.rows()) +
+                       " x " + std::to_string(correlation.channels.cols()) + ", expected " + std::to_string(k) + " x " +
+                       std::to_string(k));
+  // J_a: the rows of channel a (n x p); gram = sum_ab K_ab J_a^T R J_b.
+  std::vector<Eigen::MatrixXd> ja(static_cast<size_t>(k), Eigen::MatrixXd(n, p));
   for (int b = 0; b < layout.blocks; ++b)
-    for (int c = 0; c < 3; ++c) {
-      for (Eigen::Index i = 0; i < n; ++i) Jc.row(i) = jacobian.row(row(layout, b, i, c));
-      gram.noalias() += Jc.transpose() * (R * Jc);
-    }
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) ja[3 * b + c].row(i) = jacobian.row(row(layout, b, i, c));
+  Eigen::MatrixXd R = Eigen::MatrixXd::Identity(n, n);
+  if (correlation.length > 0)
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (Eigen::Index j = 0; j < n; ++j)
+        R(i, j) = std::exp(-(layout.points.col(i) - layout.points.col(j)).norm() / correlation.length);
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(p, p), mixed(n, p);
+  for (Eigen::Index b = 0; b < k; ++b) {
+    mixed.setZero();
+    for (Eigen::Index a = 0; a < k; ++a)
+      if (correlation.channels(a, b) != 0) mixed.noalias() += correlation.channels(a, b) * ja[a];
+    gram.noalias() += mixed.transpose() * (R * ja[b]);
+  }
   return gram;
+}
+
+double span_share_correction(const Eigen::MatrixXd& q, const ResidualLayout& layout,
+                             const ResidualCorrelation& correlation) {
+  const double total = correlation.channels.trace() * static_cast<double>(layout.points.cols());
+  const double in_span = correlated_gram(q, layout, correlation).trace();
+  return total > in_span ? total / (total - in_span) : 1.0;
 }
 
 }  // namespace finverse::fit

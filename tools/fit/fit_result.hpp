@@ -56,6 +56,7 @@ struct Uncertainty {
   double misfit_correlation_length = 0;  // m; 0: white
   double misfit_neighbour_correlation = 0;
   double effective_residuals = 0;
+  double effective_channels = 0;  // samples x components that err independently
 };
 
 struct FitResult {

@@ -1,7 +1,9 @@
 // Gauss-Newton covariance, intervals and identifiability verdicts (uncertainty.hpp).
 #include "fit/uncertainty.hpp"
 
+#include <Eigen/QR>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <limits>
@@ -59,6 +61,9 @@ std::string verdict_of(const ParameterSpace& space, int j, const Eigen::VectorXd
   if (at_bound) return "at bound";
   if (log_scale && 2 * half > 1) return "interval spans more than a decade";
   if (!log_scale && 2 * half > space[j].upper - space[j].lower) return "interval wider than the bounds";
+  // A bound inside the interval limits the parameter, not the data; the normal interval does not
+  // hold at a boundary (Self & Liang 1987), so it is not called identified.
+  if (z(j) - half <= lo(j) || z(j) + half >= hi(j)) return "interval reaches a bound";
   if (insensitive) return "insensitive: across its bounds it moves the residual less than the model misfit left";
   return "identified";
 }
@@ -87,8 +92,9 @@ Uncertainty compute_uncertainty(const ParameterSpace& space, const Eigen::Vector
         u.correlation(i, j) = d > 0 ? inv.pinv(i, j) / std::sqrt(d) : 0.0;
       }
 
-  // Independent residuals: s^2 (J^T J)^+. A systematic (spatially correlated) misfit: the
-  // sandwich with its correlation, and the effective number of residuals for the quantile.
+  // Independent residuals: s^2 (J^T J)^+. A systematic (correlated) misfit: the sandwich with
+  // its correlation over the fin, samples and components, and the effective number of residuals
+  // for the quantile (at least one degree of freedom: fewer than n makes the intervals wide).
   Eigen::VectorXd variance = u.residual_variance * inv.pinv.diagonal();
   double dof = u.degrees_of_freedom;
   if (layout) {
@@ -97,11 +103,15 @@ Uncertainty compute_uncertainty(const ParameterSpace& space, const Eigen::Vector
     u.misfit_correlation_length = c.length;
     u.misfit_neighbour_correlation = c.neighbour;
     u.effective_residuals = c.effective_residuals;
+    u.effective_channels = c.effective_channels;
     if (c.systematic && c.length > 0) {
-      const double s2 = r.squaredNorm() / static_cast<double>(m);
-      const Eigen::MatrixXd sandwich = inv.pinv * (s2 * correlated_gram(jacobian, *layout, c.length)) * inv.pinv;
+      // K from r lacks the misfit's part in span(J) (span_share_correction).
+      const Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(jacobian).householderQ() *
+                                Eigen::MatrixXd::Identity(m, std::min<Eigen::Index>(m, n));
+      const double scale = span_share_correction(q, *layout, c);
+      const Eigen::MatrixXd sandwich = scale * (inv.pinv * correlated_gram(jacobian, *layout, c) * inv.pinv);
       variance = variance.cwiseMax(sandwich.diagonal());
-      dof = c.effective_residuals - n;
+      dof = std::max(c.effective_residuals - n, 1.0);
     }
   }
   const double t = t_quantile(dof, options.confidence);

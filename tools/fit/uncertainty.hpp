@@ -3,7 +3,8 @@
 // the polish Jacobian J = dr/dz. The pseudo-inverse comes from the SVD of J, so a (near)
 // singular direction gives infinite standard errors instead of a huge, confident-looking number.
 // A parameter is reported identified only when its direction is not singular, it is not at a
-// bound, and its 95 % interval spans at most a decade (log10) or the bounds' width (linear).
+// bound, its 95 % interval reaches no bound and spans at most a decade (log10) or the bounds'
+// width (linear).
 //
 // With the residual's layout, a spatially correlated (systematic) misfit gives the sandwich
 // covariance of correlated_residual.hpp, verdicts prefixed "model misfit dominates: ", and

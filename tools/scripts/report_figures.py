@@ -64,8 +64,11 @@ def fig11(d, out):
         return None
     ray = np.array([r["ray"] for r in rows])
     e = np.array([r["E"] for r in rows])
-    lo = np.array([r["E_lower"] for r in rows])
-    hi = np.array([r["E_upper"] for r in rows])
+    # An interval beyond what a double holds (none: a fit with fewer independent residuals than
+    # parameters) is drawn past the axis, which shows ±30x.
+    lo = np.array([0.0 if r["E_lower"] is None else r["E_lower"] for r in rows])
+    hi = np.array([np.inf if r["E_upper"] is None else r["E_upper"] for r in rows])
+    lo, hi = np.maximum(lo, e / 1e6), np.minimum(hi, e * 1e6)
     truth = np.array([np.nan if r["E_truth"] is None else r["E_truth"] for r in rows])
     ident = np.array([bool(r["identified"]) for r in rows])
     inertia = np.array([r.get("I", np.nan) for r in rows])

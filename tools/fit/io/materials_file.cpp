@@ -126,7 +126,8 @@ nlohmann::json fit_summary_json(const FitResult& r) {
     j["misfit"] = {{"systematic", r.uncertainty.systematic_misfit},
                    {"correlation_length_m", r.uncertainty.misfit_correlation_length},
                    {"neighbour_correlation", r.uncertainty.misfit_neighbour_correlation},
-                   {"effective_residuals", r.uncertainty.effective_residuals}};
+                   {"effective_residuals", r.uncertainty.effective_residuals},
+                   {"effective_channels", r.uncertainty.effective_channels}};
   for (int i = 0; i < r.space.size(); ++i) {
     const auto& p = r.space[i];
     json e{{"name", p.name}, {"unit", p.unit}, {"scale", to_string(p.scale)}, {"lower", p.lower},
