@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <sstream>
 
@@ -76,6 +77,43 @@ fit::ParameterSpace extended(const fit::ParameterSpace& space, const std::vector
   return fit::ParameterSpace(p, "effect parameters");
 }
 
+// Every remaining candidate's score at the current fit: one model run per score direction
+// (sensitivity (r_c - r) / h), the score test off span(J), robust when the layout is given.
+void score_candidates(const TracedModel& model, const std::vector<std::string>& effects,
+                      const Eigen::VectorXd& parameters, const std::vector<std::string>& remaining,
+                      const Eigen::VectorXd& r, const Eigen::MatrixXd& basis, int fitted,
+                      const fit::ResidualLayout* layout,
+                      const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& training,
+                      const std::string& step_name, TraceStep& step,
+                      const std::function<void(const std::string&)>& say) {
+  for (const auto& c : remaining) {
+    const auto dirs = model.score_directions(c);
+    Eigen::MatrixXd s(r.size(), static_cast<Eigen::Index>(dirs.size()));
+    auto with = effects;
+    with.push_back(c);
+    std::string failure;
+    try {
+      for (std::size_t j = 0; j < dirs.size(); ++j) {
+        Eigen::VectorXd p(parameters.size() + dirs[j].parameters.size());
+        p << parameters, dirs[j].parameters;
+        ++step.evaluations;
+        s.col(static_cast<Eigen::Index>(j)) = (training(model.residuals(with, p)) - r) / dirs[j].step;
+      }
+    } catch (const std::exception& e) {
+      // A model that fails with the candidate on is reported, and the candidate not ranked.
+      failure = e.what();
+      s.setZero();
+    }
+    step.scores.push_back({c, score_test(r, basis, fitted, s, 1e-8, layout), failure});
+    if (!failure.empty()) say("step " + step_name + ": " + c + " failed: " + failure);
+    const ScoreResult& score = step.scores.back().score;
+    std::ostringstream line;
+    line << "step " << step_name << ": " << c << " score " << score.statistic << " (q " << dirs.size() << ", p "
+         << score.p_value << (score.correlated ? ", correlated residual" : "") << ")";
+    say(line.str());
+  }
+}
+
 }  // namespace
 
 HeldOutSplit held_out_split(const std::vector<double>& times, double period) {
@@ -114,6 +152,13 @@ TraceResult trace_effects(const TracedModel& model, const TraceOptions& options)
   if (all.size() % nf != 0 || (all.size() / nf) % 3 != 0)
     throw InvalidInput("trace: the model's residual is not frame_count() blocks of 3-vectors");
   split.rows_per_frame = all.size() / nf;
+  // Where each residual sits, for the score test's correlation (empty: taken as independent).
+  const Eigen::Matrix3Xd points = model.frame_points();
+  if (points.cols() > 0 && 3 * points.cols() != split.rows_per_frame)
+    throw InvalidInput("trace: the model's frame points (" + std::to_string(points.cols()) +
+                       ") do not match its residual's frame block (" + std::to_string(split.rows_per_frame) + " rows)");
+  const fit::ResidualLayout training_layout{static_cast<int>(split.training.size()), points};
+  const fit::ResidualLayout* layout = points.cols() > 0 ? &training_layout : nullptr;
   out.base_initial = state_of(model, all, split, out.space.size());
 
   auto options_lm = options.lm;
@@ -157,32 +202,10 @@ TraceResult trace_effects(const TracedModel& model, const TraceOptions& options)
     step.before = current;
     const Eigen::VectorXd r = pick_frames(all, split.training, split.rows_per_frame);
     const Eigen::MatrixXd basis = orthonormal_basis(jacobian);
-    for (const auto& c : remaining) {
-      const auto dirs = model.score_directions(c);
-      Eigen::MatrixXd s(r.size(), static_cast<Eigen::Index>(dirs.size()));
-      auto with = effects;
-      with.push_back(c);
-      std::string failure;
-      try {
-        for (std::size_t j = 0; j < dirs.size(); ++j) {
-          Eigen::VectorXd p(out.parameters.size() + dirs[j].parameters.size());
-          p << out.parameters, dirs[j].parameters;
-          ++step.evaluations;
-          const Eigen::VectorXd rc = pick_frames(model.residuals(with, p), split.training, split.rows_per_frame);
-          s.col(static_cast<Eigen::Index>(j)) = (rc - r) / dirs[j].step;
-        }
-      } catch (const std::exception& e) {
-        // A model that fails with the candidate on is reported, and the candidate not ranked.
-        failure = e.what();
-        s.setZero();
-      }
-      step.scores.push_back({c, score_test(r, basis, out.space.size(), s), failure});
-      if (!failure.empty()) say("step " + std::to_string(out.steps.size() + 1) + ": " + c + " failed: " + failure);
-      std::ostringstream line;
-      line << "step " << out.steps.size() + 1 << ": " << c << " score " << step.scores.back().score.statistic
-           << " (q " << dirs.size() << ", p " << step.scores.back().score.p_value << ")";
-      say(line.str());
-    }
+    score_candidates(
+        model, effects, out.parameters, remaining, r, basis, out.space.size(), layout,
+        [&](const Eigen::VectorXd& all_c) { return pick_frames(all_c, split.training, split.rows_per_frame); },
+        std::to_string(out.steps.size() + 1), step, say);
     std::stable_sort(step.scores.begin(), step.scores.end(), [](const auto& a, const auto& b) {
       return a.score.statistic > b.score.statistic;
     });
@@ -224,7 +247,7 @@ TraceResult trace_effects(const TracedModel& model, const TraceOptions& options)
     step.lower95 = Eigen::VectorXd::Constant(ne, NAN);
     step.upper95 = Eigen::VectorXd::Constant(ne, NAN);
     if (lm.jacobian.size() != 0) {
-      const auto u = fit::compute_uncertainty(space, lm.z, lm.residuals, lm.jacobian);
+      const auto u = fit::compute_uncertainty(space, lm.z, lm.residuals, lm.jacobian, {}, layout);
       step.lower95 = u.lower95.segment(first, ne);
       step.upper95 = u.upper95.segment(first, ne);
     }

@@ -60,6 +60,7 @@ class FinTracedModel : public TracedModel {
   Eigen::VectorXd residuals(const std::vector<std::string>& effects, const Eigen::VectorXd& physical) const override;
   double trailing_edge_rms(const Eigen::VectorXd& r) const override;
   Eigen::VectorXd node_rms(const Eigen::VectorXd& r) const override;
+  Eigen::Matrix3Xd frame_points() const override { return objective({})->residual_layout()->points; }
 
   const nlohmann::json& spec(const std::string& candidate) const { return specs_.at(candidate); }
   // Node positions predicted by the model (every node, every compared frame) for a residual file.

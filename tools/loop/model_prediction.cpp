@@ -21,6 +21,7 @@ ModelPrediction::ModelPrediction(std::shared_ptr<const fit::ModelFactory> factor
     throw fit::InvalidInput(target_.source + ": the run's start time must precede the first frame");
   weights_ = fit::default_node_weights(*model, factory_->prescribed_nodes());
   nodes_ = fit::compared_nodes(weights_);
+  points_ = fit::compared_points(*model, nodes_);
   sqrt_weights_.resize(static_cast<Eigen::Index>(nodes_.size()) * target_.frame_count());
   Eigen::Index i = 0;
   for (int k = 0; k < target_.frame_count(); ++k)

@@ -6,10 +6,10 @@
 // rest, docs/studies/fin_fsi.md) or the dynamic run. Weights: fit/node_weights.hpp.
 #pragma once
 
-#include <memory>
-#include <vector>
-
 #include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <vector>
 
 #include "fem/structural_run.hpp"
 #include "fit/model_factory.hpp"
@@ -28,6 +28,9 @@ class ModelPrediction : public fit::ResidualFunction {
   int residual_count() const override { return 3 * static_cast<int>(nodes_.size()) * target_.frame_count(); }
   Eigen::VectorXd residuals(const Eigen::VectorXd& physical) const override;
   const Eigen::VectorXd& sqrt_weights() const override { return sqrt_weights_; }
+  std::optional<fit::ResidualLayout> residual_layout() const override {
+    return fit::ResidualLayout{target_.frame_count(), points_};
+  }
 
   std::vector<fem::RunFrame> run(const Eigen::VectorXd& physical) const;
   const std::vector<int>& compared_nodes() const { return nodes_; }
@@ -39,6 +42,7 @@ class ModelPrediction : public fit::ResidualFunction {
   fem::RunOptions options_;
   Eigen::VectorXd weights_, sqrt_weights_;
   std::vector<int> nodes_;
+  Eigen::Matrix3Xd points_;  // the compared nodes' reference positions (residual_layout)
 };
 
 }  // namespace finverse::loop

@@ -1,12 +1,14 @@
 // Score test of a candidate off span(J) (score_test.hpp).
 #include "loop/score_test.hpp"
 
+#include <Eigen/QR>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <boost/math/distributions/fisher_f.hpp>
 #include <cmath>
 #include <string>
 
-#include <Eigen/QR>
-#include <Eigen/SVD>
-
+#include "fit/correlated_residual.hpp"
 #include "loop/errors.hpp"
 
 namespace finverse::loop {
@@ -49,8 +51,37 @@ double chi2_tail(double x, int q) {
   return std::exp(-z + a * std::log(z) - std::lgamma(a)) * h;
 }
 
+namespace {
+
+// The robust statistic g^T (S_perp^T V S_perp)^+ g when the residual is systematic (header). V is
+// estimated from the residual with the candidate fitted (r - S_perp coef): under the null that
+// is r, and a present effect does not inflate V and hide itself. Its scale is corrected for the
+// misfit's share in span(J, S) (fit::span_share_correction).
+void robust_score(const Eigen::VectorXd& r, const Eigen::VectorXd& explained, const Eigen::MatrixXd& basis,
+                  const Eigen::MatrixXd& perp, int fitted_parameters, const fit::ResidualLayout& layout,
+                  ScoreResult& out) {
+  const fit::ResidualCorrelation c = fit::estimate_residual_correlation(r - explained, layout);
+  if (!c.systematic) return;
+  Eigen::MatrixXd span(r.size(), basis.cols() + perp.cols());
+  span << basis, perp;
+  const Eigen::MatrixXd span_basis = orthonormal_basis(span);
+  const Eigen::VectorXd g = perp.transpose() * r;
+  const Eigen::MatrixXd v = fit::span_share_correction(span_basis, layout, c) * fit::correlated_gram(perp, layout, c);
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(v);
+  const int q = static_cast<int>(cod.rank());
+  out.correlated = true;
+  out.effective_residuals = c.effective_residuals;
+  out.statistic = q > 0 ? g.dot(cod.solve(g)) : 0.0;
+  const double dof = std::max(c.effective_residuals - fitted_parameters, 1.0);
+  out.p_value = q > 0 && out.statistic > 0
+                    ? boost::math::cdf(boost::math::complement(boost::math::fisher_f(q, dof), out.statistic / q))
+                    : 1.0;
+}
+
+}  // namespace
+
 ScoreResult score_test(const Eigen::VectorXd& r, const Eigen::MatrixXd& basis, int fitted_parameters,
-                       const Eigen::MatrixXd& s, double in_span_tolerance) {
+                       const Eigen::MatrixXd& s, double in_span_tolerance, const fit::ResidualLayout* layout) {
   const Eigen::Index m = r.size();
   if (basis.rows() != m || s.rows() != m)
     throw InvalidInput("score test: the residual (" + std::to_string(m) + "), the Jacobian (" +
@@ -79,6 +110,7 @@ ScoreResult score_test(const Eigen::VectorXd& r, const Eigen::MatrixXd& basis, i
   out.statistic = explained.squaredNorm() / s2;
   out.p_value = chi2_tail(out.statistic, out.degrees_of_freedom);
   out.step = -coef;
+  if (layout) robust_score(r, explained, basis, perp, fitted_parameters, *layout, out);
   return out;
 }
 

@@ -43,6 +43,10 @@ class TracedModel {
   // order of `effects`. frame_count() equal blocks, frame-major, each a multiple of 3 rows.
   // Thread-safe. Throws (e.g. fem::NotConverged) when the model fails for these parameters.
   virtual Eigen::VectorXd residuals(const std::vector<std::string>& effects, const Eigen::VectorXd& physical) const = 0;
+  // Reference positions of the points of a frame block, in row order (3 rows each), so that the
+  // score test can estimate how the residual is correlated (fit/correlated_residual.hpp). Empty
+  // (the default): the residual's rows are taken as independent.
+  virtual Eigen::Matrix3Xd frame_points() const { return {}; }
   // RMS over the trailing edge of a residual vector as residuals() returns it (default: all rows).
   virtual double trailing_edge_rms(const Eigen::VectorXd& r) const;
   // Per node, the RMS over frames of |residual| [m] (the report's residual maps). Default: one
