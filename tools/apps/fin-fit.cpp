@@ -91,9 +91,10 @@ void add_problem_options(CLI::App* c, ProblemFlags& f) {
               "quasi_static: keep the structure's mass times the motion's measured acceleration as a known load "
               "(eq. (2) with inertia; default: the paper's form without it)");
   c->add_option("--increment", f.increment,
-                "quasi_static: newton (the converged increment) or linear (its first Newton step from the base's "
-                "stored tangent: no element evaluation per evaluation, docs/studies/fit_evaluation_speed.md)")
-      ->check(CLI::IsMember({"newton", "linear"}))
+                "quasi_static: newton (the converged increment), linear (its first Newton step from the base's "
+                "stored tangent: no element evaluation per evaluation) or hybrid (the optimisers explore with "
+                "linear, the polish and intervals use newton; docs/studies/fit_evaluation_speed.md)")
+      ->check(CLI::IsMember({"newton", "linear", "hybrid"}))
       ->capture_default_str();
 }
 
@@ -279,7 +280,8 @@ int main(int argc, char** argv) {
     o.fit.methods = methods;
     if (flags.root_rotation != "auto") o.root_rotation = finverse::fem::parse_root_rotation(flags.root_rotation);
     o.stress_free_base = flags.base == "stress_free";
-    o.increment = finverse::fit::parse_increment_solve(flags.increment);
+    o.explore_linear = flags.increment == "hybrid";
+    o.increment = finverse::fit::parse_increment_solve(o.explore_linear ? "newton" : flags.increment);
     if (*ev) {
       namespace io = finverse::fit::io;
       std::fputs(io::format_misfit(io::evaluate_misfit(o, io::parse_parameter_values(at_values))).c_str(), stdout);

@@ -52,10 +52,31 @@ struct CompletedRun {
   std::optional<Uncertainty> uncertainty;  // at the polished point
 };
 
+// The finished runs and the interrupted one's state from a checkpoint of the same fit, if any.
+void resume_from(const std::filesystem::path& checkpoint, const nlohmann::json& print,
+                 std::vector<CompletedRun>& completed, std::optional<nlohmann::json>& current) {
+  std::optional<nlohmann::json> saved = read_checkpoint(checkpoint);
+  if (!saved) return;
+  const std::string where = checkpoint.string();
+  if (!saved->is_object() || saved->value("format", "") != checkpoint_format ||
+      saved->value("version", 0) != checkpoint_version)
+    throw InvalidInput(where + ": not a finverse fit checkpoint (version " + std::to_string(checkpoint_version) + ")");
+  if (saved->at("fingerprint") != print)
+    throw InvalidInput(where +
+                       ": checkpoint of a different fit (parameters, objective or "
+                       "options differ); delete it or do not resume");
+  for (const nlohmann::json& c : saved->at("runs")) {
+    CompletedRun done{run_result_from_json(c.at("run")), std::nullopt};
+    if (!c.at("uncertainty").is_null()) done.uncertainty = uncertainty_from_json(c.at("uncertainty"));
+    completed.push_back(std::move(done));
+  }
+  if (!saved->at("current").is_null()) current = saved->at("current");
+}
+
 }  // namespace
 
-FitResult run_fit(const ParameterSpace& space, const ResidualFunction& function,
-                  const FitOptions& options, const std::string& objective) {
+FitResult run_fit(const ParameterSpace& space, const ResidualFunction& function, const FitOptions& options,
+                  const std::string& objective, const ResidualFunction* explore) {
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -77,28 +98,14 @@ FitResult run_fit(const ParameterSpace& space, const ResidualFunction& function,
   LmOptions lm_options = options.polish_options;
   lm_options.threads = options.threads;
 
-  const nlohmann::json print =
-      fingerprint(space, function, options, objective, ga_population, cmaes_population);
+  if (explore && (explore->parameter_count() != n || explore->residual_count() != function.residual_count()))
+    throw InvalidInput("fit: the exploring residual function differs from the fit's in its parameters or residuals");
+  nlohmann::json print = fingerprint(space, function, options, objective, ga_population, cmaes_population);
+  print["explore"] = explore != nullptr;
+  const ResidualFunction& search = explore ? *explore : function;  // the GA's and CMA-ES's
   std::vector<CompletedRun> completed;
   std::optional<nlohmann::json> current;  // {"index", "state"} of an interrupted run
-  if (options.checkpoint && options.resume) {
-    if (std::optional<nlohmann::json> saved = read_checkpoint(*options.checkpoint)) {
-      const std::string where = options.checkpoint->string();
-      if (!saved->is_object() || saved->value("format", "") != checkpoint_format ||
-          saved->value("version", 0) != checkpoint_version)
-        throw InvalidInput(where + ": not a finverse fit checkpoint (version " +
-                           std::to_string(checkpoint_version) + ")");
-      if (saved->at("fingerprint") != print)
-        throw InvalidInput(where + ": checkpoint of a different fit (parameters, objective or "
-                           "options differ); delete it or do not resume");
-      for (const nlohmann::json& c : saved->at("runs")) {
-        CompletedRun done{run_result_from_json(c.at("run")), std::nullopt};
-        if (!c.at("uncertainty").is_null()) done.uncertainty = uncertainty_from_json(c.at("uncertainty"));
-        completed.push_back(std::move(done));
-      }
-      if (!saved->at("current").is_null()) current = saved->at("current");
-    }
-  }
+  if (options.checkpoint && options.resume) resume_from(*options.checkpoint, print, completed, current);
 
   auto save = [&](const nlohmann::json* state, int index) {
     if (!options.checkpoint) return;
@@ -153,11 +160,11 @@ FitResult run_fit(const ParameterSpace& space, const ResidualFunction& function,
     if (method == "ga") {
       GaOptions g;
       static_cast<EvolutionOptions&>(g) = e;
-      done.run = run_ga(space, function, g);
+      done.run = run_ga(space, search, g);
     } else {
       CmaesOptions c;
       static_cast<EvolutionOptions&>(c) = e;
-      done.run = run_cmaes(space, function, c);
+      done.run = run_cmaes(space, search, c);
     }
     if (options.polish) {
       const LmResult lm = levenberg_marquardt(space, function, space.to_scaled(done.run.best_x), lm_options);

@@ -42,8 +42,12 @@ struct FitOptions {
       progress;
 };
 
-// objective: "dynamic" | "quasi_static", carried into the result.
-FitResult run_fit(const ParameterSpace& space, const ResidualFunction& function,
-                  const FitOptions& options, const std::string& objective);
+// objective: "dynamic" | "quasi_static", carried into the result. explore (optional): a cheaper
+// approximation of `function` (the same parameters and residuals) for the GA and CMA-ES to
+// explore with; the polish, the champion's evaluation and the intervals always use `function`,
+// so the answer is function's optimum (issue 45, goal 8: linearised increments explore, Newton's
+// decide).
+FitResult run_fit(const ParameterSpace& space, const ResidualFunction& function, const FitOptions& options,
+                  const std::string& objective, const ResidualFunction* explore = nullptr);
 
 }  // namespace finverse::fit

@@ -385,6 +385,36 @@ TEST(LevenbergMarquardt, StaysInsideTheBox) {
   EXPECT_LE(lm.evaluations, 24);
 }
 
+// Issue 45, goal 8: the optimisers may explore with a cheaper approximation (here the model
+// with a 5 % error in its decay, as the linearised increment errs), but the polish, the answer
+// and its intervals are the exact function's; the approximation gets the GA's evaluations.
+TEST(FitDriver, ExploresWithTheApproximationAndAnswersWithTheExactFunction) {
+  const fit::ParameterSpace space = decay_space();
+  const LambdaResidual exact = decay_function();
+  const LambdaResidual rough(3, decay_samples, [](const Eigen::VectorXd& p) {
+    Eigen::VectorXd q = p;
+    q(1) *= 1.05;
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(3 * decay_samples);
+    for (int k = 0; k < decay_samples; ++k) r(3 * k) = decay_model(q, 0.1 * k) - decay_model(decay_truth, 0.1 * k);
+    return r;
+  });
+  fit::FitOptions o;
+  o.runs = 1;
+  o.max_generations = 15;
+  o.threads = 1;
+  o.seed = 3;
+  const fit::FitResult a = fit::run_fit(space, exact, o, "quasi_static", &rough);
+  EXPECT_LT(relative_error(a.best_x(1), 0.5), 1e-4) << a.best_x.transpose();
+  EXPECT_EQ(rough.calls.load(), a.runs[0].evaluations);
+  EXPECT_EQ(exact.calls.load(), a.runs[0].polish_evaluations);
+  // Without the polish the champion is the approximation's, scored and described by the exact.
+  o.polish = false;
+  const fit::FitResult b = fit::run_fit(space, exact, o, "quasi_static", &rough);
+  EXPECT_GT(relative_error(b.best_x(1), 0.5), 0.02) << b.best_x.transpose();
+  EXPECT_GT(b.best_sum_of_squares, 0);
+  EXPECT_EQ(b.uncertainty.verdict.size(), 3u);
+}
+
 TEST(FitDriver, ReproducibleAndResumable) {
   const fit::ParameterSpace space = decay_space();
   const LambdaResidual f = decay_function();

@@ -101,7 +101,7 @@ FitProblem load_fit_problem(const FileFitOptions& o) {
   drive.root_rotation = o.root_rotation.value_or(clamp ? fem::RootRotation::zero : fem::RootRotation::fit);
   if (!o.root_rotation && clamp) log::info("fin-fit: clamped root (no root rotation) for a structural load case");
   auto factory = std::make_shared<FinModelFactory>(mesh, base, space.names(), drive, o.mesh.string());
-  FitProblem problem{space, factory, nullptr, ""};
+  FitProblem problem{space, factory, nullptr, nullptr, ""};
 
   std::unique_ptr<ResidualFunction>& objective = problem.objective;
   std::ostringstream what;
@@ -117,9 +117,16 @@ FitProblem load_fit_problem(const FileFitOptions& o) {
       t_hi = std::min(t_hi, loads->time.data.back());
     }
     qs.instants = quasi_static_instants(o, target, qs.dt, t_lo, t_hi);
+    const bool explore = o.explore_linear && qs.solve == QuasiStaticOptions::Solve::newton;
     what << "eq. (2) quasi-static increments of " << sci(qs.dt) << " s at " << qs.instants.size() << " instant(s)"
          << (qs.stress_free_base ? " from stress-free bases" : "") << (qs.inertia ? ", with inertia" : "")
-         << (qs.solve == QuasiStaticOptions::Solve::linear ? ", linearised at the bases" : "");
+         << (qs.solve == QuasiStaticOptions::Solve::linear ? ", linearised at the bases" : "")
+         << (explore ? ", explored linearised and polished converged" : "");
+    if (explore) {
+      QuasiStaticOptions linear = qs;
+      linear.solve = QuasiStaticOptions::Solve::linear;
+      problem.explore = std::make_unique<QuasiStaticObjective>(factory, target, linear);
+    }
     objective = std::make_unique<QuasiStaticObjective>(factory, std::move(target), qs);
   } else if (o.objective == "dynamic") {
     DynamicObjectiveOptions dy;
@@ -237,7 +244,7 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
     s << rate << " evaluations/s, ETA " << log::format_duration(eta);
     log::info(s.str());
   };
-  FitResult result = run_fit(space, *objective, fo, o.objective);
+  FitResult result = run_fit(space, *objective, fo, o.objective, problem.explore.get());
 
   for (int i = 0; i < space.size(); ++i) {
     const bool have = result.uncertainty.identified.size() == static_cast<std::size_t>(space.size());

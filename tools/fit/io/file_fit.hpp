@@ -48,6 +48,9 @@ struct FileFitOptions {
   // quasi_static: eq. (2) with inertia, and how each increment is solved (QuasiStaticOptions).
   bool inertia = false;
   QuasiStaticOptions::Solve increment = QuasiStaticOptions::Solve::newton;
+  // quasi_static with the newton increment: the GA and CMA-ES explore with the linearised one,
+  // the polish and the intervals use Newton's (fit_driver.hpp's explore; goal 8 of issue 45).
+  bool explore_linear = false;
   FitOptions fit;
 };
 
@@ -57,6 +60,7 @@ struct FitProblem {
   ParameterSpace space;
   std::shared_ptr<FinModelFactory> factory;
   std::unique_ptr<ResidualFunction> objective;
+  std::unique_ptr<ResidualFunction> explore;  // null: the optimisers explore with `objective`
   std::string description;
 };
 FitProblem load_fit_problem(const FileFitOptions& options);
