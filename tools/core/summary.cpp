@@ -14,7 +14,7 @@ namespace finverse {
 double Metric::error() const {
   if (kind == "relative" && reference) return std::abs(value - *reference) / std::abs(*reference);
   if (kind == "absolute" && reference) return std::abs(value - *reference);
-  if (kind == "max" && tolerance) return value / *tolerance;  // fraction of the goal used
+  if ((kind == "max" || kind == "min") && tolerance) return value / *tolerance;  // fraction of the goal
   return std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -22,6 +22,7 @@ std::optional<bool> Metric::pass() const {
   if (kind == "info" || !tolerance) return std::nullopt;
   if (!std::isfinite(value)) return false;
   if (kind == "max") return value <= *tolerance;
+  if (kind == "min") return value >= *tolerance;  // a floor, e.g. a p value that must stay large
   return error() <= *tolerance;
 }
 
@@ -42,6 +43,10 @@ Metric& Summary::absolute(const std::string& name, double value, double referenc
 Metric& Summary::at_most(const std::string& name, double value, double goal, const std::string& source,
                          const std::string& units) {
   return metrics_.emplace_back(Metric{name, value, units, "max", std::nullopt, source, goal});
+}
+Metric& Summary::at_least(const std::string& name, double value, double floor, const std::string& source,
+                          const std::string& units) {
+  return metrics_.emplace_back(Metric{name, value, units, "min", std::nullopt, source, floor});
 }
 Metric& Summary::info(const std::string& name, double value, const std::string& units) {
   return metrics_.emplace_back(Metric{name, value, units, "info", std::nullopt, "", std::nullopt});

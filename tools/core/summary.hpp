@@ -42,6 +42,9 @@ class Summary {
                    const std::string& source, const std::string& units = "");
   Metric& at_most(const std::string& name, double value, double goal, const std::string& source,
                   const std::string& units = "");
+  // kind "min": passes when value >= floor (e.g. a p value that must stay large).
+  Metric& at_least(const std::string& name, double value, double floor, const std::string& source,
+                   const std::string& units = "");
   Metric& info(const std::string& name, double value, const std::string& units = "");
 
   nlohmann::json& parameters() { return parameters_; }

@@ -46,11 +46,12 @@ def metric(name, value, units="", kind="info", reference=None, tolerance=None, s
         error = abs(value - reference) / abs(reference)
     elif kind == "absolute" and value is not None and reference is not None:
         error = abs(value - reference)
-    elif kind == "max":
-        error = value
+    elif kind in ("max", "min"):
+        error = value / tolerance if tolerance and value is not None else None  # fraction of the goal
     passed = None
     if kind != "info" and value is not None and tolerance is not None:
-        passed = bool(error <= tolerance)
+        passed = bool(value >= tolerance) if kind == "min" else bool(value <= tolerance) if kind == "max" else \
+            bool(error <= tolerance)
     return {"name": name, "value": value, "units": units, "kind": kind, "reference": reference, "source": source,
             "error": error, "tolerance": tolerance, "pass": passed}
 
@@ -115,6 +116,11 @@ def main():
                               f"control: added {added} ({loop.get('stop_reason')})"))
         metrics.append(metric("trailing_edge_rms_final", final_state["trailing_edge_rms_m"], "m", "info", None, None,
                               "the floor: tracking error and the root drive read off the reconstruction"))
+        # Issue 45 goal 3: the first step's highest-scoring candidate is not significant.
+        if steps and steps[0]["ranking"]:
+            top = steps[0]["ranking"][0]
+            metrics.append(metric("largest_candidate_p_value", top["p_value"], "", "min", None, 0.01,
+                                  f"{top['candidate']}: score {top['score']:.4g} on {top['dof']} dof; goal > 0.01"))
     for name in a.parameters.split(","):
         if name not in truth:
             fail(f"--parameters: {name} is not among {a.truth}'s /materials/names")

@@ -89,6 +89,8 @@ def tolerance_text(m):
         return f"{100 * t:.3g}%"
     if m["kind"] == "max":
         return f"<= {fmt(t, 3)}"
+    if m["kind"] == "min":
+        return f">= {fmt(t, 3)}"
     return fmt(t, 3)
 
 

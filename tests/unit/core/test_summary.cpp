@@ -15,6 +15,8 @@ TEST(Summary, GradesEachKind) {
   EXPECT_TRUE(*s.absolute("a", 1e-4, 0.0, 1e-3, "ref").pass());
   EXPECT_TRUE(*s.at_most("ratio", 0.4, 0.5, "goal").pass());
   EXPECT_FALSE(*s.at_most("ratio2", 0.6, 0.5, "goal").pass());
+  EXPECT_TRUE(*s.at_least("p", 0.2, 0.01, "floor").pass());
+  EXPECT_FALSE(*s.at_least("p2", 0.001, 0.01, "floor").pass());
   EXPECT_FALSE(s.info("n", 12).pass().has_value());
   EXPECT_FALSE(*s.relative("nan", std::nan(""), 1.0, 0.1, "ref").pass());
   EXPECT_FALSE(s.pass());
