@@ -177,6 +177,14 @@ int main(int argc, char** argv) {
   rn->add_option("--substeps", file_run.run.substeps, "dynamic: time steps per frame interval")->capture_default_str();
   rn->add_option("--rho-inf", file_run.run.dynamic_options.spectral_radius, "dynamic: generalized-alpha rho_inf")
       ->capture_default_str();
+  rn->add_flag_callback(
+      "--full-newton",
+      [&file_run] {
+        file_run.run.dynamic_options.predict_with_acceleration = false;
+        file_run.run.dynamic_options.modified_newton = false;
+      },
+      "dynamic: each step's Newton starts where the last ended and refactorises every iteration: the thin "
+      "fin's run at 8 sub-steps per frame needs it, with --rho-inf 0.5 (docs/studies/fin_dynamic_run.md)");
   rn->add_option("--max-iterations", file_run.run.static_options.max_iterations, "Newton iterations per step")
       ->capture_default_str();
   rn->add_option("--gravity", gravity, "gravity vector [m/s^2]")->expected(3)->capture_default_str();

@@ -151,7 +151,9 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s, const Eigen::VectorXd& a
   NodalState x = s.configuration;
   apply_prescribed(model_, s.time, t1, x);
   {
-    Eigen::VectorXd pred = h * s.velocity + (0.5 * h * h) * s.acceleration;
+    Eigen::VectorXd pred = opt_.predict_with_acceleration
+                               ? Eigen::VectorXd(h * s.velocity + (0.5 * h * h) * s.acceleration)
+                               : Eigen::VectorXd(Eigen::VectorXd::Zero(s.velocity.size()));
     for (int g = 0; g < dofs_.total(); ++g)
       if (dofs_.equation(g) < 0) pred(g) = 0;
     x.apply_increment(pred);
@@ -229,7 +231,7 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s, const Eigen::VectorXd& a
         predictor_values_.assign(v, v + A.nonZeros());
       }
       current = &predictor_solver_;
-    } else if (it == 0 || rn > 1e-6) {
+    } else if (it == 0 || rn > 1e-6 || !opt_.modified_newton) {
       solver_.factorize(assembler_.matrix(), "effective stiffness");
       ++info.factorizations;
       current = &solver_;

@@ -47,6 +47,12 @@ struct DynamicOptions {
   // increment norm) as zero in the increment test: a step that hardly moves (an FSI load ramp
   // starting from zero) otherwise cannot meet increment_tolerance relative to its own increment.
   bool increment_roundoff_floor = false;
+  // The thin fin's slack membrane rotations (bending stiffness and rotary inertia both ~ h^3)
+  // make the constant-acceleration predictor extrapolate a whirl and the reused factorisation
+  // contract too slowly; both false: each step's Newton starts where the last step ended and
+  // refactorises every iteration (issue 45, deliverable 2; docs/studies/fin_dynamic_run.md).
+  bool predict_with_acceleration = true;
+  bool modified_newton = true;  // keep the factorisation once the residual is below 1e-6
 };
 
 // options with the model's own Rayleigh damping (Model::set_rayleigh_damping) added to a_M, a_K:
