@@ -30,6 +30,18 @@ std::vector<RayGroup> parse_ray_groups(const std::string& name, const std::strin
   throw InvalidInput("effect " + effect + ": group '" + name + "', expected all, dorsal, middle, ventral or edges");
 }
 
+nlohmann::json effects_catalogue() {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& name : effect_names()) {
+    const auto e = make_effect({{"name", name}});
+    nlohmann::json j{{"name", name}, {"defaults", e->to_json()}};
+    for (const auto& p : e->parameters())
+      j["parameters"].push_back({{"name", p.name}, {"unit", p.unit}, {"lower", p.lower}, {"upper", p.upper}});
+    out.push_back(j);
+  }
+  return out;
+}
+
 std::vector<std::string> effect_names() {
   std::vector<std::string> n;
   for (const auto& [name, make] : catalogue()) n.push_back(name);

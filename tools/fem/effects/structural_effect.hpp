@@ -75,6 +75,8 @@ class StructuralEffect {
 };
 
 std::vector<std::string> effect_names();
+// Every effect's name, default spec and parameters with units and ranges (`fin-fem effects`).
+nlohmann::json effects_catalogue();
 // spec: {"name": "<effect>", "<parameter>": value, ...} plus non-continuous settings (e.g.
 // "group", "frequency"); absent parameters take their defaults (a null effect where one exists).
 // Throws InvalidInput for an unknown name or key, or a value out of range.
