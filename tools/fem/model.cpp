@@ -266,4 +266,20 @@ void Model::validate() const {
   for (const auto& m : materials_) fem::validate(m);
 }
 
+bool same_topology(const Model& a, const Model& b) {
+  if (a.node_count() != b.node_count() || a.elements().size() != b.elements().size() ||
+      a.prescribed().size() != b.prescribed().size())
+    return false;
+  for (size_t e = 0; e < a.elements().size(); ++e) {
+    const Element &x = *a.elements()[e], &y = *b.elements()[e];
+    if (x.type() != y.type() || !std::ranges::equal(x.nodes(), y.nodes()) ||
+        !std::ranges::equal(x.active_dofs(), y.active_dofs()))
+      return false;
+  }
+  for (size_t k = 0; k < a.prescribed().size(); ++k)
+    if (a.prescribed()[k].node != b.prescribed()[k].node || a.prescribed()[k].dof != b.prescribed()[k].dof)
+      return false;
+  return true;
+}
+
 }  // namespace finverse::fem

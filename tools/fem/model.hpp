@@ -148,4 +148,8 @@ class Model {
   TimeFunction load_factor_;
 };
 
+// True when b has a's nodes, elements (type, nodes, active DOFs, in order) and prescribed DOFs:
+// the DofMap, assembly pattern and symbolic factorisation built on one serve the other.
+bool same_topology(const Model& a, const Model& b);
+
 }  // namespace finverse::fem

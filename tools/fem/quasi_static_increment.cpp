@@ -8,15 +8,21 @@ namespace finverse::fem {
 QuasiStaticIncrement::QuasiStaticIncrement(const Model& model, StaticOptions options)
     : solver_(model, options) {}
 
-NodalState QuasiStaticIncrement::solve(const NodalState& base, double t, double t_next, QuasiStaticInfo* info,
-                                       const Eigen::VectorXd* load_change) {
-  const Model& model = solver_.model();
+Eigen::VectorXd QuasiStaticIncrement::base_offset(const NodalState& base, double t,
+                                                  const Eigen::VectorXd* load_change) {
   AssemblyRequest req;
   req.time = t;
   solver_.assembler().assemble(base, req);
-  // Balance f_int(x) + offset = f_ext(t_next), offset = f_ext(t) - f_int(x_t).
-  Eigen::VectorXd offset = model.external_load(t) - solver_.assembler().internal_force();
+  // Balance f_int(x) + offset = f_ext(t_next), offset = f_ext(t) - f_int(x_t) - g.
+  Eigen::VectorXd offset = solver_.model().external_load(t) - solver_.assembler().internal_force();
   if (load_change) offset -= *load_change;
+  return offset;
+}
+
+NodalState QuasiStaticIncrement::solve(const NodalState& base, double t, double t_next, QuasiStaticInfo* info,
+                                       const Eigen::VectorXd* load_change) {
+  const Model& model = solver_.model();
+  const Eigen::VectorXd offset = base_offset(base, t, load_change);
   NodalState x = base;
   const StaticResult r = solver_.solve(x, t, t_next, &offset);
   if (info) {

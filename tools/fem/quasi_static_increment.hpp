@@ -52,6 +52,10 @@ class QuasiStaticIncrement {
                                            QuasiStaticInfo* info = nullptr,
                                            const Eigen::VectorXd* load_change = nullptr);
 
+  // The base's out-of-balance force that solve() takes as equilibrium, full length:
+  // f_ext(t) - f_int(x_t) - load_change. solve() balances f_int(x) = f_ext(t_next) - offset.
+  Eigen::VectorXd base_offset(const NodalState& base, double t, const Eigen::VectorXd* load_change = nullptr);
+
   StaticSolver& solver() { return solver_; }
 
  private:

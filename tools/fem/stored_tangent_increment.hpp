@@ -1,0 +1,87 @@
+// Eq. (2)'s converged increment, solved from a reference solution on the reference's stored
+// tangent (issue 45, goal 8).
+//
+// Newton from the base spends about ten factorisations per increment on the fin: the flat,
+// stress-free membrane has no tension stiffness, so the first linear step overshoots and Newton
+// needs six or seven iterations to come back before it converges quadratically
+// (docs/studies/fit_evaluation_speed.md, "Session 38"). The factorisations are 85 % of its time.
+// Here the increment is solved once, at set-up, at reference moduli; its converged state x_ref is
+// kept, and so is the tangent there as a TangentBasis: at a fixed configuration the corotational
+// tangent is linear in the element moduli, geometric stiffness included (tangent_basis.hpp). An
+// evaluation at other moduli starts from x_ref, factorises K(x_ref; E, nu) once and iterates
+//     u_{k+1} = u_k + K^-1 r(x_k),    r = f_target - f_int(x_k; E, nu)   (free DOFs),
+// with Anderson mixing over the last m steps (the least-squares secant of IQN-ILS,
+// fsi/iqn_ils.hpp, here on the displacement iterates). Each iteration is one internal-force
+// assembly and one back-substitution. Convergence is StaticSolver's test: relative residual and
+// scaled increment. The answer is therefore the equilibrium that Newton from the base reaches, to
+// those tolerances. When the iteration stalls (moduli far from the reference's), solve() returns
+// false and the caller solves with Newton.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "fem/assembly.hpp"
+#include "fem/model.hpp"
+#include "fem/nodal_state.hpp"
+#include "fem/sparse_solver.hpp"
+#include "fem/tangent_basis.hpp"
+
+namespace finverse::fem {
+
+struct StoredTangentOptions {
+  int max_iterations = 30;             // then solve() gives up (the caller's Newton takes over)
+  int history = 6;                     // Anderson columns kept
+  double residual_tolerance = 1e-8;    // as StaticOptions
+  double increment_tolerance = 1e-10;  // as StaticOptions
+  // When the residual falls by less than this factor in an iteration, the true tangent at the
+  // iterate is assembled and factorised (a Newton step), at most max_refreshes times.
+  double refresh_ratio = 0.9;
+  int max_refreshes = 4;
+};
+
+struct StoredTangentInfo {
+  int iterations = 0;
+  int refreshes = 0;  // true tangents factorised (the reference's not counted)
+  bool converged = false;
+  double residual = 0;  // relative, last
+};
+
+class StoredTangentIncrement {
+ public:
+  // models, nus: as TangentBasis (the first model outlives this object); reference: a converged
+  // increment's state at t_next (the prescribed DOFs at their values at t_next), at the
+  // reference moduli; t_next: the stiffness field's time.
+  StoredTangentIncrement(const std::vector<const Model*>& models, const std::vector<double>& nus,
+                         const NodalState& reference, double t_next, StoredTangentOptions options = {});
+
+  // Per-thread state: the factorisation (its symbolic analysis is kept) and scratch.
+  struct Workspace {
+    explicit Workspace(SolverBackend backend = SolverBackend::cholmod) : solver(backend) {}
+    SparseSolver solver;
+    Assembler::SparseMatrix matrix;
+    TangentBasis::Scratch scratch;
+  };
+
+  // Solves f_int(x) = f_target on the free DOFs from the reference. assembler: of the model at the
+  // evaluation's moduli (same topology as the basis's models), evaluated at `time` (t_next);
+  // element_moduli, nu: that model's (Model::element_youngs_modulus at t_next; nu as TangentBasis
+  // ::combine); f_target (full length): f_ext(t_next) minus QuasiStaticIncrement's base offset.
+  // x: the converged state on true. False when the iteration stalls, diverges or runs out of
+  // iterations (x is then unspecified). Throws SingularMatrix when K cannot be factorised.
+  bool solve(Assembler& assembler, double time, const std::vector<double>& element_moduli, double nu,
+             const Eigen::VectorXd& f_target, NodalState& x, Workspace& workspace,
+             StoredTangentInfo* info = nullptr) const;
+
+  const NodalState& reference() const { return reference_; }
+  const TangentBasis& basis() const { return *basis_; }
+
+ private:
+  std::unique_ptr<TangentBasis> basis_;
+  NodalState reference_;
+  StoredTangentOptions opt_;
+  double lchar_ = 1;
+};
+
+}  // namespace finverse::fem
