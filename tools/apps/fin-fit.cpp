@@ -91,10 +91,11 @@ void add_problem_options(CLI::App* c, ProblemFlags& f) {
               "quasi_static: keep the structure's mass times the motion's measured acceleration as a known load "
               "(eq. (2) with inertia; default: the paper's form without it)");
   c->add_option("--increment", f.increment,
-                "quasi_static: newton (the converged increment), linear (its first Newton step from the base's "
-                "stored tangent: no element evaluation per evaluation) or hybrid (the optimisers explore with "
-                "linear, the polish and intervals use newton; docs/studies/fit_evaluation_speed.md)")
-      ->check(CLI::IsMember({"newton", "linear", "hybrid"}))
+                "quasi_static: newton (the converged increment, Newton from the base), stored (converged too, "
+                "from a reference solution on its stored tangent, Newton where that stalls), linear (Newton's "
+                "first step from the base's stored tangent: not converged) or hybrid (the optimisers explore "
+                "with linear, the polish and intervals use stored; docs/studies/fit_evaluation_speed.md)")
+      ->check(CLI::IsMember({"newton", "stored", "linear", "hybrid"}))
       ->capture_default_str();
 }
 
@@ -281,7 +282,7 @@ int main(int argc, char** argv) {
     if (flags.root_rotation != "auto") o.root_rotation = finverse::fem::parse_root_rotation(flags.root_rotation);
     o.stress_free_base = flags.base == "stress_free";
     o.explore_linear = flags.increment == "hybrid";
-    o.increment = finverse::fit::parse_increment_solve(o.explore_linear ? "newton" : flags.increment);
+    o.increment = finverse::fit::parse_increment_solve(o.explore_linear ? "stored" : flags.increment);
     if (*ev) {
       namespace io = finverse::fit::io;
       std::fputs(io::format_misfit(io::evaluate_misfit(o, io::parse_parameter_values(at_values))).c_str(), stdout);

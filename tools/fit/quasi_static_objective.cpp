@@ -6,6 +6,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "fem/errors.hpp"
 #include "fit/errors.hpp"
 #include "fit/measured_inertia.hpp"
 #include "fit/node_weights.hpp"
@@ -27,6 +28,8 @@ struct QuasiStaticObjective::Workspace {
   // Solve::linear: a model that only carries the moduli of p, and the solver's state.
   std::unique_ptr<fem::Model> moduli_model;
   std::unique_ptr<fem::LinearIncrement::Workspace> linear;
+  // Solve::stored: the factorisation of the stored tangent (one pattern for every instant).
+  std::unique_ptr<fem::StoredTangentIncrement::Workspace> stored;
   void set_moduli(const ModelFactory& f, const std::vector<std::shared_ptr<const ModelFactory>>& rebased,
                   const Eigen::VectorXd& p) {
     if (model) f.set_moduli(*model, p);
@@ -40,8 +43,9 @@ QuasiStaticObjective::~QuasiStaticObjective() = default;
 
 QuasiStaticOptions::Solve parse_increment_solve(const std::string& name) {
   if (name == "newton") return QuasiStaticOptions::Solve::newton;
+  if (name == "stored") return QuasiStaticOptions::Solve::stored;
   if (name == "linear") return QuasiStaticOptions::Solve::linear;
-  throw InvalidInput("--increment '" + name + "': expected newton or linear");
+  throw InvalidInput("--increment '" + name + "': expected newton, stored or linear");
 }
 
 namespace {
@@ -112,21 +116,24 @@ QuasiStaticObjective::QuasiStaticObjective(std::shared_ptr<const ModelFactory> f
     for (size_t i = 0; i < dx.size(); ++i) dx[i] = x1[i] - x0[i];
     target_dx_.push_back(std::move(dx));
   }
-  if (options_.solve == QuasiStaticOptions::Solve::linear) set_up_linear(target);
+  if (options_.solve != QuasiStaticOptions::Solve::newton) set_up_stored_tangents(target);
 }
 
-// The linearised increments (fem/linear_increment.hpp): each instant's tangent at its base as
-// element matrices in the modulus-Poisson basis, from the model at four Poisson ratios, checked
-// against a model at the default parameters.
-void QuasiStaticObjective::set_up_linear(const TargetMotion& target) {
+// The stored tangents, in the modulus-Poisson basis from the model at four Poisson ratios,
+// checked against a model at the default parameters. Solve::linear: each instant's tangent at its
+// base (fem/linear_increment.hpp). Solve::stored: at the increment's converged state at the
+// default parameters, the reference each evaluation starts from (fem/stored_tangent_increment.hpp).
+void QuasiStaticObjective::set_up_stored_tangents(const TargetMotion& target) {
   const std::string& src = target.source;
+  const bool linear = options_.solve == QuasiStaticOptions::Solve::linear;
+  const std::string route = linear ? "the linear increment" : "the stored increment";
   if (!factory_->moduli_and_poisson_only())
-    throw InvalidInput(src +
-                       ": the linear increment needs parameters that are element moduli and one Poisson ratio; "
+    throw InvalidInput(src + ": " + route +
+                       " needs parameters that are element moduli and one Poisson ratio; "
                        "this model has others (use the newton increment)");
   if (!options_.stress_free_base && options_.relax_rotations)
-    throw InvalidInput(src +
-                       ": the linear increment needs bases that do not depend on the parameters: stress-free "
+    throw InvalidInput(src + ": " + route +
+                       " needs bases that do not depend on the parameters: stress-free "
                        "bases, or rotations not relaxed");
   const int nu_index = factory_->poisson_index();
   const Eigen::VectorXd p0 = factory_->default_parameters();
@@ -141,6 +148,7 @@ void QuasiStaticObjective::set_up_linear(const TargetMotion& target) {
     }
     return models;
   };
+  basis_poisson_ = nus;
   if (rebased_.empty()) linear_models_.push_back(build_at(*factory_));
   for (size_t j = 0; j < instants_.size(); ++j) {
     const ModelFactory& f = rebased_.empty() ? *factory_ : *rebased_[j];
@@ -149,21 +157,53 @@ void QuasiStaticObjective::set_up_linear(const TargetMotion& target) {
     const double t = instants_[j];
     for (int e = 0; e < static_cast<int>(models[0]->elements().size()); ++e)
       if (models[0]->element_youngs_modulus(e, t) != models[0]->element_youngs_modulus(e, t + dt_))
-        throw InvalidInput(src + ": the linear increment needs moduli constant over the increment (element " +
+        throw InvalidInput(src + ": " + route + " needs moduli constant over the increment (element " +
                            std::to_string(e) + "'s changes); use the newton increment");
     std::vector<const fem::Model*> pointers;
     for (const auto& m : models) pointers.push_back(m.get());
-    linear_.push_back(std::make_unique<fem::LinearIncrement>(pointers, nus, base_[j], t, t + dt_, load_change(j)));
-    if (nu_index >= 0) {
-      const std::unique_ptr<fem::Model> check = f.build(p0);
-      linear_form_error_ = std::max(linear_form_error_, linear_.back()->basis().form_error(*check, p0(nu_index)));
+    const std::unique_ptr<fem::Model> check = f.build(p0);
+    const fem::TangentBasis* basis = nullptr;
+    if (linear) {
+      linear_.push_back(std::make_unique<fem::LinearIncrement>(pointers, nus, base_[j], t, t + dt_, load_change(j)));
+      basis = &linear_.back()->basis();
+    } else {
+      stored_.push_back(stored_at(j, *check));
+      basis = &stored_.back()->basis();
     }
+    if (nu_index >= 0) linear_form_error_ = std::max(linear_form_error_, basis->form_error(*check, p0(nu_index)));
   }
   if (!(linear_form_error_ <= 1e-8))
-    throw InvalidInput(src +
-                       ": the model's tangent is not of the modulus-Poisson form the linear increment needs "
-                       "(relative error " +
-                       std::to_string(linear_form_error_) + "); use the newton increment");
+    throw InvalidInput(src + ": the model's tangent is not of the modulus-Poisson form " + route +
+                       " needs (relative error " + std::to_string(linear_form_error_) + "); use the newton increment");
+}
+
+// Solve::stored: instant j's reference, the converged increment of `model` (the factory's model
+// at the reference parameters), and the stored tangent there.
+std::unique_ptr<fem::StoredTangentIncrement> QuasiStaticObjective::stored_at(size_t j, const fem::Model& model) const {
+  const double t = instants_[j];
+  fem::QuasiStaticIncrement newton(model, options_.static_options);
+  const fem::NodalState reference = newton.solve(base_[j], t, t + dt_, nullptr, load_change(j));
+  std::vector<const fem::Model*> pointers;
+  for (const auto& m : linear_models_[rebased_.empty() ? 0 : j]) pointers.push_back(m.get());
+  const fem::StoredTangentOptions so{.residual_tolerance = options_.static_options.residual_tolerance,
+                                     .increment_tolerance = options_.static_options.increment_tolerance};
+  return std::make_unique<fem::StoredTangentIncrement>(pointers, basis_poisson_, reference, t + dt_, so);
+}
+
+void QuasiStaticObjective::expect_near(const Eigen::VectorXd& p) const {
+  if (stored_.empty()) return;
+  std::vector<std::unique_ptr<fem::StoredTangentIncrement>> moved;
+  try {
+    for (size_t j = 0; j < instants_.size(); ++j) {
+      const std::unique_ptr<fem::Model> model = (rebased_.empty() ? *factory_ : *rebased_[j]).build(p);
+      moved.push_back(stored_at(j, *model));
+    }
+  } catch (const fem::NotConverged&) {
+    return;  // keep the references there are: p is a hint, and Newton fails at p anyway
+  } catch (const fem::SingularMatrix&) {
+    return;
+  }
+  stored_ = std::move(moved);
 }
 
 std::unique_ptr<QuasiStaticObjective::Workspace> QuasiStaticObjective::acquire(const Eigen::VectorXd& p) const {
@@ -173,6 +213,7 @@ std::unique_ptr<QuasiStaticObjective::Workspace> QuasiStaticObjective::acquire(c
   // The linear route's workspaces only carry moduli: any of them serves any p.
   const bool linear = !linear_.empty();
   const Eigen::VectorXd key = linear ? Eigen::VectorXd() : factory_->rebuild_key(p);
+  std::unique_ptr<Workspace> spare;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto it = idle_.begin(); it != idle_.end(); ++it)
@@ -182,6 +223,15 @@ std::unique_ptr<QuasiStaticObjective::Workspace> QuasiStaticObjective::acquire(c
         w->set_moduli(*factory_, rebased_, p);
         return w;
       }
+    // The least recently used workspace, to be rebuilt for this key (rekey).
+    if (!linear && !idle_.empty() && !idle_.back()->relaxation) {
+      spare = std::move(idle_.back());
+      idle_.pop_back();
+    }
+  }
+  if (spare && rekey(*spare, key)) {
+    spare->set_moduli(*factory_, rebased_, p);
+    return spare;
   }
   auto w = std::make_unique<Workspace>();
   w->key = key;
@@ -192,8 +242,13 @@ std::unique_ptr<QuasiStaticObjective::Workspace> QuasiStaticObjective::acquire(c
     w->set_moduli(*factory_, rebased_, p);
     return w;
   }
-  w->model = factory_->build(key);
-  w->increment = std::make_unique<fem::QuasiStaticIncrement>(*w->model, options_.static_options);
+  // With stress-free bases every increment is solved on its instant's model: no shared one.
+  if (rebased_.empty()) {
+    w->model = factory_->build(key);
+    w->increment = std::make_unique<fem::QuasiStaticIncrement>(*w->model, options_.static_options);
+  }
+  if (!stored_.empty())
+    w->stored = std::make_unique<fem::StoredTangentIncrement::Workspace>(options_.static_options.backend);
   for (const auto& f : rebased_) {
     w->instant_models.push_back(f->build(key));
     w->instant_increments.push_back(
@@ -207,6 +262,29 @@ std::unique_ptr<QuasiStaticObjective::Workspace> QuasiStaticObjective::acquire(c
   // Always through set_moduli, also right after a build: the result then depends on p alone.
   w->set_moduli(*factory_, rebased_, p);
   return w;
+}
+
+// A workspace built for another rebuild key (another nu) takes the models of `key` in place: with
+// the same topology its DofMaps, assemblers and symbolic factorisations still serve, and building
+// those is most of a workspace's cost (a fit gives every individual its own nu). The models are
+// moved into the existing objects, which the solvers refer to. Workspaces with a rotation
+// relaxation are not rekeyed (its model carries extra prescriptions).
+bool QuasiStaticObjective::rekey(Workspace& w, const Eigen::VectorXd& key) const {
+  std::unique_ptr<fem::Model> model;
+  if (w.model) {
+    model = factory_->build(key);
+    if (!fem::same_topology(*w.model, *model)) return false;
+  }
+  std::vector<std::unique_ptr<fem::Model>> instant;
+  for (size_t j = 0; j < rebased_.size(); ++j) {
+    instant.push_back(rebased_[j]->build(key));
+    if (!fem::same_topology(*w.instant_models[j], *instant.back())) return false;
+  }
+  if (model) *w.model = std::move(*model);
+  for (size_t j = 0; j < instant.size(); ++j) *w.instant_models[j] = std::move(*instant[j]);
+  w.key = key;
+  ++rekeys_;
+  return true;
 }
 
 void QuasiStaticObjective::release(std::unique_ptr<Workspace> w) const {
@@ -229,6 +307,9 @@ std::vector<std::vector<fem::Vec3>> QuasiStaticObjective::increments(const Eigen
       for (size_t e = 0; e < moduli.size(); ++e) moduli[e] = m.element_youngs_modulus(static_cast<int>(e), t + dt_);
       const int nu_index = factory_->poisson_index();
       dx.push_back(linear_[j]->displacement_increment(moduli, nu_index < 0 ? 0.0 : p(nu_index), *w->linear));
+    } else if (!stored_.empty()) {
+      dx.push_back(
+          stored_increment(j, w->instant_increments.empty() ? *w->increment : *w->instant_increments[j], p, *w));
     } else if (!w->instant_increments.empty()) {
       dx.push_back(w->instant_increments[j]->displacement_increment(base_[j], t, t + dt_, nullptr, load_change(j)));
     } else if (w->relaxation) {
@@ -239,6 +320,31 @@ std::vector<std::vector<fem::Vec3>> QuasiStaticObjective::increments(const Eigen
     }
   }
   release(std::move(w));
+  return dx;
+}
+
+// Solve::stored: the increment from the reference solution on its stored tangent; Newton from the
+// base where that iteration does not converge (moduli far from the reference's).
+std::vector<fem::Vec3> QuasiStaticObjective::stored_increment(size_t j, fem::QuasiStaticIncrement& increment,
+                                                              const Eigen::VectorXd& p, Workspace& w) const {
+  const double t = instants_[j], t_next = t + dt_;
+  const fem::Model& m = increment.solver().model();
+  std::vector<double> moduli(m.elements().size());
+  for (size_t e = 0; e < moduli.size(); ++e) moduli[e] = m.element_youngs_modulus(static_cast<int>(e), t_next);
+  const int nu_index = factory_->poisson_index();
+  const Eigen::VectorXd f_target = m.external_load(t_next) - increment.base_offset(base_[j], t, load_change(j));
+  fem::NodalState x;
+  fem::StoredTangentInfo info;
+  const bool ok = stored_[j]->solve(increment.solver().assembler(), t_next, moduli, nu_index < 0 ? 0.0 : p(nu_index),
+                                    f_target, x, *w.stored, &info);
+  ++stored_solves_;
+  stored_iterations_ += info.iterations;
+  if (!ok) {
+    ++stored_fallbacks_;
+    return increment.displacement_increment(base_[j], t, t_next, nullptr, load_change(j));
+  }
+  std::vector<fem::Vec3> dx(x.position.size());
+  for (size_t i = 0; i < dx.size(); ++i) dx[i] = x.position[i] - base_[j].position[i];
   return dx;
 }
 

@@ -20,6 +20,7 @@
 #include "fem/linear_increment.hpp"
 #include "fem/quasi_static_increment.hpp"
 #include "fem/static_solver.hpp"
+#include "fem/stored_tangent_increment.hpp"
 #include "fit/model_factory.hpp"
 #include "fit/residual_function.hpp"
 #include "fit/target_motion.hpp"
@@ -49,15 +50,18 @@ struct QuasiStaticOptions {
   // measured acceleration over the increment as a known load (measured_inertia.hpp); false: the
   // paper's form. Needs a target frame before each instant and one after its increment.
   bool inertia = false;
-  // How the increment is solved: newton (QuasiStaticIncrement, converged) or linear (its first
-  // Newton step from the base's tangent kept as stored element matrices, fem/linear_increment.hpp:
-  // no element evaluation per evaluation). linear needs a factory whose parameters are moduli and
-  // one Poisson ratio (ModelFactory::moduli_and_poisson_only) and bases that do not depend on
-  // them (stress_free_base, or relax_rotations false).
-  enum class Solve { newton, linear } solve = Solve::newton;
+  // How the increment is solved: newton (QuasiStaticIncrement from the base, converged); stored
+  // (converged too, from a reference solution at the factory's default parameters on its stored
+  // tangent, fem/stored_tangent_increment.hpp; Newton where that iteration stalls); or linear
+  // (Newton's first step from the base's tangent kept as stored element matrices,
+  // fem/linear_increment.hpp: no element evaluation per evaluation, not converged). stored and
+  // linear need a factory whose parameters are moduli and one Poisson ratio
+  // (ModelFactory::moduli_and_poisson_only) and bases that do not depend on them
+  // (stress_free_base, or relax_rotations false).
+  enum class Solve { newton, stored, linear } solve = Solve::newton;
 };
 
-// "newton" / "linear"; throws InvalidInput naming the flag otherwise.
+// "newton" / "stored" / "linear"; throws InvalidInput naming the flag otherwise.
 QuasiStaticOptions::Solve parse_increment_solve(const std::string& name);
 
 class QuasiStaticObjective : public ResidualFunction {
@@ -78,6 +82,11 @@ class QuasiStaticObjective : public ResidualFunction {
   }
   std::vector<double> block_times() const override { return instants_; }
 
+  // Solve::stored: moves the reference solution every evaluation starts from to p (at
+  // construction: the factory's default parameters), so that evaluations near p converge in a few
+  // iterations. Not to be called while evaluations run. Other routes: nothing.
+  void expect_near(const Eigen::VectorXd& physical) const override;
+
   // dx_FE per instant, [instant][node] (every node): for diagnostics and plots.
   std::vector<std::vector<fem::Vec3>> increments(const Eigen::VectorXd& physical) const;
 
@@ -90,18 +99,31 @@ class QuasiStaticObjective : public ResidualFunction {
   // The bases from the positions (1-ring rotations, the drive's root values), before relaxation.
   const std::vector<fem::NodalState>& base_states() const { return base_; }
   long model_builds() const { return builds_.load(); }  // models built so far (the lever's effect)
+  long model_rekeys() const { return rekeys_.load(); }  // workspaces whose models were rebuilt in place
   // eq. (2) with inertia: the load change -M da per instant (full length); empty otherwise.
   const std::vector<Eigen::VectorXd>& inertial_load_changes() const { return load_change_; }
-  // Solve::linear: the largest relative error of the stored tangent's form (tangent_basis.hpp).
+  // Solve::linear, stored: the largest relative error of the stored tangent's form (tangent_basis.hpp).
   double linear_form_error() const { return linear_form_error_; }
+  // Solve::stored: increments solved so far, how many fell back to Newton, and the stored
+  // iteration's iterations in all (converged or not).
+  struct StoredCounts {
+    long solves = 0, fallbacks = 0, iterations = 0;
+  };
+  StoredCounts stored_counts() const {
+    return {stored_solves_.load(), stored_fallbacks_.load(), stored_iterations_.load()};
+  }
 
  private:
   struct Workspace;
-  void set_up_linear(const TargetMotion& target);
+  void set_up_stored_tangents(const TargetMotion& target);
+  std::vector<fem::Vec3> stored_increment(size_t instant, fem::QuasiStaticIncrement& increment,
+                                          const Eigen::VectorXd& p, Workspace& workspace) const;
   const Eigen::VectorXd* load_change(size_t instant) const {
     return load_change_.empty() ? nullptr : &load_change_[instant];
   }
   std::unique_ptr<Workspace> acquire(const Eigen::VectorXd& physical) const;
+  bool rekey(Workspace& workspace, const Eigen::VectorXd& key) const;
+  std::unique_ptr<fem::StoredTangentIncrement> stored_at(size_t instant, const fem::Model& model) const;
   void release(std::unique_ptr<Workspace> workspace) const;
 
   std::shared_ptr<const ModelFactory> factory_;
@@ -119,10 +141,14 @@ class QuasiStaticObjective : public ResidualFunction {
   // [0][4] shared) and each instant's linearised increment, built once and shared by the threads.
   std::vector<std::vector<std::unique_ptr<fem::Model>>> linear_models_;
   std::vector<std::unique_ptr<fem::LinearIncrement>> linear_;
+  // Solve::stored: [instant]; mutable: expect_near moves the references between evaluations.
+  mutable std::vector<std::unique_ptr<fem::StoredTangentIncrement>> stored_;
+  std::vector<double> basis_poisson_;  // the Poisson ratios of linear_models_
   double linear_form_error_ = 0;
+  mutable std::atomic<long> stored_solves_{0}, stored_fallbacks_{0}, stored_iterations_{0};
   mutable std::mutex mutex_;
   mutable std::list<std::unique_ptr<Workspace>> idle_;  // most recently used first
-  mutable std::atomic<long> builds_{0};
+  mutable std::atomic<long> builds_{0}, rekeys_{0};
 };
 
 }  // namespace finverse::fit

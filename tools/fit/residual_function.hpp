@@ -35,6 +35,10 @@ class ResidualFunction {
   // Where each residual sits, for the intervals' correlated-misfit estimate (residual_layout.hpp);
   // none: the residuals are taken as independent.
   virtual std::optional<ResidualLayout> residual_layout() const { return std::nullopt; }
+  // A hint that the next evaluations lie near `physical` (a polish about to start): a function
+  // that solves iteratively may start from a solution there. Its results may change within its
+  // solver's tolerance, never more. Not called while evaluations run. Default: nothing.
+  virtual void expect_near(const Eigen::VectorXd& /*physical*/) const {}
 };
 
 // The distance objective J of the residuals r (see above); sqrt_weights as sqrt_weights().

@@ -665,3 +665,72 @@ TEST(QuasiStaticObjective, LinearIncrementFollowsNewtonOnTheFin) {
   plate.solve = fit::QuasiStaticOptions::Solve::linear;
   EXPECT_THROW(fit::QuasiStaticObjective(st.twin, st.target, plate), fit::InvalidInput);
 }
+
+// The stored-reference increment (fem/stored_tangent_increment.hpp) on the synthetic fin: Newton's
+// converged residuals to the solver's tolerance at moduli and Poisson ratios away from the
+// reference, before and after the reference moves (expect_near); never a fallback here.
+TEST(QuasiStaticObjective, StoredIncrementEqualsNewtonOnTheFin) {
+  const stage::Mesh mesh = fin_mesh();
+  const auto factory = std::make_shared<fit::FinModelFactory>(
+      mesh, fin_materials(), std::vector<std::string>{"E_membrane", "E_ray3", "E_ray5", "E_ray7", "nu"},
+      fin_drive(mesh));
+  const fit::TargetMotion target = own_quasi_static_march(*factory);
+  fit::QuasiStaticOptions newton{.instants = {0.05, 0.1}, .stress_free_base = true};
+  fit::QuasiStaticOptions stored = newton;
+  stored.solve = fit::parse_increment_solve("stored");
+  const fit::QuasiStaticObjective fn(factory, target, newton), fs(factory, target, stored);
+  EXPECT_LT(fs.linear_form_error(), 1e-10);
+  const auto compare = [&](const Eigen::VectorXd& p, const char* when) {
+    const auto xn = fn.increments(p), xs = fs.increments(p);
+    double diff = 0, size = 0;
+    for (size_t j = 0; j < xn.size(); ++j)
+      for (int n : fn.compared_nodes())
+        diff = std::max(diff, (xn[j][n] - xs[j][n]).norm()), size = std::max(size, xn[j][n].norm());
+    std::printf("synthetic fin, %s: stored increment within %.2e of Newton's (relative)\n", when, diff / size);
+    EXPECT_LT(diff, 1e-6 * size) << when;
+  };
+  for (double s : {1.0, 0.5, 3.0}) {
+    Eigen::VectorXd p = factory->default_parameters();
+    p.head(4) *= s;
+    p(4) = s == 1.0 ? 0.45 : 0.25;
+    compare(p, s == 1.0 ? "the reference" : s < 1 ? "moduli x0.5, nu 0.25" : "moduli x3, nu 0.25");
+  }
+  Eigen::VectorXd far = factory->default_parameters();
+  far.head(4) *= 3.0;
+  far(4) = 0.3;
+  fs.expect_near(far);
+  compare(far, "moduli x3 after the reference moved there");
+  Eigen::VectorXd back = factory->default_parameters();
+  back(4) = 0.4;
+  compare(back, "the defaults after the reference moved away");
+  EXPECT_EQ(fs.stored_counts().fallbacks, 0);
+  EXPECT_EQ(fs.stored_counts().solves, 10);  // 5 points x 2 instants
+  EXPECT_GT(fs.stored_counts().iterations, fs.stored_counts().solves);
+  EXPECT_THROW(fit::parse_increment_solve("stord"), fit::InvalidInput);
+}
+
+// A cached workspace built for another Poisson ratio is rebuilt in place (rekey): the residuals
+// are those of a fresh objective's workspace, bit for bit, on the Newton and stored routes.
+TEST(QuasiStaticObjective, RekeyedWorkspaceEqualsAFreshOne) {
+  const stage::Mesh mesh = fin_mesh();
+  const auto factory = std::make_shared<fit::FinModelFactory>(
+      mesh, fin_materials(), std::vector<std::string>{"E_membrane", "E_ray3", "E_ray5", "E_ray7", "nu"},
+      fin_drive(mesh));
+  const fit::TargetMotion target = own_quasi_static_march(*factory);
+  for (const char* route : {"newton", "stored"}) {
+    fit::QuasiStaticOptions o{.instants = {0.05, 0.1}, .cached_models = 1, .stress_free_base = true};
+    o.solve = fit::parse_increment_solve(route);
+    const fit::QuasiStaticObjective reused(factory, target, o), fresh(factory, target, o);
+    Eigen::VectorXd p1 = factory->default_parameters(), p2 = p1;
+    p1(4) = 0.3;
+    p2.head(4) *= 1.7;
+    p2(4) = 0.41;
+    (void)reused.residuals(p1);
+    const long builds = reused.model_builds();
+    const Eigen::VectorXd r2 = reused.residuals(p2);
+    EXPECT_EQ(reused.model_rekeys(), 1) << route;
+    EXPECT_EQ(reused.model_builds(), builds) << route;  // no new workspace
+    EXPECT_EQ(r2, fresh.residuals(p2)) << route;
+    EXPECT_NE(r2, reused.residuals(p1)) << route;  // the Poisson ratio does matter
+  }
+}

@@ -117,10 +117,11 @@ FitProblem load_fit_problem(const FileFitOptions& o) {
       t_hi = std::min(t_hi, loads->time.data.back());
     }
     qs.instants = quasi_static_instants(o, target, qs.dt, t_lo, t_hi);
-    const bool explore = o.explore_linear && qs.solve == QuasiStaticOptions::Solve::newton;
+    const bool explore = o.explore_linear && qs.solve != QuasiStaticOptions::Solve::linear;
     what << "eq. (2) quasi-static increments of " << sci(qs.dt) << " s at " << qs.instants.size() << " instant(s)"
          << (qs.stress_free_base ? " from stress-free bases" : "") << (qs.inertia ? ", with inertia" : "")
          << (qs.solve == QuasiStaticOptions::Solve::linear ? ", linearised at the bases" : "")
+         << (qs.solve == QuasiStaticOptions::Solve::stored ? ", converged from a stored reference" : "")
          << (explore ? ", explored linearised and polished converged" : "");
     if (explore) {
       QuasiStaticOptions linear = qs;

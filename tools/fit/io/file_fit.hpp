@@ -48,7 +48,7 @@ struct FileFitOptions {
   // quasi_static: eq. (2) with inertia, and how each increment is solved (QuasiStaticOptions).
   bool inertia = false;
   QuasiStaticOptions::Solve increment = QuasiStaticOptions::Solve::newton;
-  // quasi_static with the newton increment: the GA and CMA-ES explore with the linearised one,
+  // quasi_static with a converged increment (newton, stored): the GA and CMA-ES explore with the linearised one,
   // the polish and the intervals use Newton's (fit_driver.hpp's explore; goal 8 of issue 45).
   bool explore_linear = false;
   FitOptions fit;

@@ -51,52 +51,72 @@ RouteTiming time_route(const ParameterSpace& space, const ResidualFunction& f, c
   return r;
 }
 
+// How far one route lies from Newton's, point by point: residual vectors and objectives, and
+// the increments themselves (what eq. (2) compares with the target's) at the first three points.
+struct RouteDifference {
+  double residual = 0, objective = 0, increment = 0;
+};
+
+RouteDifference route_difference(const ParameterSpace& space, const std::vector<Eigen::VectorXd>& x,
+                                 const RouteTiming& newton, const RouteTiming& other, const QuasiStaticObjective& qn,
+                                 const QuasiStaticObjective& qo) {
+  RouteDifference d;
+  for (size_t k = 0; k < x.size(); ++k) {
+    const Eigen::VectorXd &rn = newton.batch.residuals[k], &ro = other.batch.residuals[k];
+    if (rn.size() == 0 || ro.size() == 0) continue;
+    d.residual = std::max(d.residual, (ro - rn).norm() / std::max(rn.norm(), 1e-300));
+    d.objective = std::max(d.objective, std::abs(other.batch.objective[k] - newton.batch.objective[k]) /
+                                            std::max(newton.batch.objective[k], 1e-300));
+  }
+  for (size_t k = 0; k < std::min<size_t>(3, x.size()); ++k) {
+    const Eigen::VectorXd p = space.to_physical(x[k]);
+    const auto dn = qn.increments(p), dl = qo.increments(p);
+    for (size_t j = 0; j < dn.size(); ++j) {
+      double diff = 0, size = 0;
+      for (int n : qn.compared_nodes()) diff += (dl[j][n] - dn[j][n]).squaredNorm(), size += dn[j][n].squaredNorm();
+      d.increment = std::max(d.increment, std::sqrt(diff / std::max(size, 1e-300)));
+    }
+  }
+  return d;
+}
+
 }  // namespace
 
 Summary run_fin_rate_bench(const FinRateOptions& o) {
   Summary s("bench", "fit_fin_rate",
-            "eq. (2) evaluations per second on the fin: the converged Newton increment against the linearised "
-            "increment on stored element tangents, the same points, " +
+            "eq. (2) evaluations per second on the fin: the converged increment by Newton from the base and from a "
+            "reference solution on its stored tangent, and the linearised increment, the same points, " +
                 std::to_string(o.threads) + " threads");
   io::FileFitOptions files = o.files;
   files.objective = "quasi_static";
-  files.increment = QuasiStaticOptions::Solve::newton;
-  const io::FitProblem newton = io::load_fit_problem(files);
-  files.increment = QuasiStaticOptions::Solve::linear;
-  auto t0 = std::chrono::steady_clock::now();
-  const io::FitProblem linear = io::load_fit_problem(files);
-  const double setup = seconds_since(t0);
+  const auto load = [&](QuasiStaticOptions::Solve solve, double* setup) {
+    files.increment = solve;
+    const auto t0 = std::chrono::steady_clock::now();
+    io::FitProblem problem = io::load_fit_problem(files);
+    if (setup) *setup = seconds_since(t0);
+    return problem;
+  };
+  double setup_stored = 0, setup_linear = 0;
+  const io::FitProblem newton = load(QuasiStaticOptions::Solve::newton, nullptr);
+  const io::FitProblem stored = load(QuasiStaticOptions::Solve::stored, &setup_stored);
+  const io::FitProblem linear = load(QuasiStaticOptions::Solve::linear, &setup_linear);
   const ParameterSpace& space = newton.space;
   const auto x = rate_points(space, newton.factory->default_parameters(), o);
   log::info("fit_fin_rate: " + newton.description + "; " + std::to_string(x.size()) + " points");
 
   const RouteTiming rn = time_route(space, *newton.objective, x, o.threads);
+  const auto& qs = dynamic_cast<const QuasiStaticObjective&>(*stored.objective);
+  const QuasiStaticObjective::StoredCounts before = qs.stored_counts();
+  const RouteTiming rs = time_route(space, *stored.objective, x, o.threads);
+  const QuasiStaticObjective::StoredCounts after = qs.stored_counts();
   const RouteTiming rl = time_route(space, *linear.objective, x, o.threads);
-  const double rate_n = static_cast<double>(x.size() - rn.batch.failures) / rn.seconds;
-  const double rate_l = static_cast<double>(x.size() - rl.batch.failures) / rl.seconds;
+  const auto rate = [&](const RouteTiming& r) { return static_cast<double>(x.size() - r.batch.failures) / r.seconds; };
+  const double rate_n = rate(rn), rate_s = rate(rs), rate_l = rate(rl);
+  const auto& qn = dynamic_cast<const QuasiStaticObjective&>(*newton.objective);
+  const RouteDifference ds = route_difference(space, x, rn, rs, qn, qs);
+  const RouteDifference dl =
+      route_difference(space, x, rn, rl, qn, dynamic_cast<const QuasiStaticObjective&>(*linear.objective));
 
-  // How far the linear route lies from Newton's: residual vectors and objectives, point by point.
-  double worst_residual = 0, worst_objective = 0;
-  for (size_t k = 0; k < x.size(); ++k) {
-    if (rn.batch.residuals[k].size() == 0 || rl.batch.residuals[k].size() == 0) continue;
-    worst_residual = std::max(worst_residual, (rl.batch.residuals[k] - rn.batch.residuals[k]).norm() /
-                                                  std::max(rn.batch.residuals[k].norm(), 1e-300));
-    worst_objective = std::max(worst_objective, std::abs(rl.batch.objective[k] - rn.batch.objective[k]) /
-                                                    std::max(rn.batch.objective[k], 1e-300));
-  }
-  // And the increments themselves (what eq. (2) compares with the target's), at three points.
-  const auto* qn = dynamic_cast<const QuasiStaticObjective*>(newton.objective.get());
-  const auto* ql = dynamic_cast<const QuasiStaticObjective*>(linear.objective.get());
-  double worst_increment = 0;
-  for (size_t k = 0; k < std::min<size_t>(3, x.size()); ++k) {
-    const Eigen::VectorXd p = space.to_physical(x[k]);
-    const auto dn = qn->increments(p), dl = ql->increments(p);
-    for (size_t j = 0; j < dn.size(); ++j) {
-      double diff = 0, size = 0;
-      for (int n : qn->compared_nodes()) diff += (dl[j][n] - dn[j][n]).squaredNorm(), size += dn[j][n].squaredNorm();
-      worst_increment = std::max(worst_increment, std::sqrt(diff / std::max(size, 1e-300)));
-    }
-  }
   s.parameters() = {{"mesh", o.files.mesh.string()},
                     {"motion", o.files.motion.string()},
                     {"points", o.points},
@@ -104,18 +124,30 @@ Summary run_fin_rate_bench(const FinRateOptions& o) {
                     {"seed", o.seed},
                     {"threads", o.threads},
                     {"objective", newton.description}};
-  // Graded as its inverse (the summary grades upper bounds): >= 10 per second is <= 0.1 s each.
-  s.at_most("linear_seconds_per_evaluation", 1.0 / rate_l, 0.1,
-            "issue 45 goal 8: >= 10 evaluations per second on the default fin, 2 threads", "s");
-  s.info("linear_evaluations_per_second", rate_l, "1/s");
+  // Graded as its inverse (the summary grades upper bounds): >= 10 per second is <= 0.1 s each,
+  // on the converged route whose answer is Newton's.
+  s.at_most("stored_seconds_per_evaluation", 1.0 / rate_s, 0.1,
+            "issue 45 goal 8: >= 10 converged evaluations per second on the default fin, 2 threads", "s");
+  s.at_most("stored_vs_newton_increment_difference", ds.increment, 1e-6,
+            "the stored route converges to Newton's increment (tolerances 1e-8 residual, 1e-10 increment)");
+  s.info("stored_evaluations_per_second", rate_s, "1/s");
   s.info("newton_evaluations_per_second", rate_n, "1/s");
+  s.info("linear_evaluations_per_second", rate_l, "1/s");
+  s.info("stored_over_newton_rate", rate_s / rate_n);
   s.info("linear_over_newton_rate", rate_l / rate_n);
-  s.info("linear_setup_seconds", setup, "s");
+  s.info("stored_setup_seconds", setup_stored, "s");
+  s.info("linear_setup_seconds", setup_linear, "s");
+  const double solves = static_cast<double>(std::max(after.solves - before.solves, 1L));
+  s.info("stored_iterations_per_increment", static_cast<double>(after.iterations - before.iterations) / solves);
+  s.info("stored_fallbacks_to_newton", static_cast<double>(after.fallbacks - before.fallbacks));
   s.info("newton_failures", static_cast<double>(rn.batch.failures));
+  s.info("stored_failures", static_cast<double>(rs.batch.failures));
   s.info("linear_failures", static_cast<double>(rl.batch.failures));
-  s.info("linear_vs_newton_increment_difference", worst_increment);
-  s.info("linear_vs_newton_residual_difference", worst_residual);
-  s.info("linear_vs_newton_objective_difference", worst_objective);
+  s.info("stored_vs_newton_residual_difference", ds.residual);
+  s.info("stored_vs_newton_objective_difference", ds.objective);
+  s.info("linear_vs_newton_increment_difference", dl.increment);
+  s.info("linear_vs_newton_residual_difference", dl.residual);
+  s.info("linear_vs_newton_objective_difference", dl.objective);
   return s;
 }
 
