@@ -1,13 +1,14 @@
 // Sparse direct solver wrapper (see sparse_solver.hpp).
 #include "fem/sparse_solver.hpp"
 
-#include <cmath>
-#include <sstream>
+#include <omp.h>
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <Eigen/UmfPackSupport>
+#include <cmath>
+#include <sstream>
 
 #include "fem/errors.hpp"
 
@@ -32,6 +33,23 @@ class CholmodLLT : public Eigen::CholmodBase<SparseSolver::SparseMatrix, Eigen::
 };
 constexpr double kSingularPivotRatio = 1e-13;
 
+// Keeps every OpenMP region opened on this thread inactive (one thread) while it lives. Debian's
+// CHOLMOD 3.0 opens teams of a fixed four threads (CHOLMOD_OMP_NUM_THREADS) around small loops of
+// the supernodal factorisation, whatever --threads says; on the fin's tangent (7.3k DOFs) their
+// fork and join cost as much as the factorisation itself (docs/studies/fit_evaluation_speed.md,
+// "Sessions 38-39"). max-active-levels is an ICV of the calling thread's data environment, so
+// lowering it to the current level touches no other thread and opens no team of its own.
+class NoNewTeams {
+ public:
+  NoNewTeams() : levels_(omp_get_max_active_levels()) { omp_set_max_active_levels(omp_get_active_level()); }
+  ~NoNewTeams() { omp_set_max_active_levels(levels_); }
+  NoNewTeams(const NoNewTeams&) = delete;
+  NoNewTeams& operator=(const NoNewTeams&) = delete;
+
+ private:
+  int levels_;
+};
+
 // Numeric factorisation of A with the symbolic analysis done once per pattern (the reuse across
 // Newton iterations and runs); true when the factorisation succeeded.
 template <class Solver>
@@ -41,7 +59,10 @@ bool factor(Solver& solver, bool& analysed, int& symbolic_count, const SparseSol
     analysed = true;
     ++symbolic_count;
   }
-  solver.factorize(A);
+  {
+    const NoNewTeams serial;
+    solver.factorize(A);
+  }
   return solver.info() == Eigen::Success;
 }
 }  // namespace
