@@ -14,36 +14,18 @@
 #include "fem/static_solver.hpp"
 #include "fem/tangent_basis.hpp"
 #include "fem/validation/hybrid_plate_model.hpp"
+#include "pressure_plate.hpp"
 
 using namespace finverse::fem;
 using namespace finverse::fem::validation;
 
 namespace {
 
-// data/cases/hybrid_plate.json's plate, every material at Poisson ratio nu; the pressure bends the
-// soft plate well into the nonlinear range (tip deflection about a fifth of the chord).
-HybridPlateCase plate_case(double nu) {
-  HybridPlateCase c;
-  c.chord = 1.0, c.span = 1.0, c.thickness = 0.01;
-  c.plate = {"plate", 1e5, nu, 10.0};
-  const double E[3] = {1e8, 1e7, 5e7}, z[3] = {-0.5, 0.0, 0.5};
-  for (int b = 0; b < 3; ++b) c.beams.push_back({"b" + std::to_string(b + 1), z[b], {"b", E[b], nu, 10.0}, 0.04, 0.02});
-  c.pressure = 0.5;
-  c.heave_amplitude = 0.1, c.frequency = 0.5, c.periods = 2, c.time_step = 0.005;
-  return c;
-}
-
 std::unique_ptr<Model> plate_at(double nu, HybridPlateLoad load = HybridPlateLoad::pressure) {
-  return std::make_unique<Model>(std::move(build_hybrid_plate(plate_case(nu), 4, 4, load).model));
+  return test_plates::pressure_plate(nu, 4, load);
 }
-
-// The static state under the pressure at load factor lambda (10 steps).
-NodalState deformed(const Model& m, double lambda) {
-  StaticSolver s(m, StaticOptions{.steps = 10});
-  NodalState x = m.reference_state();
-  s.solve(x, 0.0, lambda);
-  return x;
-}
+NodalState deformed(const Model& m, double lambda) { return test_plates::pressed_state(m, lambda); }
+HybridPlateCase plate_case(double nu) { return test_plates::pressure_plate_case(nu); }
 
 }  // namespace
 

@@ -14,40 +14,15 @@
 #include "fem/quasi_static_increment.hpp"
 #include "fem/static_solver.hpp"
 #include "fem/stored_tangent_increment.hpp"
-#include "fem/validation/hybrid_plate_model.hpp"
+#include "pressure_plate.hpp"
 
 using namespace finverse::fem;
-using namespace finverse::fem::validation;
 
 namespace {
 
-// data/cases/hybrid_plate.json's plate at Poisson ratio nu, pressure-loaded (as
-// test_linear_increment.cpp): the pressure's load factor is the time.
-HybridPlateCase plate_case(double nu) {
-  HybridPlateCase c;
-  c.chord = 1.0, c.span = 1.0, c.thickness = 0.01;
-  c.plate = {"plate", 1e5, nu, 10.0};
-  const double E[3] = {1e8, 1e7, 5e7}, z[3] = {-0.5, 0.0, 0.5};
-  for (int b = 0; b < 3; ++b) c.beams.push_back({"b" + std::to_string(b + 1), z[b], {"b", E[b], nu, 10.0}, 0.04, 0.02});
-  c.pressure = 0.5;
-  c.heave_amplitude = 0.1, c.frequency = 0.5, c.periods = 2, c.time_step = 0.005;
-  return c;
-}
-
-std::unique_ptr<Model> plate_at(double nu, int n = 4) {
-  return std::make_unique<Model>(std::move(build_hybrid_plate(plate_case(nu), n, n, HybridPlateLoad::pressure).model));
-}
-
-NodalState deformed(const Model& m, double lambda) {
-  StaticSolver s(m, StaticOptions{.steps = 10});
-  NodalState x = m.reference_state();
-  s.solve(x, 0.0, lambda);
-  return x;
-}
-
 // The plate at nu with every element's modulus scaled by a seeded random factor in [lo, hi].
 std::unique_ptr<Model> scaled_plate(double nu, double lo, double hi, unsigned seed) {
-  auto m = plate_at(nu);
+  auto m = test_plates::pressure_plate(nu);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> factor(lo, hi);
   for (int e = 0; e < static_cast<int>(m->elements().size()); ++e)
@@ -64,8 +39,9 @@ struct Setting {
 
 Setting setting(StoredTangentOptions options = {}) {
   Setting s;
-  s.m0 = plate_at(0.1), s.m1 = plate_at(0.3), s.m2 = plate_at(0.4), s.m3 = plate_at(0.49);
-  s.base = deformed(*s.m1, s.t);
+  s.m0 = test_plates::pressure_plate(0.1), s.m1 = test_plates::pressure_plate(0.3),
+  s.m2 = test_plates::pressure_plate(0.4), s.m3 = test_plates::pressure_plate(0.49);
+  s.base = test_plates::pressed_state(*s.m1, s.t);
   QuasiStaticIncrement newton(*s.m1);
   const NodalState reference = newton.solve(s.base, s.t, s.t_next);
   s.stored = std::make_unique<StoredTangentIncrement>(
@@ -137,7 +113,7 @@ TEST(StoredTangentIncrement, GivesUpWhenItCannotConverge) {
   EXPECT_EQ(info.iterations, 2);
   EXPECT_GT(info.residual, 1e-8);
   // Another mesh's DOFs are refused by name.
-  const auto other = plate_at(0.3, 6);
+  const auto other = test_plates::pressure_plate(0.3, 6);
   QuasiStaticIncrement on_other(*other);
   const std::vector<double> moduli(other->elements().size(), 1e5);
   StoredTangentIncrement::Workspace w;
@@ -147,11 +123,11 @@ TEST(StoredTangentIncrement, GivesUpWhenItCannotConverge) {
 }
 
 TEST(SameTopology, SharedOnlyWithTheSameElementsAndPrescriptions) {
-  const auto a = plate_at(0.3), b = scaled_plate(0.45, 0.5, 2.0, 7);
+  const auto a = test_plates::pressure_plate(0.3), b = scaled_plate(0.45, 0.5, 2.0, 7);
   EXPECT_TRUE(same_topology(*a, *b));  // moduli and Poisson ratio are not topology
-  EXPECT_FALSE(same_topology(*a, *plate_at(0.3, 6)));
+  EXPECT_FALSE(same_topology(*a, *test_plates::pressure_plate(0.3, 6)));
   // One more prescribed DOF (a free corner held) changes the DofMap.
-  const auto held = plate_at(0.3);
+  const auto held = test_plates::pressure_plate(0.3);
   held->fix(held->node_count() - 1, 1);
   EXPECT_FALSE(same_topology(*a, *held));
 }

@@ -627,15 +627,26 @@ TEST(QuasiStaticObjective, InertiaMakesTheDynamicTruthNearlyConsistent) {
   EXPECT_THROW(fit::QuasiStaticObjective(st.twin, st.target, edge), fit::InvalidInput);
 }
 
+namespace {
+
+// The synthetic fin's factory with the membrane's, each ray's modulus and nu as parameters, and
+// its own quasi-static march as the target.
+std::pair<std::shared_ptr<fit::FinModelFactory>, fit::TargetMotion> five_parameter_fin() {
+  const stage::Mesh mesh = fin_mesh();
+  auto factory = std::make_shared<fit::FinModelFactory>(
+      mesh, fin_materials(), std::vector<std::string>{"E_membrane", "E_ray3", "E_ray5", "E_ray7", "nu"},
+      fin_drive(mesh));
+  fit::TargetMotion target = own_quasi_static_march(*factory);
+  return {factory, target};
+}
+
+}  // namespace
+
 // The linearised increment (fem/linear_increment.hpp) on the synthetic fin: the same residuals
 // as Newton's to the increment's second order, its stored tangent of the modulus-Poisson form,
 // and refused where its premise fails.
 TEST(QuasiStaticObjective, LinearIncrementFollowsNewtonOnTheFin) {
-  const stage::Mesh mesh = fin_mesh();
-  const auto factory = std::make_shared<fit::FinModelFactory>(
-      mesh, fin_materials(), std::vector<std::string>{"E_membrane", "E_ray3", "E_ray5", "E_ray7", "nu"},
-      fin_drive(mesh));
-  const fit::TargetMotion target = own_quasi_static_march(*factory);
+  const auto [factory, target] = five_parameter_fin();
   fit::QuasiStaticOptions newton{.instants = {0.05, 0.1}, .stress_free_base = true};
   fit::QuasiStaticOptions linear = newton;
   linear.solve = fit::QuasiStaticOptions::Solve::linear;
@@ -670,11 +681,7 @@ TEST(QuasiStaticObjective, LinearIncrementFollowsNewtonOnTheFin) {
 // converged residuals to the solver's tolerance at moduli and Poisson ratios away from the
 // reference, before and after the reference moves (expect_near); never a fallback here.
 TEST(QuasiStaticObjective, StoredIncrementEqualsNewtonOnTheFin) {
-  const stage::Mesh mesh = fin_mesh();
-  const auto factory = std::make_shared<fit::FinModelFactory>(
-      mesh, fin_materials(), std::vector<std::string>{"E_membrane", "E_ray3", "E_ray5", "E_ray7", "nu"},
-      fin_drive(mesh));
-  const fit::TargetMotion target = own_quasi_static_march(*factory);
+  const auto [factory, target] = five_parameter_fin();
   fit::QuasiStaticOptions newton{.instants = {0.05, 0.1}, .stress_free_base = true};
   fit::QuasiStaticOptions stored = newton;
   stored.solve = fit::parse_increment_solve("stored");
@@ -712,11 +719,7 @@ TEST(QuasiStaticObjective, StoredIncrementEqualsNewtonOnTheFin) {
 // A cached workspace built for another Poisson ratio is rebuilt in place (rekey): the residuals
 // are those of a fresh objective's workspace, bit for bit, on the Newton and stored routes.
 TEST(QuasiStaticObjective, RekeyedWorkspaceEqualsAFreshOne) {
-  const stage::Mesh mesh = fin_mesh();
-  const auto factory = std::make_shared<fit::FinModelFactory>(
-      mesh, fin_materials(), std::vector<std::string>{"E_membrane", "E_ray3", "E_ray5", "E_ray7", "nu"},
-      fin_drive(mesh));
-  const fit::TargetMotion target = own_quasi_static_march(*factory);
+  const auto [factory, target] = five_parameter_fin();
   for (const char* route : {"newton", "stored"}) {
     fit::QuasiStaticOptions o{.instants = {0.05, 0.1}, .cached_models = 1, .stress_free_base = true};
     o.solve = fit::parse_increment_solve(route);
