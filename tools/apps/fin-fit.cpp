@@ -108,6 +108,57 @@ constexpr const char* kOwnData =
     "model's equilibrium at each level from the unloaded reference; the clamp is the default root); "
     "`fin-fit evaluate` prints the misfit at given moduli before a fit.";
 
+// `fin-fit run`'s own flags (the problem's are ProblemFlags).
+struct RunFlags {
+  std::string out, summary, checkpoint;
+  std::vector<std::string> methods{"ga"};
+  bool no_polish = false;
+};
+
+void add_run_command(CLI::App& app, ProblemFlags& flags, RunFlags& r) {
+  finverse::fit::io::FileFitOptions& o = flags.o;
+  auto* rn = app.add_subcommand("run", "fit from stage files (mesh, motion, loads, materials) to materials.h5");
+  add_problem_options(rn, flags);
+  rn->footer(kOwnData);
+  rn->add_option("--out", r.out, "materials.h5 (finverse/materials)")->required();
+  rn->add_option("--summary", r.summary, "also write this JSON digest (values, intervals, wall times)");
+  rn->add_option("--methods", r.methods, "optimisers, run in this order: ga, cmaes")
+      ->delimiter(',')
+      ->capture_default_str();
+  rn->add_option("--runs", o.fit.runs, "independent seeded runs per method")->capture_default_str();
+  rn->add_option("--population", o.fit.population, "GA population (0: 8 per unknown)")->capture_default_str();
+  rn->add_option("--generations", o.fit.max_generations, "generation cap per run")->capture_default_str();
+  rn->add_option("--stop-tolerance", o.fit.stop_tolerance, "stop when the best objective changes less than this")
+      ->capture_default_str();
+  rn->add_option("--stop-window", o.fit.stop_window, "... over this many generations")->capture_default_str();
+  rn->add_option("--seed", o.fit.seed, "seed of the first run (run k uses seed + k)")->capture_default_str();
+  rn->add_flag("--no-polish", r.no_polish, "skip the Levenberg-Marquardt polish (and with it the uncertainty)");
+  rn->add_option("--polish-evaluations", o.fit.polish_options.max_evaluations,
+                 "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")
+      ->capture_default_str();
+  rn->add_option("--checkpoint", r.checkpoint, "checkpoint file, written after every generation");
+  rn->add_flag("--resume", o.fit.resume, "continue from --checkpoint (same inputs and options)");
+}
+
+// The parsed flags of run and evaluate into flags.o.
+void apply_flags(ProblemFlags& flags, const RunFlags& r) {
+  finverse::fit::io::FileFitOptions& o = flags.o;
+  o.mesh = flags.mesh;
+  o.motion = flags.motion;
+  o.materials = flags.materials;
+  o.out = r.out;
+  if (!flags.loads.empty()) o.loads = flags.loads;
+  if (!flags.parameters.empty()) o.parameters = flags.parameters;
+  if (!r.summary.empty()) o.summary = r.summary;
+  if (!r.checkpoint.empty()) o.fit.checkpoint = r.checkpoint;
+  o.fit.methods = r.methods;
+  o.fit.polish = !r.no_polish;
+  if (flags.root_rotation != "auto") o.root_rotation = finverse::fem::parse_root_rotation(flags.root_rotation);
+  o.stress_free_base = flags.base == "stress_free";
+  o.explore_linear = flags.increment == "hybrid";
+  o.increment = finverse::fit::parse_increment_solve(o.explore_linear ? "stored" : flags.increment);
+}
+
 // The hybrid plate validation cases' flags (hybrid_plate, noise, identifiability).
 void add_hybrid_plate_options(CLI::App* c, finverse::fit::validation::HybridPlateFitOptions& hp, std::string& case_file,
                               std::string& out_dir) {
@@ -142,31 +193,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   ProblemFlags flags;
-  finverse::fit::io::FileFitOptions& o = flags.o;
-  std::string out, summary, checkpoint;
-  std::vector<std::string> methods{"ga"};
-  bool no_polish = false;
-  auto* rn = app.add_subcommand("run", "fit from stage files (mesh, motion, loads, materials) to materials.h5");
-  add_problem_options(rn, flags);
-  rn->footer(kOwnData);
-  rn->add_option("--out", out, "materials.h5 (finverse/materials)")->required();
-  rn->add_option("--summary", summary, "also write this JSON digest (values, intervals, wall times)");
-  rn->add_option("--methods", methods, "optimisers, run in this order: ga, cmaes")
-      ->delimiter(',')
-      ->capture_default_str();
-  rn->add_option("--runs", o.fit.runs, "independent seeded runs per method")->capture_default_str();
-  rn->add_option("--population", o.fit.population, "GA population (0: 8 per unknown)")->capture_default_str();
-  rn->add_option("--generations", o.fit.max_generations, "generation cap per run")->capture_default_str();
-  rn->add_option("--stop-tolerance", o.fit.stop_tolerance, "stop when the best objective changes less than this")
-      ->capture_default_str();
-  rn->add_option("--stop-window", o.fit.stop_window, "... over this many generations")->capture_default_str();
-  rn->add_option("--seed", o.fit.seed, "seed of the first run (run k uses seed + k)")->capture_default_str();
-  rn->add_flag("--no-polish", no_polish, "skip the Levenberg-Marquardt polish (and with it the uncertainty)");
-  rn->add_option("--polish-evaluations", o.fit.polish_options.max_evaluations,
-                 "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")
-      ->capture_default_str();
-  rn->add_option("--checkpoint", checkpoint, "checkpoint file, written after every generation");
-  rn->add_flag("--resume", o.fit.resume, "continue from --checkpoint (same inputs and options)");
+  RunFlags run;
+  add_run_command(app, flags, run);
 
   // The misfit at given values, without a fit.
   std::vector<std::string> at_values;
@@ -270,29 +298,17 @@ int main(int argc, char** argv) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return finish(std::move(summary), "fit_" + name, out_dir, wall);
     }
-    o.mesh = flags.mesh;
-    o.motion = flags.motion;
-    o.materials = flags.materials;
-    o.out = out;
-    if (!flags.loads.empty()) o.loads = flags.loads;
-    if (!flags.parameters.empty()) o.parameters = flags.parameters;
-    if (!summary.empty()) o.summary = summary;
-    if (!checkpoint.empty()) o.fit.checkpoint = checkpoint;
-    o.fit.methods = methods;
-    if (flags.root_rotation != "auto") o.root_rotation = finverse::fem::parse_root_rotation(flags.root_rotation);
-    o.stress_free_base = flags.base == "stress_free";
-    o.explore_linear = flags.increment == "hybrid";
-    o.increment = finverse::fit::parse_increment_solve(o.explore_linear ? "stored" : flags.increment);
+    finverse::fit::io::FileFitOptions& o = flags.o;
+    apply_flags(flags, run);
     if (*ev) {
       namespace io = finverse::fit::io;
       std::fputs(io::format_misfit(io::evaluate_misfit(o, io::parse_parameter_values(at_values))).c_str(), stdout);
       return 0;
     }
-    o.fit.polish = !no_polish;
     o.fit.threads = finverse::cli::threads_in_use();
     const auto result = finverse::fit::io::run_fit_from_files(o, finverse::cli::effective_config(app));
     std::cerr << "fin-fit run: objective " << result.best_objective << " m after " << result.evaluations
-              << " evaluations, wrote " << out << "\n";
+              << " evaluations, wrote " << run.out << "\n";
     return 0;
   });
 }

@@ -1,21 +1,13 @@
-// Eq. (2)'s converged increment, solved from a reference solution on the reference's stored
-// tangent (issue 45, goal 8).
-//
-// Newton from the base spends about ten factorisations per increment on the fin: the flat,
-// stress-free membrane has no tension stiffness, so the first linear step overshoots and Newton
-// needs six or seven iterations to come back before it converges quadratically
-// (docs/studies/fit_evaluation_speed.md, "Session 38"). The factorisations are 85 % of its time.
-// Here the increment is solved once, at set-up, at reference moduli; its converged state x_ref is
-// kept, and so is the tangent there as a TangentBasis: at a fixed configuration the corotational
-// tangent is linear in the element moduli, geometric stiffness included (tangent_basis.hpp). An
-// evaluation at other moduli starts from x_ref, factorises K(x_ref; E, nu) once and iterates
-//     u_{k+1} = u_k + K^-1 r(x_k),    r = f_target - f_int(x_k; E, nu)   (free DOFs),
-// with Anderson mixing over the last m steps (the least-squares secant of IQN-ILS,
-// fsi/iqn_ils.hpp, here on the displacement iterates). Each iteration is one internal-force
-// assembly and one back-substitution. Convergence is StaticSolver's test: relative residual and
-// scaled increment. The answer is therefore the equilibrium that Newton from the base reaches, to
-// those tolerances. When the iteration stalls (moduli far from the reference's), solve() returns
-// false and the caller solves with Newton.
+// Eq. (2)'s converged increment, solved from a reference solution on its stored tangent (issue 45,
+// goal 8). Newton from the flat, stress-free base overshoots and spends about ten factorisations
+// per increment on the fin. Here the increment is solved once at reference moduli; its converged
+// state x_ref and the tangent there (a TangentBasis: linear in the element moduli at a fixed
+// configuration) are kept. An evaluation at other moduli starts from x_ref, factorises
+// K(x_ref; E, nu) once and iterates u += K^-1 r(x) with Anderson mixing (the least-squares secant
+// of fsi/iqn_ils.hpp), one force assembly and one back-substitution per iteration, a true tangent
+// when it stalls. It stops on StaticSolver's test, so its answer is Newton's equilibrium; solve()
+// returns false where it does not converge and the caller uses Newton.
+// Numbers: docs/studies/fit_evaluation_speed.md, "Sessions 38-39".
 #pragma once
 
 #include <Eigen/Core>

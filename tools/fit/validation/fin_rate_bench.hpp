@@ -1,18 +1,11 @@
 // Speed of an eq. (2) evaluation on the fin (issue 45, goal 8; results/bench/fit_fin_rate.json):
-// the fit as `fin-fit run` sets it up on a case's stage files (mesh, motion, loads, materials;
-// the default case's fin mesh), evaluated at the same seeded points by three ways of solving the
-// increment side by side in one run:
-//   newton   the converged quasi-static increment from the base (QuasiStaticIncrement): element
-//            evaluations, assemblies and about ten factorisations per increment;
-//   stored   the same converged increment, solved from a reference solution at the materials
-//            file's moduli on its stored tangent (fem/stored_tangent_increment.hpp): one
-//            factorisation, Anderson-mixed force-only iterations, a true tangent when they stall;
-//   linear   Newton's first step from each base's stored tangent (fem/linear_increment.hpp):
-//            one weighted gather, one factorisation and one solve per instant; not converged.
-// Graded: the converged (stored) route's seconds per evaluation on `threads` threads <= 0.1
-// (10 evaluations per second) and its increments within 1e-6 of Newton's. Reported: every
-// route's rate, the ratios, the stored route's iterations and fallbacks, and how far the linear
-// increments and objective lie from Newton's at the same points.
+// the fit as `fin-fit run` sets it up on a case's stage files, evaluated at the same seeded points
+// by three ways of solving the increment in one run: newton (QuasiStaticIncrement from the base),
+// stored (the same converged increment from a reference solution,
+// fem/stored_tangent_increment.hpp) and linear (Newton's first step on the base's stored tangent,
+// fem/linear_increment.hpp; not converged). Graded: the stored route's seconds per evaluation on
+// `threads` threads <= 0.1 and its increments within 1e-6 of Newton's. Reported: every route's
+// rate and ratio, the stored route's iterations and fallbacks, the linear route's differences.
 #pragma once
 
 #include <filesystem>
