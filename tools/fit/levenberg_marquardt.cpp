@@ -1,13 +1,13 @@
 // Bounded Levenberg-Marquardt polish (levenberg_marquardt.hpp).
 #include "fit/levenberg_marquardt.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <vector>
-
-#include <Eigen/Cholesky>
 
 #include "fit/errors.hpp"
 #include "fit/population_evaluation.hpp"
@@ -153,6 +153,13 @@ LmResult levenberg_marquardt(const ParameterSpace& space, const ResidualFunction
       double objective = 0;
       const bool ok = evaluate(trial, r, objective);
       const double s = ok ? r.squaredNorm() : std::numeric_limits<double>::infinity();
+      if (options.progress) {
+        std::ostringstream line;
+        line << "LM step: |r|^2 " << out.sum_of_squares << " -> " << s
+             << (s < out.sum_of_squares ? " taken" : " rejected") << ", damping " << lambda << ", " << out.evaluations
+             << " of " << cap << " evaluations";
+        options.progress(line.str());
+      }
       if (s < out.sum_of_squares) {
         const double reduction = (out.sum_of_squares - s) / out.sum_of_squares;
         out.z = trial;

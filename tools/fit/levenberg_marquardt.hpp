@@ -5,9 +5,9 @@
 // thousands. The result carries the Jacobian at the returned point for the uncertainty.
 #pragma once
 
-#include <string>
-
 #include <Eigen/Core>
+#include <functional>
+#include <string>
 
 #include "fit/parameter_space.hpp"
 #include "fit/residual_function.hpp"
@@ -22,6 +22,8 @@ struct LmOptions {
   bool central = false;               // central differences: twice the evaluations, O(h^2) error
   double initial_damping = 1e-3;      // Marquardt lambda (relative to diag(J^T J))
   int threads = 2;                    // for the Jacobian columns
+  // One line per tried step (|r|^2, damping, evaluations so far): a refit of model runs takes minutes.
+  std::function<void(const std::string&)> progress;
 };
 
 struct LmResult {
