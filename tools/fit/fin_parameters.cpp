@@ -79,12 +79,19 @@ FinModelFactory::FinModelFactory(stage::Mesh mesh, fem::io::MaterialSpec base, s
                            mesh_source_ + " does not have (beams/ray)");
       ray_.emplace_back(*id, idx);
       defaults_(idx) = base_.ray_material(*id).youngs_modulus;
+    } else if (const auto slot = parse_drive_name(n)) {
+      drive_slots_.emplace_back(*slot, idx);
+      defaults_(idx) = 0;  // the tracked drive
     } else {
       throw InvalidInput("parameters: unknown parameter '" + n +
-                         "' (a fin has E_membrane, E_ray<id>, E_rays and nu)");
+                         "' (a fin has E_membrane, E_ray<id>, E_rays, nu and drive_*)");
     }
   }
   root_nodes_.assign(mesh_.root_nodes.data.begin(), mesh_.root_nodes.data.end());
+  if (!drive_slots_.empty() && !drive_.root_motion)
+    throw InvalidInput("parameters: drive_* parameters correct a root motion, and none is given");
+  if (!drive_slots_.empty() && !(std::isfinite(drive_.frequency) && drive_.frequency > 0))
+    throw InvalidInput("parameters: drive_* parameters need the beat frequency (> 0)");
 
   // The ramp convention of fin-fem run: ten output intervals before the first output time.
   const std::vector<double>* times = drive_.loads ? &drive_.loads->time.data
@@ -147,14 +154,25 @@ std::unique_ptr<fem::Model> FinModelFactory::build(const Eigen::VectorXd& p) con
   if (drive_.root_motion)
     fem::io::apply_root_motion(fm.model, mesh_, *drive_.root_motion, drive_.root_rotation, ramp_,
                                drive_.motion_source);
+  if (!drive_slots_.empty()) {
+    fem::DriveCorrection c;
+    c.frequency = drive_.frequency;
+    c.first_time = drive_.root_motion->time.data.front();
+    c.ramp = ramp_;
+    for (const auto& [slot, idx] : drive_slots_) set_drive_coefficient(c, slot, p(idx));
+    c.apply(fm.model, root_nodes_);
+  }
   fm.model.set_gravity(drive_.gravity);
   return std::make_unique<fem::Model>(std::move(fm.model));
 }
 
 Eigen::VectorXd FinModelFactory::rebuild_key(const Eigen::VectorXd& p) const {
   Eigen::VectorXd key = p;
+  std::vector<char> kept(names_.size(), 0);  // nu and the drive are built in, not set in place
+  if (nu_ >= 0) kept[static_cast<std::size_t>(nu_)] = 1;
+  for (const auto& [slot, idx] : drive_slots_) kept[static_cast<std::size_t>(idx)] = 1;
   for (int i = 0; i < static_cast<int>(names_.size()); ++i)
-    if (i != nu_ && i < key.size()) key(i) = defaults_(i);
+    if (!kept[static_cast<std::size_t>(i)] && i < key.size()) key(i) = defaults_(i);
   return key;
 }
 

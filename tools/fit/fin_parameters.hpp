@@ -6,15 +6,15 @@
 // Default fin space: membrane E [1e5, 1e8] Pa, each ray's E [1e7, 1e10] Pa (log10), nu [0.15, 0.49].
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/stage_files.hpp"
 #include "fem/io/material_spec.hpp"
 #include "fem/root_motion.hpp"
+#include "fit/drive_parameters.hpp"
 #include "fit/model_factory.hpp"
 #include "fit/parameter_space.hpp"
 
@@ -36,6 +36,7 @@ struct FinDrive {
   fem::RootRotation root_rotation = fem::RootRotation::fit;
   double ramp = 0;  // s; 0: ten output intervals (as fin-fem run)
   fem::Vec3 gravity = fem::Vec3::Zero();
+  double frequency = 0;  // Hz: the beat, for drive_* parameters (drive_parameters.hpp)
 };
 
 class FinModelFactory : public ModelFactory {
@@ -53,7 +54,7 @@ class FinModelFactory : public ModelFactory {
   RayleighDamping damping() const override { return {base_.rayleigh_mass, base_.rayleigh_stiffness}; }
   Eigen::VectorXd rebuild_key(const Eigen::VectorXd& physical) const override;
   void set_moduli(fem::Model& model, const Eigen::VectorXd& physical) const override;
-  bool moduli_and_poisson_only() const override { return true; }
+  bool moduli_and_poisson_only() const override { return drive_slots_.empty(); }
   int poisson_index() const override { return nu_; }
   // The mesh's points moved to `positions` (the root drive and loads unchanged: the root
   // displacements are then measured from these positions and the rotation fitted from them).
@@ -76,6 +77,7 @@ class FinModelFactory : public ModelFactory {
   std::string mesh_source_;
   int membrane_ = -1, rays_ = -1, nu_ = -1;  // parameter indices (-1: not a parameter)
   std::vector<std::pair<int, int>> ray_;     // (ray id, parameter index) of each "E_ray<id>"
+  std::vector<std::pair<DriveSlot, int>> drive_slots_;  // (slot, parameter index) of each "drive_*"
   Eigen::VectorXd defaults_;
   std::vector<int> root_nodes_;
   fem::LoadHistory loads_;  // built once from drive_.loads

@@ -96,6 +96,7 @@ FitProblem load_fit_problem(const FileFitOptions& o) {
   drive.root_motion = motion;
   drive.motion_source = o.motion.string();
   drive.ramp = o.ramp;
+  drive.frequency = motion.period && *motion.period > 0 ? 1.0 / *motion.period : 0.0;  // drive_* parameters
   // A clamp suits a structure (nodal_loads.h5, load levels); a swimming fin's root turns.
   const bool clamp = structural || o.objective == "static";
   drive.root_rotation = o.root_rotation.value_or(clamp ? fem::RootRotation::zero : fem::RootRotation::fit);
