@@ -4,7 +4,7 @@
 //       --out residual.h5 [--summary residual.json] [--period T]
 //   fin-loop trace --mesh mesh.h5 --motion motion.h5 --loads loads.h5 --materials materials.json
 //       [--fit materials.h5] --out loop.h5 [--summary loop.json] [--candidates effects.json]
-//       [--parameters E_membrane,nu] [--frequency f]
+//       [--parameters E_membrane,nu] [--frequency f] [--fit-drive K] [--drive-harmonics H]
 //   fin-loop flap --reference hessenthaler2017.json --fit fit/summary.json [--plane plane/summary.json]
 //       --out-dir DIR [--name N]   (issue 34 validation 2 (iii): the Hessenthaler flap's tips)
 // Its own executable rather than a mode of fin-fit: it reads a prediction (fsi.h5 or a fin-fem
@@ -59,6 +59,15 @@ int main(int argc, char** argv) {
   tr->add_option("--candidates", candidates, "JSON array of effect specs (default: every effect, group all)");
   tr->add_option("--parameters", to.parameters, "refitted subset of the fit's parameters (default: all)")
       ->delimiter(',');
+  tr->add_option("--fit-drive", to.drive_order,
+                 "order K of the root drive's correction refitted with the moduli: K Legendre terms over the "
+                 "rays for the pitch's sine and cosine parts, and the heave's (0: the tracked drive held)")
+      ->check(CLI::Range(0, 20))
+      ->capture_default_str();
+  tr->add_option("--drive-harmonics", to.drive_harmonics,
+                 "read the root drive off the reconstruction through this many harmonics of the beat (0: as tracked)")
+      ->check(CLI::Range(0, 16))
+      ->capture_default_str();
   tr->add_option("--frequency", frequency, "beat frequency [Hz] (0: 1 / motion.h5 T)")->capture_default_str();
   tr->add_option("--period", period, "period for the held-out cycles [s] (0: motion.h5 T)")->capture_default_str();
   std::string analysis = "quasi_static", root_motion;

@@ -1,11 +1,10 @@
 // fin-loop residual and trace from stage files (file_loop.hpp).
 #include "loop/io/file_loop.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <fstream>
 #include <sstream>
-
-#include <Eigen/Geometry>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -14,6 +13,7 @@
 #include "core/stage_identity.hpp"
 #include "fem/effects/structural_effect.hpp"
 #include "fem/io/fin_layout.hpp"
+#include "fem/io/harmonic_motion.hpp"
 #include "fem/io/material_spec.hpp"
 #include "fem/io/periodic_motion.hpp"
 #include "loop/fin_traced_model.hpp"
@@ -133,13 +133,29 @@ TraceRecord run_trace_from_files(const FileTraceOptions& o, const nlohmann::json
   }
   std::vector<std::string> all_names;
   for (const auto& p : all) all_names.push_back(p.name);
+  // The drive's correction (--fit-drive, or drive_* names in --parameters) joins the base at
+  // zero, the tracked drive, unless the fit already has it.
+  std::vector<std::string> refit_names = o.parameters.empty() ? all_names : o.parameters;
+  for (const auto& name : fit::drive_parameter_names(o.drive_order))
+    if (std::find(refit_names.begin(), refit_names.end(), name) == refit_names.end()) refit_names.push_back(name);
   std::vector<fit::Parameter> refit;
-  for (const auto& name : o.parameters.empty() ? all_names : o.parameters) {
-    const auto it = std::find(all_names.begin(), all_names.end(), name);
-    if (it == all_names.end()) throw Error("--parameters: '" + name + "' is not a parameter of " + fit_source);
+  for (const auto& name : refit_names) {
+    auto it = std::find(all_names.begin(), all_names.end(), name);
+    if (it == all_names.end()) {
+      const auto drive = fit::drive_parameter(name, mesh);
+      if (!drive) throw Error("--parameters: '" + name + "' is not a parameter of " + fit_source);
+      all.push_back(*drive);
+      all_names.push_back(name);
+      it = all_names.end() - 1;
+    }
     refit.push_back(all[static_cast<std::size_t>(it - all_names.begin())]);
   }
+  const std::optional<double> period = o.period ? o.period : reconstruction.period;
+  const double beat_frequency = o.frequency ? *o.frequency : period ? 1.0 / *period : 0.0;
 
+  if (o.drive_harmonics > 0)
+    motion = fem::io::harmonic_motion(motion, beat_frequency, o.drive_harmonics,
+                                      (o.root_motion ? *o.root_motion : o.motion).string());
   fit::FinDrive drive;
   drive.loads = loads;
   if (o.loads) drive.loads_source = o.loads->string();
@@ -147,6 +163,7 @@ TraceRecord run_trace_from_files(const FileTraceOptions& o, const nlohmann::json
   drive.motion_source = (o.root_motion ? *o.root_motion : o.motion).string();
   drive.ramp = o.ramp;
   drive.root_rotation = o.root_rotation;
+  drive.frequency = beat_frequency;
   const auto base_spec = fem::io::read_material_spec(o.materials);
   auto base = std::make_shared<fit::FinModelFactory>(mesh, base_spec, all_names, drive, o.mesh.string());
   Eigen::VectorXd best = base->default_parameters();
@@ -157,8 +174,7 @@ TraceRecord run_trace_from_files(const FileTraceOptions& o, const nlohmann::json
   setup.best = best;
   setup.refit = fit::ParameterSpace(refit, fit_source);
   setup.layout = fem::io::make_fin_layout(mesh, o.mesh.string());
-  const std::optional<double> period = o.period ? o.period : reconstruction.period;
-  setup.layout.beat_frequency = o.frequency ? *o.frequency : period ? 1.0 / *period : 0.0;
+  setup.layout.beat_frequency = beat_frequency;
   setup.layout.start_time = base->start_time();
   setup.layout.ramp = base->ramp();
   if (o.candidates) {
@@ -204,6 +220,7 @@ TraceRecord run_trace_from_files(const FileTraceOptions& o, const nlohmann::json
   to.max_effects = o.max_effects;
   to.lm = o.lm;
   to.progress = [](const std::string& line) { log::info("fin-loop trace: " + line); };
+  to.lm.progress = to.progress;
   std::ostringstream what;
   what << "fin-loop trace: " << rec.candidates.size() << " candidates, " << setup.refit.size()
        << " refitted parameters, " << setup.target.frame_count() << " frames (" << rec.split.held_out.size()

@@ -41,6 +41,8 @@ struct FileTraceOptions {
   // whose tangents would otherwise turn the drive's fitted root rotation.
   std::optional<std::filesystem::path> root_motion;
   std::vector<std::string> parameters;  // refitted subset of the fit's; empty: all
+  int drive_harmonics = 0;  // > 0: the root motion through this many harmonics of the beat (fem/io/harmonic_motion.hpp)
+  int drive_order = 0;      // > 0: the root drive's correction of this order refitted too (fit/drive_parameters.hpp)
   std::optional<double> frequency;      // beat frequency for periodic effects; else 1 / motion.h5 T
   std::optional<double> period;         // for the held-out split; else motion.h5 T, else 1 / frequency
   fem::Analysis analysis = fem::Analysis::quasi_static;  // of the model runs (fin-fem run's default)
