@@ -7,7 +7,9 @@
 #include <iostream>
 
 #include "core/error.hpp"
+#include "core/flag_ranges.hpp"
 #include "core/log.hpp"
+#include "core/output_paths.hpp"
 #include "core/provenance.hpp"
 
 namespace finverse::cli {
@@ -16,6 +18,7 @@ Standard::Standard(CLI::App& app, const std::string& tool_name) : tool(tool_name
   log::set_tool(tool_name);
   app.set_version_flag("--version", producer_string(tool_name));
   app.set_config("--config", "", "read options from a TOML/INI file (same keys as the long flags)");
+  app.allow_config_extras(CLI::config_extras_mode::error);  // a misspelt key is an error, not ignored
   app.add_option("--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--log-level", log_level, "debug, info, warn, error or quiet")->capture_default_str();
@@ -48,8 +51,19 @@ int threads_in_use() { return omp_get_max_threads(); }
 int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::function<int()>& body) {
   try {
     app.parse(argc, argv);
+    check_flag_ranges(app);   // before any work (issue 46)
+    check_output_flags(app);  // an output that cannot be written, before the first step
   } catch (const CLI::Success& e) {
     return app.exit(e);  // --help, --version
+  } catch (const CLI::ConfigError& e) {
+    // CLI11 says "INI was not able to parse <key>" for a key no flag has: name the file and the key.
+    std::string what = e.what();
+    const std::string prefix = "INI was not able to parse ";
+    if (what.rfind(prefix, 0) == 0) what = "unknown key '" + what.substr(prefix.size()) + "' (no such flag)";
+    const CLI::Option* config = app.get_config_ptr();
+    const std::string file = config && config->count() > 0 ? config->as<std::string>() : std::string("config");
+    std::fprintf(stderr, "%s: error: --config %s: %s\n", standard.tool.c_str(), file.c_str(), what.c_str());
+    return kExitError;
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "%s: error: %s (see --help)\n", standard.tool.c_str(), e.what());
     return kExitError;

@@ -4,6 +4,7 @@
 
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/flag_ranges.hpp"
 #include "core/log.hpp"
 #include "test_util.hpp"
 
@@ -81,4 +82,38 @@ TEST(Cli, ConfigFileSetsOptions) {
   const char* argv[] = {"t", "--config", cfg.c_str()};
   app.parse(3, const_cast<char**>(argv));
   EXPECT_EQ(n, 7);
+}
+
+// The flags' ranges (core/flag_ranges.hpp): NaN and infinities refused on any numeric flag, the
+// table's signs on the flags it names, a flag it does not name left alone, and the error naming
+// the flag, its range and the value.
+TEST(Cli, FlagRangesRefuseNanAndWrongSigns) {
+  auto parse = [](std::vector<std::string> args) {
+    CLI::App app{"t"};
+    cli::Standard s(app, "t");
+    double max_edge = 0.04, phase = 0;
+    int population = 0;
+    app.add_option("--max-edge", max_edge);
+    app.add_option("--population", population);
+    app.add_option("--phase", phase);
+    args.insert(args.begin(), "t");
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    app.parse(static_cast<int>(argv.size()), argv.data());
+    cli::check_flag_ranges(app);
+  };
+  EXPECT_NO_THROW(parse({"--max-edge", "0.1", "--population", "0", "--phase", "-1.5"}));
+  try {
+    parse({"--max-edge", "-1"});
+    ADD_FAILURE() << "--max-edge -1 accepted";
+  } catch (const CLI::ValidationError& e) {
+    EXPECT_NE(std::string(e.what()).find("--max-edge: expected a number > 0, got -1"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse({"--max-edge", "0"}), CLI::ValidationError);
+  EXPECT_THROW(parse({"--phase", "nan"}), CLI::ValidationError);
+  EXPECT_THROW(parse({"--phase", "-inf"}), CLI::ValidationError);
+  EXPECT_THROW(parse({"--population", "-1"}), CLI::ValidationError);
+  EXPECT_THROW(parse({"--threads", "-2"}), CLI::ValidationError);
+  EXPECT_EQ(cli::flag_range("population").value_or(""), "a whole number >= 0");
+  EXPECT_FALSE(cli::flag_range("phase").has_value());
 }
