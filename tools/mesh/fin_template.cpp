@@ -138,16 +138,21 @@ FinTemplate make_caudal_fin(const CaudalFinParams& p) {
   auto require = [](bool ok, const std::string& what) {
     if (!ok) throw Error("fin template: " + what);
   };
-  require(p.rays >= 2, "rays = " + std::to_string(p.rays) + ", expected at least 2 (the edge rays bound the planform)");
-  require(std::isfinite(p.chord_m) && p.chord_m > 0, "chord must be > 0 m");
-  require(std::isfinite(p.height_over_chord) && p.height_over_chord > 0, "height_over_chord must be > 0");
-  require(p.fork_depth >= 0 && p.fork_depth < 1, "fork_depth must be in [0, 1) chords");
-  require(p.root_height > 0 && p.root_height <= p.height_over_chord, "root_height must be in (0, height_over_chord]");
-  require(p.edge_root_thickness > 0 && p.center_root_thickness > 0, "ray root thicknesses must be > 0");
-  require(p.tip_thickness_ratio > 0 && p.tip_thickness_ratio <= 1, "tip_thickness_ratio must be in (0, 1]");
-  require(p.width_over_thickness > 0, "width_over_thickness must be > 0");
-  require(p.membrane_thickness > 0, "membrane_thickness must be > 0");
-  require(p.points_per_ray >= 2, "points_per_ray must be >= 2");
+  require(p.rays >= 2, "--rays " + std::to_string(p.rays) + ": expected at least 2 (the edge rays bound the planform)");
+  require(std::isfinite(p.chord_m) && p.chord_m > 0, "--chord: expected > 0 m");
+  require(std::isfinite(p.height_over_chord) && p.height_over_chord > 0, "--height-over-chord: expected > 0");
+  require(p.fork_depth >= 0 && p.fork_depth < 1, "--fork-depth: expected 0 to 1 chords (1 excluded)");
+  require(p.root_height > 0 && p.root_height <= p.height_over_chord,
+          "--root-height: expected > 0 and at most --height-over-chord");
+  require(p.edge_root_thickness > 0 && p.center_root_thickness > 0,
+          "--edge-ray-thickness, --center-ray-thickness: expected > 0");
+  require(p.tip_thickness_ratio > 0 && p.tip_thickness_ratio <= 1, "--tip-thickness-ratio: expected > 0 and at most 1");
+  require(p.width_over_thickness > 0, "--ray-width-ratio: expected > 0");
+  require(p.membrane_thickness > 0, "--membrane-thickness: expected > 0");
+  require(p.points_per_ray >= 2 && p.points_per_ray <= 1000,
+          "--ray-points " + std::to_string(p.points_per_ray) + ": expected 2 to 1000 points per ray");
+  // Fish fins carry 5-40 rays; thousands would mesh for hours (and overlap at the root).
+  require(p.rays <= 200, "--rays " + std::to_string(p.rays) + ": expected at most 200 (a fin has a few dozen)");
 
   const double c = p.chord_m;
   FinTemplate t;
@@ -184,7 +189,7 @@ void validate(const FinTemplate& t, const std::string& where) {
   auto fail = [&](const std::string& what) { throw Error(where + ": " + what); };
   if (t.rays.size() < 2)
     fail("has " + std::to_string(t.rays.size()) + " rays, expected at least 2 (the edge rays bound the planform)");
-  if (!(std::isfinite(t.chord) && t.chord > 0)) fail("chord must be > 0 m");
+  if (!(std::isfinite(t.chord) && t.chord > 0)) fail("--chord: expected > 0 m");
   if (!(std::isfinite(t.membrane_thickness) && t.membrane_thickness > 0)) fail("membrane thickness must be > 0 m");
   for (std::size_t r = 0; r < t.rays.size(); ++r) {
     const auto& ray = t.rays[r];

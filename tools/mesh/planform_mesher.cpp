@@ -4,12 +4,6 @@
 // the criteria are scale-free and converts back to metres on the way out.
 #include "mesh/planform_mesher.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <map>
-#include <numbers>
-#include <string>
-
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_mesh_face_base_2.h>
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
@@ -17,7 +11,16 @@
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <string>
+
 #include "core/error.hpp"
+#include "core/machine_memory.hpp"
 
 namespace finverse::mesh {
 namespace {
@@ -86,6 +89,14 @@ PlanformMesh mesh_planform(const FinTemplate& t, const PlanformMeshOptions& o) {
   if (!(o.max_edge_over_chord > 0)) throw Error("--max-edge: expected > 0 chords");
   validate(t);
   const double c = t.chord;
+  {
+    // Triangles of edge a cover about 0.25 a^2 each (equilateral: 0.43 a^2); about 2 KiB each
+    // through CGAL's triangulation, the IBM body and its self-intersection tree.
+    const double triangles = t.area() / (c * c) / (0.25 * o.max_edge_over_chord * o.max_edge_over_chord);
+    std::ostringstream what;
+    what << "--max-edge " << o.max_edge_over_chord << ": about " << std::setprecision(3) << triangles << " triangles";
+    require_memory(2048 * triangles, what.str());
+  }
 
   CDT cdt;
   auto to_cgal = [&](const Point2& p) { return K::Point_2(p[0] / c, p[1] / c); };

@@ -1,7 +1,10 @@
 // fin-synth's flags, the --footage preset and the flag checks (see synth_flags.hpp).
 #include "vision/synth_flags.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
+#include "core/machine_memory.hpp"
 
 namespace finverse::vision {
 
@@ -153,6 +156,13 @@ nlohmann::json apply_appearance_flags(const CLI::App& app, SynthFlags& f) {
 }
 
 void check_appearance_flags(const CLI::App& app, const SynthFlags& f) {
+  // A view's image: about 16 bytes per anti-aliasing sample (colour, depth) and 8 per pixel (the
+  // frame and its encoding), one per view at a time, and the threads' own copies.
+  const double pixels = static_cast<double>(f.width) * static_cast<double>(f.height);
+  const double samples = pixels * f.ren.supersample * f.ren.supersample;
+  require_memory((16 * samples + 8 * pixels) * std::max<std::size_t>(f.views.size(), 2),
+                 "--width " + std::to_string(f.width) + " --height " + std::to_string(f.height) + " --supersample " +
+                     std::to_string(f.ren.supersample));
   if (f.jpeg_quality < 0 || f.jpeg_quality > 100) throw Error("--jpeg-quality: expected 1..100 (0: no compression)");
   for (const char* flag : {"--body-length", "--body-depth", "--body-width", "--body-level", "--body-head-motion"})
     if (!f.body && app.count(flag) > 0) throw Error(std::string(flag) + ": only with --body (or --footage realistic)");

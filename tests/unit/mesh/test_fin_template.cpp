@@ -123,7 +123,7 @@ TEST(FinTemplate, TemplateWithoutRaysIsAnError) {
   expect_error([&] { from_json(j, "fin.json"); }, "fin.json: has 0 rays");
   CaudalFinParams p;
   p.rays = 0;
-  expect_error([&] { make_caudal_fin(p); }, "rays = 0");
+  expect_error([&] { make_caudal_fin(p); }, "--rays 0");
 }
 
 TEST(FinTemplate, SelfIntersectingPlanformIsAnError) {

@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 #include "cfd/forces/nodal_loads.hpp"
 #include "cfd/forces/sheet_loads.hpp"
@@ -13,6 +15,7 @@
 #include "cfd/io/loads_record.hpp"
 #include "cfd/io/loads_window.hpp"
 #include "core/error.hpp"
+#include "core/machine_memory.hpp"
 
 namespace finverse::cfd::io {
 
@@ -71,6 +74,15 @@ StretchedGrid fin_flow_grid(const Vec3& lo, const Vec3& hi, double c, double h, 
                 num(o.core_margin + o.wake) + " c)");
   if (!(h > 0 && o.stretch_ratio >= 1)) throw Error("--cells-per-chord, --stretch-ratio: expected h > 0, ratio >= 1");
   const double m = o.core_margin * c;
+  {
+    // The uniform core's cells alone, before any axis is built: about 400 bytes a cell (velocity,
+    // its history and right-hand sides, pressure, the multigrid hierarchy, the cell kinds).
+    const double core =
+        (hi[0] - lo[0] + 2 * m + o.wake * c) / h * ((hi[1] - lo[1] + 2 * m) / h) * ((hi[2] - lo[2] + 2 * m) / h);
+    std::ostringstream what;
+    what << "--cells-per-chord " << c / h << ": at least " << std::setprecision(3) << core << " cells";
+    require_memory(400 * core, what.str());
+  }
   return StretchedGrid(
       axis(lo[0] - o.upstream * c, hi[0] + o.downstream * c, lo[0] - m, hi[0] + m + o.wake * c, h, o.stretch_ratio),
       axis(lo[1] - o.lateral * c, hi[1] + o.lateral * c, lo[1] - m, hi[1] + m, h, o.stretch_ratio),
