@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include "cfd/immersed/immersed_polygon.hpp"
 #include "cfd/immersed/surface_shapes.hpp"
 #include "core/error.hpp"
+#include "core/machine_memory.hpp"
 
 namespace finverse::cfd::cases {
 
@@ -104,7 +106,7 @@ CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
       if (!n["radius"]) r.fail(n, at, "a sphere needs radius:");
       const auto c = n["centre"] ? r.numbers<3>(n["centre"], at + ".centre") : std::array<double, 3>{0, 0, 0};
       const int level = n["subdivisions"] ? r.scalar<int>(n["subdivisions"], at + ".subdivisions", "an integer") : 4;
-      b.surface = icosphere(c, r.number(n["radius"], at + ".radius"), level, true);
+      b.surface = icosphere(c, r.positive(n["radius"], at + ".radius"), level, true);
       b.source = "icosphere, " + std::to_string(level) + " subdivisions";
     } else if (shape == "box") {
       if (!n["lo"] || !n["hi"]) r.fail(n, at, "a box needs lo: and hi:");
@@ -118,8 +120,9 @@ CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
           r.fail(n, at, std::string("a plate needs leading_edge:, chord:, span:, incidence: (missing ") + k + ")");
       const int cells = n["cells"] ? r.scalar<int>(n["cells"], at + ".cells", "an integer") : 16;
       if (cells < 1 || cells > 4096) r.fail(n["cells"], at + ".cells", "expected 1..4096 elements along the chord");
-      b.surface = flat_plate(r.numbers<3>(n["leading_edge"], at + ".leading_edge"), r.number(n["chord"], at + ".chord"),
-                             r.number(n["span"], at + ".span"), r.number(n["incidence"], at + ".incidence"), cells);
+      b.surface =
+          flat_plate(r.numbers<3>(n["leading_edge"], at + ".leading_edge"), r.positive(n["chord"], at + ".chord"),
+                     r.positive(n["span"], at + ".span"), r.number(n["incidence"], at + ".incidence"), cells);
       b.sheet = true;
       b.source = "flat plate (sheet)";
     } else {
@@ -129,7 +132,7 @@ CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
     r.fail(n, at, "expected surface: (a .stl, .obj, .vtp or mesh .h5 file) or shape:");
   }
   if (n["scale"] || n["translate"])
-    transform(b.surface, n["scale"] ? r.number(n["scale"], at + ".scale") : 1.0,
+    transform(b.surface, n["scale"] ? r.positive(n["scale"], at + ".scale") : 1.0,
               n["translate"] ? r.numbers<3>(n["translate"], at + ".translate") : std::array<double, 3>{0, 0, 0});
   if (n["motion"]) b.motion = motion_section(r, n["motion"], at + ".motion", 3);
   return b;
@@ -152,7 +155,7 @@ void plane_plate(const Reader& r, const YAML::Node& n, const std::string& at, Ca
   for (const char* k : {"leading_edge", "chord", "incidence"})
     if (!n[k]) r.fail(n, at, std::string("a plate needs leading_edge:, chord:, incidence: (missing ") + k + ")");
   const auto le = r.numbers<2>(n["leading_edge"], at + ".leading_edge");
-  const double chord = r.number(n["chord"], at + ".chord");
+  const double chord = r.positive(n["chord"], at + ".chord");
   const double a = r.number(n["incidence"], at + ".incidence") * std::numbers::pi / 180;
   const int cells = n["cells"] ? r.scalar<int>(n["cells"], at + ".cells", "an integer") : 16;
   if (cells < 1 || cells > 4096) r.fail(n["cells"], at + ".cells", "expected 1..4096 elements along the chord");
@@ -221,7 +224,7 @@ CaseBody plane_body(const Reader& r, const YAML::Node& n, const std::string& at)
   } else {
     r.fail(n, at, "a plane flow's body needs outline:, outline_file: or shape: circle, ellipse or plate");
   }
-  const double scale = n["scale"] ? r.number(n["scale"], at + ".scale") : 1.0;
+  const double scale = n["scale"] ? r.positive(n["scale"], at + ".scale") : 1.0;
   const auto shift = n["translate"] ? r.numbers<2>(n["translate"], at + ".translate") : std::array<double, 2>{0, 0};
   for (auto& v : b.outline) v = {scale * v[0] + shift[0], scale * v[1] + shift[1]};
   for (auto& v : b.surface.points) v = {scale * v[0] + shift[0], scale * v[1] + shift[1], 0};
@@ -261,6 +264,7 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
     if (!d[axes[a]]) r.fail(d, std::string("domain.") + axes[a], "missing");
     if (!g["core"][axes[a]]) r.fail(g["core"], std::string("grid.core.") + axes[a], "missing");
     const auto dx = r.numbers<2>(d[axes[a]], std::string("domain.") + axes[a]);
+    if (!(dx[0] < dx[1])) r.fail(d[axes[a]], std::string("domain.") + axes[a], "expected [low, high] with low < high");
     const auto cx = r.numbers<2>(g["core"][axes[a]], std::string("grid.core.") + axes[a]);
     if (!(dx[0] <= cx[0] && cx[0] < cx[1] && cx[1] <= dx[1]))
       r.fail(g["core"][axes[a]], std::string("grid.core.") + axes[a], "expected a core inside the domain");
@@ -270,13 +274,25 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
     s.core[2 * a + 1] = cx[1];
   }
   if (!g["h"]) r.fail(g, "grid.h", "missing");
-  s.h = r.number(g["h"], "grid.h");
-  if (g["stretch_ratio"]) s.stretch_ratio = r.number(g["stretch_ratio"], "grid.stretch_ratio");
+  s.h = r.positive(g["h"], "grid.h");
+  if (g["stretch_ratio"]) {
+    s.stretch_ratio = r.number(g["stretch_ratio"], "grid.stretch_ratio");
+    if (!(s.stretch_ratio >= 1)) r.fail(g["stretch_ratio"], "grid.stretch_ratio", "expected a ratio >= 1");
+  }
+  {
+    // The uniform core's cells at h, before any grid is built: about 400 bytes a cell in 3-D
+    // (velocity, history, pressure, multigrid), half that in a plane.
+    double cells = 1;
+    for (int a = 0; a < s.dim; ++a) cells *= (s.core[2 * a + 1] - s.core[2 * a]) / s.h;
+    std::ostringstream what;
+    what << r.file.string() << ": grid.h " << s.h << ": at least " << std::setprecision(3) << cells << " cells";
+    require_memory((s.dim == 3 ? 400.0 : 200.0) * cells, what.str());
+  }
   const YAML::Node f = need("fluid");
   r.only(f, "fluid", {"nu", "rho"});
   if (!f["nu"]) r.fail(f, "fluid.nu", "missing");
-  s.nu = r.number(f["nu"], "fluid.nu");
-  if (f["rho"]) s.rho = r.number(f["rho"], "fluid.rho");
+  s.nu = r.positive(f["nu"], "fluid.nu");
+  if (f["rho"]) s.rho = r.positive(f["rho"], "fluid.rho");
   const YAML::Node b = need("boundaries");
   r.only(b, "boundaries", {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo", "z_hi"});
   const char* sides[] = {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo", "z_hi"};
@@ -298,7 +314,7 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
         r.fail(side["profile"], at + ".profile", "'" + p + "', expected uniform or parabolic");
       s.sides[k].parabolic = p == "parabolic";
     }
-    if (side["ramp_time"]) s.sides[k].ramp_time = r.number(side["ramp_time"], at + ".ramp_time");
+    if (side["ramp_time"]) s.sides[k].ramp_time = r.non_negative(side["ramp_time"], at + ".ramp_time");
   }
   if (root["initial"]) {
     r.only(root["initial"], "initial", {"velocity"});
@@ -312,9 +328,9 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
   const YAML::Node t = need("time");
   r.only(t, "time", {"t_end", "cfl", "dt_max"});
   if (!t["t_end"]) r.fail(t, "time.t_end", "missing");
-  s.t_end = r.number(t["t_end"], "time.t_end");
-  if (t["cfl"]) s.cfl = r.number(t["cfl"], "time.cfl");
-  if (t["dt_max"]) s.dt_max = r.number(t["dt_max"], "time.dt_max");
+  s.t_end = r.positive(t["t_end"], "time.t_end");
+  if (t["cfl"]) s.cfl = r.positive(t["cfl"], "time.cfl");
+  if (t["dt_max"]) s.dt_max = r.non_negative(t["dt_max"], "time.dt_max");
   if (const YAML::Node sv = root["solver"]) {
     r.only(sv, "solver",
            {"helmholtz_rtol", "poisson_rtol", "wall_momentum_balance", "cut_cells", "kernel", "marker_spacing",
@@ -327,12 +343,12 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
         r.fail(sv["kernel"], "solver.kernel", "'" + k + "', expected roma3, peskin4, smooth3 or smooth4");
       }
     }
-    if (sv["marker_spacing"]) s.sheet.spacing = r.number(sv["marker_spacing"], "solver.marker_spacing");
+    if (sv["marker_spacing"]) s.sheet.spacing = r.positive(sv["marker_spacing"], "solver.marker_spacing");
     if (sv["band_correction"])
       s.sheet.band_correction = r.scalar<bool>(sv["band_correction"], "solver.band_correction", "true or false");
     if (sv["cut_cells"]) s.cut_cells = r.scalar<bool>(sv["cut_cells"], "solver.cut_cells", "true or false");
-    if (sv["helmholtz_rtol"]) s.helmholtz_rtol = r.number(sv["helmholtz_rtol"], "solver.helmholtz_rtol");
-    if (sv["poisson_rtol"]) s.poisson_rtol = r.number(sv["poisson_rtol"], "solver.poisson_rtol");
+    if (sv["helmholtz_rtol"]) s.helmholtz_rtol = r.positive(sv["helmholtz_rtol"], "solver.helmholtz_rtol");
+    if (sv["poisson_rtol"]) s.poisson_rtol = r.positive(sv["poisson_rtol"], "solver.poisson_rtol");
     if (sv["wall_momentum_balance"])
       s.wall_momentum_balance =
           r.scalar<bool>(sv["wall_momentum_balance"], "solver.wall_momentum_balance", "true or false");
@@ -359,7 +375,11 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
         s.grades.push_back(gr);
       }
     }
-    if (o["force_every"]) s.force_every = r.scalar<int>(o["force_every"], "outputs.force_every", "an integer");
+    if (o["force_every"]) {
+      s.force_every = r.scalar<int>(o["force_every"], "outputs.force_every", "an integer");
+      if (s.force_every < 1)
+        r.fail(o["force_every"], "outputs.force_every", std::to_string(s.force_every) + ", expected >= 1");
+    }
     if (o["reference_speed"]) s.reference_speed = r.number(o["reference_speed"], "outputs.reference_speed");
     if (o["reference_area"]) s.reference_area = r.number(o["reference_area"], "outputs.reference_area");
     if (const YAML::Node cv = o["control_volume"]) {

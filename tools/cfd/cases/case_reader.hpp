@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <initializer_list>
 #include <string>
@@ -29,7 +30,22 @@ struct Reader {
       fail(n, key, "'" + n.Scalar() + "', expected " + expected);
     }
   }
-  double number(const YAML::Node& n, const std::string& key) const { return scalar<double>(n, key, "a number"); }
+  // A finite number (".nan" and ".inf" are refused); positive / non_negative add the sign.
+  double number(const YAML::Node& n, const std::string& key) const {
+    const double x = scalar<double>(n, key, "a number");
+    if (!std::isfinite(x)) fail(n, key, "'" + n.Scalar() + "', expected a finite number");
+    return x;
+  }
+  double positive(const YAML::Node& n, const std::string& key) const {
+    const double x = number(n, key);
+    if (!(x > 0)) fail(n, key, n.Scalar() + ", expected a number > 0");
+    return x;
+  }
+  double non_negative(const YAML::Node& n, const std::string& key) const {
+    const double x = number(n, key);
+    if (!(x >= 0)) fail(n, key, n.Scalar() + ", expected a number >= 0");
+    return x;
+  }
   template <std::size_t N>
   std::array<double, N> numbers(const YAML::Node& n, const std::string& key) const {
     if (!n.IsSequence() || n.size() != N) fail(n, key, "expected a list of " + std::to_string(N) + " numbers");

@@ -3,7 +3,9 @@
 
 #include <vtkCellArray.h>
 #include <vtkCleanPolyData.h>
+#include <vtkErrorCode.h>
 #include <vtkOBJReader.h>
+#include <vtkObject.h>
 #include <vtkPolyData.h>
 #include <vtkSTLReader.h>
 #include <vtkSmartPointer.h>
@@ -12,6 +14,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <string>
 
 #include "core/error.hpp"
@@ -23,6 +26,9 @@ namespace {
 
 template <class Reader>
 vtkSmartPointer<vtkPolyData> read_with(const std::filesystem::path& file) {
+  // VTK's own error and warning text would come before ours, several lines of it (issue 46):
+  // the reader's error code becomes our one line instead.
+  vtkObject::GlobalWarningDisplayOff();
   auto reader = vtkSmartPointer<Reader>::New();
   reader->SetFileName(file.string().c_str());
   // Triangles only, and one vertex where the file repeats it (STL stores each triangle's corners).
@@ -33,6 +39,9 @@ vtkSmartPointer<vtkPolyData> read_with(const std::filesystem::path& file) {
   clean->PointMergingOn();
   clean->SetTolerance(0.0);
   clean->Update();
+  if (const unsigned long code = reader->GetErrorCode(); code != vtkErrorCode::NoError)
+    throw Error(file.string() + ": cannot read it as a " + file.extension().string() + " surface (" +
+                vtkErrorCode::GetStringFromErrorCode(code) + ")");
   return clean->GetOutput();
 }
 
@@ -84,6 +93,8 @@ TriangulatedSurface read_surface_file(const std::filesystem::path& file) {
   for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i) {
     double x[3];
     poly->GetPoint(i, x);
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+      throw Error(file.string() + ": vertex " + std::to_string(i) + " has a coordinate that is not a finite number");
     s.points.push_back({x[0], x[1], x[2]});
   }
   vtkCellArray* polys = poly->GetPolys();

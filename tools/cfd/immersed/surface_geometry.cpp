@@ -68,6 +68,11 @@ double box_distance2(const Vec3& x, const Vec3& lo, const Vec3& hi) {
 SurfaceGeometry::SurfaceGeometry(TriangulatedSurface surface, const std::string& what) : s_(std::move(surface)) {
   const int nv = static_cast<int>(s_.points.size());
   if (s_.triangles.size() < 4 || nv < 4) throw Error(what + ": a closed surface needs at least 4 triangles and 4 vertices");
+  // Before the edges: a NaN vertex is not merged with its copies and would read as a hole.
+  for (int v = 0; v < nv; ++v)
+    for (std::size_t d = 0; d < 3; ++d)
+      if (!std::isfinite(s_.points[static_cast<std::size_t>(v)][d]))
+        throw Error(what + ": vertex " + std::to_string(v) + " has a coordinate that is not a finite number");
   for (std::size_t t = 0; t < s_.triangles.size(); ++t)
     for (int v : s_.triangles[t])
       if (v < 0 || v >= nv)
