@@ -105,6 +105,32 @@ void write_cameras(const std::filesystem::path& yml, const std::vector<Camera>& 
   write_text_atomic(yml, fs.releaseAndGetString());
 }
 
+namespace {
+// What the projection needs of a camera read from a file: finite numbers, positive focal lengths,
+// a pinhole matrix [fx s cx; 0 fy cy; 0 0 1] and a principal point near the image (a NaN focal
+// length once crashed fin-track).
+void check_camera(const Camera& c, const std::string& where) {
+  const std::string cam = where + ": camera '" + c.name + "': ";
+  if (c.width > 65536 || c.height > 65536) throw Error(cam + "image_width and image_height must be at most 65536 px");
+  for (int i = 0; i < 9; ++i)
+    if (!std::isfinite(c.K(i / 3, i % 3))) throw Error(cam + "camera_matrix holds a value that is not a finite number");
+  for (int i = 0; i < 5; ++i)
+    if (!std::isfinite(c.dist[i]))
+      throw Error(cam + "distortion_coefficients hold a value that is not a finite number");
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(c.rvec[i]) || !std::isfinite(c.tvec[i]))
+      throw Error(cam + "rvec and tvec must hold finite numbers");
+  if (!(c.K(0, 0) > 0 && c.K(1, 1) > 0)) throw Error(cam + "camera_matrix: focal lengths fx, fy must be > 0 px");
+  if (c.K(1, 0) != 0 || c.K(2, 0) != 0 || c.K(2, 1) != 0 || std::abs(c.K(2, 2) - 1) > 1e-9)
+    throw Error(cam + "camera_matrix: expected the pinhole form [fx s cx; 0 fy cy; 0 0 1]");
+  const double cx = c.K(0, 2), cy = c.K(1, 2);
+  if (cx < -c.width || cx > 2.0 * c.width || cy < -c.height || cy > 2.0 * c.height)
+    throw Error(cam + "camera_matrix: principal point (" + std::to_string(cx) + ", " + std::to_string(cy) +
+                ") px is more than an image away from the " + std::to_string(c.width) + " x " +
+                std::to_string(c.height) + " image");
+}
+}  // namespace
+
 std::vector<Camera> read_cameras(const std::filesystem::path& yml) {
   const std::string where = yml.string();
   cv::FileStorage fs;
@@ -138,6 +164,7 @@ std::vector<Camera> read_cameras(const std::filesystem::path& yml) {
     for (int i = 0; i < 9; ++i) c.K(i / 3, i % 3) = K.at<double>(i);
     for (int i = 0; i < 5; ++i) c.dist[i] = d.at<double>(i);
     for (int i = 0; i < 3; ++i) c.rvec[i] = r.at<double>(i), c.tvec[i] = t.at<double>(i);
+    check_camera(c, where);
     out.push_back(c);
   }
   return out;
