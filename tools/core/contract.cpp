@@ -120,6 +120,18 @@ Dims check(const h5::File& file, const FileSpec& spec) {
           throw Error(where + "non-finite value " + std::to_string(a.data[i]) + " at " + index_string(i, a.shape));
     }
   }
+  // Indices within the sizes the shapes gave (a triangle naming vertex 999999 of 500).
+  for (const auto& d : spec.datasets) {
+    if (d.index_of.empty() || !file.is_dataset(d.path)) continue;
+    const auto it = dims.find(d.index_of);
+    if (it == dims.end()) continue;
+    const auto a = file.read_i32(d.path);
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (a.data[i] < 0 || static_cast<std::size_t>(a.data[i]) >= it->second)
+        throw Error(name + ": /" + d.path + ": index " + std::to_string(a.data[i]) + " at " + index_string(i, a.shape) +
+                    " outside 0.." + std::to_string(static_cast<long>(it->second) - 1) + " (" + d.index_of + " = " +
+                    std::to_string(it->second) + ")");
+  }
   return dims;
 }
 

@@ -21,6 +21,7 @@ struct DatasetSpec {
   std::string description;
   bool required = true;
   bool finite = true;             // floating datasets: no NaN/Inf allowed
+  std::string index_of = {};      // integer datasets of indices: each in [0, size of this dim symbol)
 };
 
 struct AttributeSpec {

@@ -17,6 +17,11 @@ DatasetSpec opt(DatasetSpec d) {
   d.required = false;
   return d;
 }
+// Indices into the rows of the dim `symbol` (e.g. node numbers < nv).
+DatasetSpec indexes(DatasetSpec d, const std::string& symbol) {
+  d.index_of = symbol;
+  return d;
+}
 DatasetSpec may_be_nan(DatasetSpec d) {
   d.finite = false;
   return d;
@@ -46,58 +51,86 @@ std::vector<DatasetSpec> force_datasets(const std::string& nt) {
 std::vector<FileSpec> build() {
   std::vector<FileSpec> specs;
 
-  specs.push_back({"finverse/truth", 1, "truth.h5", "fin-synth",
-                   "The virtual experiment's ground truth, for scoring only: the motion of the truth fin, "
-                   "its materials and the effects it contains.",
-                   {
-                       {"template/points", f64, {"nv", "3"}, "m", "truth surface vertices at rest"},
-                       {"template/triangles", i32, {"ntri", "3"}, "", "truth surface triangles (0-based)"},
-                       {"time", f64, {"nf"}, "s", "frame times"},
-                       {"points", f64, {"nf", "nv", "3"}, "m", "truth vertex positions per frame"},
-                       {"materials/names", str, {"np"}, "", "material parameter names, e.g. E_membrane, E_ray1, nu (fin-fit's names)"},
-                       {"materials/units", str, {"np"}, "", "unit of each parameter"},
-                       {"materials/values", f64, {"np"}, "", "truth values in the units of materials/units"},
-                       // Optional, added with the FSI truth (issue 33): the root drive per ray.
-                       opt({"root/ray_ids", i32, {"nr"}, "", "ray id of each row (1 = dorsal edge ray, mesh.h5 beams/ray)"}),
-                       opt({"root/eta", f64, {"nr"}, "1", "place across the fin: +1 dorsal edge ray .. -1 ventral, linear in the ray index"}),
-                       opt({"root/heave_amplitude", f64, {"nr"}, "m", "root heave half amplitude: y = a sin(2 pi t / T + phase)"}),
-                       opt({"root/heave_phase", f64, {"nr"}, "rad", "root heave phase"}),
-                       opt({"root/pitch_amplitude", f64, {"nr"}, "rad", "root pitch amplitude about the dorsal axis z"}),
-                       opt({"root/pitch_phase", f64, {"nr"}, "rad", "root pitch phase relative to the heave (< 0: lags)"}),
-                   },
-                   {period_attr(),
-                    {"effects", "", "JSON object of the extra effects in the truth model (structural: the fem/effects list planted by truth.effects)", false, true},
-                    {"motion_source", "", "what moved the truth: prescribed_kinematics or fsi", false, true},
-                    {"root_drive", "", "JSON object of the root drive parameters (drive.json of the FSI truth)", false, true}}});
+  specs.push_back(
+      {"finverse/truth",
+       1,
+       "truth.h5",
+       "fin-synth",
+       "The virtual experiment's ground truth, for scoring only: the motion of the truth fin, "
+       "its materials and the effects it contains.",
+       {
+           {"template/points", f64, {"nv", "3"}, "m", "truth surface vertices at rest"},
+           indexes({"template/triangles", i32, {"ntri", "3"}, "", "truth surface triangles (0-based)"}, "nv"),
+           {"time", f64, {"nf"}, "s", "frame times"},
+           {"points", f64, {"nf", "nv", "3"}, "m", "truth vertex positions per frame"},
+           {"materials/names",
+            str,
+            {"np"},
+            "",
+            "material parameter names, e.g. E_membrane, E_ray1, nu (fin-fit's names)"},
+           {"materials/units", str, {"np"}, "", "unit of each parameter"},
+           {"materials/values", f64, {"np"}, "", "truth values in the units of materials/units"},
+           // Optional, added with the FSI truth (issue 33): the root drive per ray.
+           opt({"root/ray_ids", i32, {"nr"}, "", "ray id of each row (1 = dorsal edge ray, mesh.h5 beams/ray)"}),
+           opt({"root/eta",
+                f64,
+                {"nr"},
+                "1",
+                "place across the fin: +1 dorsal edge ray .. -1 ventral, linear in the ray index"}),
+           opt({"root/heave_amplitude", f64, {"nr"}, "m", "root heave half amplitude: y = a sin(2 pi t / T + phase)"}),
+           opt({"root/heave_phase", f64, {"nr"}, "rad", "root heave phase"}),
+           opt({"root/pitch_amplitude", f64, {"nr"}, "rad", "root pitch amplitude about the dorsal axis z"}),
+           opt({"root/pitch_phase", f64, {"nr"}, "rad", "root pitch phase relative to the heave (< 0: lags)"}),
+       },
+       {period_attr(),
+        {"effects", "",
+         "JSON object of the extra effects in the truth model (structural: the fem/effects list planted by "
+         "truth.effects)",
+         false, true},
+        {"motion_source", "", "what moved the truth: prescribed_kinematics or fsi", false, true},
+        {"root_drive", "", "JSON object of the root drive parameters (drive.json of the FSI truth)", false, true}}});
 
-  specs.push_back({"finverse/kinematics", 1, "kinematics.h5", "fin-track",
-                   "Reconstructed fin motion: the template driven by the fitted skeleton, per frame, with the fit "
-                   "quality in every view.",
-                   {
-                       {"template/points", f64, {"nv", "3"}, "m", "template surface vertices at rest"},
-                       {"template/triangles", i32, {"ntri", "3"}, "", "template triangles (0-based)"},
-                       {"template/ray_offsets", i32, {"nr+1"}, "", "CSR offsets of each ray's vertex polyline"},
-                       {"template/ray_vertices", i32, {"nrv"}, "", "template vertices along each ray, root to tip"},
-                       {"time", f64, {"nf"}, "s", "frame times"},
-                       {"points", f64, {"nf", "nv", "3"}, "m", "reconstructed vertex positions"},
-                       {"skeleton/joint_parent", i32, {"nj"}, "", "parent joint, -1 for the root"},
-                       {"skeleton/joint_rest", f64, {"nj", "3"}, "m", "joint positions in the template"},
-                       {"skeleton/joint_angles", f64, {"nf", "nj", "3"}, "rad", "fitted joint rotation vectors"},
-                       {"quality/views", str, {"nviews"}, "", "camera view names"},
-                       may_be_nan({"quality/silhouette_iou", f64, {"nf", "nviews"}, "1",
-                                   "silhouette intersection over union; NaN where the view is missing"}),
-                       may_be_nan({"quality/reprojection_rms", f64, {"nf", "nviews"}, "px",
-                                   "RMS feature reprojection error; NaN where the view is missing"}),
-                       {"quality/valid", u8, {"nf", "nviews"}, "", "1 where the view's frame was present and used"},
-                       {"quality/flags", u8, {"nf"}, "",
-                        "per-frame doubts (bits): 1 fewer than two views, 2 a view's IoU low, 4 root drifted, 8 silhouette "
-                        "area off the template's scale, 16 segmentation unsure; absent when no frame is flagged",
-                        false},
-                   },
-                   {period_attr(),
-                    {"fps", "s-1", "camera frame rate"},
-                    {"fit_status", "", "why the views cannot constrain the fit (fin-track exits 1); absent when it can be trusted",
-                     false, true}}});
+  specs.push_back(
+      {"finverse/kinematics",
+       1,
+       "kinematics.h5",
+       "fin-track",
+       "Reconstructed fin motion: the template driven by the fitted skeleton, per frame, with the fit "
+       "quality in every view.",
+       {
+           {"template/points", f64, {"nv", "3"}, "m", "template surface vertices at rest"},
+           indexes({"template/triangles", i32, {"ntri", "3"}, "", "template triangles (0-based)"}, "nv"),
+           {"template/ray_offsets", i32, {"nr+1"}, "", "CSR offsets of each ray's vertex polyline"},
+           indexes({"template/ray_vertices", i32, {"nrv"}, "", "template vertices along each ray, root to tip"}, "nv"),
+           {"time", f64, {"nf"}, "s", "frame times"},
+           {"points", f64, {"nf", "nv", "3"}, "m", "reconstructed vertex positions"},
+           {"skeleton/joint_parent", i32, {"nj"}, "", "parent joint, -1 for the root"},
+           {"skeleton/joint_rest", f64, {"nj", "3"}, "m", "joint positions in the template"},
+           {"skeleton/joint_angles", f64, {"nf", "nj", "3"}, "rad", "fitted joint rotation vectors"},
+           {"quality/views", str, {"nviews"}, "", "camera view names"},
+           may_be_nan({"quality/silhouette_iou",
+                       f64,
+                       {"nf", "nviews"},
+                       "1",
+                       "silhouette intersection over union; NaN where the view is missing"}),
+           may_be_nan({"quality/reprojection_rms",
+                       f64,
+                       {"nf", "nviews"},
+                       "px",
+                       "RMS feature reprojection error; NaN where the view is missing"}),
+           {"quality/valid", u8, {"nf", "nviews"}, "", "1 where the view's frame was present and used"},
+           {"quality/flags",
+            u8,
+            {"nf"},
+            "",
+            "per-frame doubts (bits): 1 fewer than two views, 2 a view's IoU low, 4 root drifted, 8 silhouette "
+            "area off the template's scale, 16 segmentation unsure; absent when no frame is flagged",
+            false},
+       },
+       {period_attr(),
+        {"fps", "s-1", "camera frame rate"},
+        {"fit_status", "", "why the views cannot constrain the fit (fin-track exits 1); absent when it can be trusted",
+         false, true}}});
 
   specs.push_back(
       {"finverse/mesh",
@@ -108,20 +141,21 @@ std::vector<FileSpec> build() {
        "closed thin surface the immersed-boundary solver sees.",
        {
            {"points", f64, {"nv", "3"}, "m", "mid-surface nodes at rest"},
-           {"triangles", i32, {"ntri", "3"}, "", "shell elements (0-based nodes)"},
+           indexes({"triangles", i32, {"ntri", "3"}, "", "shell elements (0-based nodes)"}, "nv"),
            {"shell/thickness", f64, {"ntri"}, "m", "membrane thickness per shell element"},
            {"shell/region", i32, {"ntri"}, "", "material region of each shell element (0 = membrane)"},
-           {"beams/elements", i32, {"nb", "2"}, "", "beam elements on mesh edges (0-based nodes)"},
+           indexes({"beams/elements", i32, {"nb", "2"}, "", "beam elements on mesh edges (0-based nodes)"}, "nv"),
            {"beams/ray", i32, {"nb"}, "", "ray number of each beam element, 1 = dorsal edge"},
            {"beams/s", f64, {"nb", "2"}, "1", "arc-length fraction along the ray at both ends"},
            {"beams/thickness", f64, {"nb", "2"}, "m", "section thickness (flapping direction) at both ends"},
            {"beams/width", f64, {"nb", "2"}, "m", "section width (in the fin plane) at both ends"},
-           {"root_nodes", i32, {"nroot"}, "", "nodes whose motion is prescribed (the fin root)"},
+           indexes({"root_nodes", i32, {"nroot"}, "", "nodes whose motion is prescribed (the fin root)"}, "nv"),
            // Optional (issue 45): a structural mesh (a user's own FEM or test rig) has no
            // flow surface; fin-cfd and fin-fsi name the missing dataset.
            opt({"ibm/points", f64, {"nvi", "3"}, "m", "closed thin immersed-boundary surface at rest"}),
-           opt({"ibm/triangles", i32, {"ntri_ibm", "3"}, "", "its triangles, outward normals"}),
-           opt({"ibm/source_node", i32, {"nvi"}, "", "mid-surface node each surface vertex is offset from"}),
+           opt(indexes({"ibm/triangles", i32, {"ntri_ibm", "3"}, "", "its triangles, outward normals"}, "nvi")),
+           opt(indexes({"ibm/source_node", i32, {"nvi"}, "", "mid-surface node each surface vertex is offset from"},
+                       "nv")),
            opt({"ibm/offset_sign", i32, {"nvi"}, "", "+1/-1: side of the mid-surface, 0 on the rim"}),
        },
        {{"ibm_thickness", "m", "thickness of the closed immersed-boundary body"}, {"chord", "m", "fin chord c"}}});
