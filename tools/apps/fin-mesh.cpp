@@ -9,12 +9,14 @@
 // so the downstream stages can run on the virtual experiment's truth motion.
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/hdf5_file.hpp"
 #include "core/log.hpp"
+#include "core/output_paths.hpp"
 #include "core/stage_files.hpp"
 #include "core/summary.hpp"
 #include "core/vtk_output.hpp"
@@ -65,14 +67,14 @@ int main(int argc, char** argv) {
   mesh::PlanformMeshOptions mo;
   double ibm_thickness = 0.05, root_band = 0.0, max_source_distance = 0.01;
   fs::path mesh_out, vtu, motion_source, motion_out, motion_pvd, summary_out;
-  app.add_option("--mesh", mesh_out, "output mesh.h5")->required();
+  app.add_option("--mesh", mesh_out, "output mesh.h5")->required()->check(cli::writable_output());
   app.add_option("--vtu", vtu, "output ParaView mesh (.vtu); the IBM surface goes to <stem>_ibm.pvd");
   app.add_option("--max-edge", mo.max_edge_over_chord, "largest element edge / c")->capture_default_str();
   app.add_option("--min-angle", mo.min_angle_deg, "smallest element angle (degrees)")->capture_default_str();
   app.add_option("--ibm-thickness", ibm_thickness, "thickness of the closed IBM body / c (a few CFD cells)")->capture_default_str();
   app.add_option("--root-band", root_band, "prescribed root nodes lie within this distance of the root / c")->capture_default_str();
   auto* src = app.add_option("--motion-source", motion_source, "kinematics.h5 (or truth.h5 until fin-track lands)")->check(CLI::ExistingFile);
-  app.add_option("--motion", motion_out, "output motion.h5")->needs(src);
+  app.add_option("--motion", motion_out, "output motion.h5")->needs(src)->check(cli::writable_output());
   app.add_option("--motion-pvd", motion_pvd, "output ParaView motion series (.pvd)")->needs(src);
   app.add_option("--max-source-distance", max_source_distance,
                  "largest allowed distance of a mesh node from the motion source's rest surface / c")->capture_default_str();
@@ -106,6 +108,28 @@ int main(int argc, char** argv) {
     auto m = mesh::assemble_mesh(fin, pm, ibm, root_band * c);
     const double mesh_seconds = seconds_since(t0);
     log::info("root nodes: " + std::to_string(m.root_nodes.size()) + "; meshing took " + std::to_string(mesh_seconds) + " s");
+    // The motion is carried before anything is written: a bad source must not leave a complete
+    // mesh.h5 behind (issue 46).
+    std::optional<stage::Motion> motion;
+    if (!motion_source.empty()) {
+      const auto t1 = std::chrono::steady_clock::now();
+      const auto src = read_motion_source(motion_source);
+      const auto binding = mesh::bind_to_surface(src.rest, src.triangles, m.points);
+      log::info("motion source " + motion_source.string() + ": " + std::to_string(src.time.size()) + " frames, " +
+                std::to_string(src.rest.dim(0)) + " vertices; largest node distance to its rest surface " +
+                std::to_string(binding.max_distance / c) + " c");
+      if (binding.max_distance > max_source_distance * c)
+        throw Error(motion_source.string() + ": /template/points: the mesh lies up to " +
+                    std::to_string(binding.max_distance / c) + " c from the source's rest surface (allowed " +
+                    std::to_string(max_source_distance) + " c): not the same fin");
+      motion.emplace();
+      motion->time = src.time;
+      motion->points = mesh::carry_motion(binding, src.points);
+      motion->velocity = mesh::velocities(src.time.data, motion->points, src.period);
+      motion->period = src.period;
+      log::info("motion carried onto " + std::to_string(m.points.dim(0)) + " nodes in " +
+                std::to_string(seconds_since(t1)) + " s");
+    }
     if (!summary_out.empty()) {
       double area = 0;
       for (const auto& t : pm.triangles) {
@@ -155,38 +179,22 @@ int main(int argc, char** argv) {
       vtkio::write_surface_series(ibm_pvd, {0.0}, m.ibm_triangles, {f});
     }
 
-    if (!motion_source.empty()) {
-      const auto t1 = std::chrono::steady_clock::now();
-      const auto src = read_motion_source(motion_source);
-      const auto binding = mesh::bind_to_surface(src.rest, src.triangles, m.points);
-      log::info("motion source " + motion_source.string() + ": " + std::to_string(src.time.size()) + " frames, " +
-                std::to_string(src.rest.dim(0)) + " vertices; largest node distance to its rest surface " +
-                std::to_string(binding.max_distance / c) + " c");
-      if (binding.max_distance > max_source_distance * c)
-        throw Error(motion_source.string() + ": /template/points: the mesh lies up to " +
-                    std::to_string(binding.max_distance / c) + " c from the source's rest surface (allowed " +
-                    std::to_string(max_source_distance) + " c): not the same fin");
-      stage::Motion motion;
-      motion.time = src.time;
-      motion.points = mesh::carry_motion(binding, src.points);
-      motion.velocity = mesh::velocities(src.time.data, motion.points, src.period);
-      motion.period = src.period;
+    if (motion) {
       // mesh_out among the inputs: readers of both check that this motion is on that mesh.
       Provenance mprov{"fin-mesh", prov.config, {motion_source, mesh_out}};
-      stage::write(motion_out, motion, mprov);
+      stage::write(motion_out, *motion, mprov);
       if (!motion_pvd.empty()) {
-        const std::size_t nf = motion.time.size(), nv = m.points.dim(0);
+        const std::size_t nf = motion->time.size(), nv = m.points.dim(0);
         std::vector<vtkio::SurfaceFrame> frames(nf);
         for (std::size_t k = 0; k < nf; ++k) {
           frames[k].points = NdArray<double>({nv, 3});
-          std::copy_n(motion.points.data.begin() + k * nv * 3, nv * 3, frames[k].points.data.begin());
+          std::copy_n(motion->points.data.begin() + k * nv * 3, nv * 3, frames[k].points.data.begin());
           NdArray<double> vel({nv, 3});
-          std::copy_n(motion.velocity.data.begin() + k * nv * 3, nv * 3, vel.data.begin());
+          std::copy_n(motion->velocity.data.begin() + k * nv * 3, nv * 3, vel.data.begin());
           frames[k].point_data.push_back({"velocity", std::move(vel)});
         }
-        vtkio::write_surface_series(motion_pvd, motion.time.data, m.triangles, frames);
+        vtkio::write_surface_series(motion_pvd, motion->time.data, m.triangles, frames);
       }
-      log::info("motion carried onto " + std::to_string(m.points.dim(0)) + " nodes in " + std::to_string(seconds_since(t1)) + " s");
     }
     if (summary_failed) log::error("a validation metric failed: see " + summary_out.string());
     return summary_failed ? kExitDifferent : kExitOk;  // README: exit 1 when a metric failed

@@ -82,10 +82,14 @@ int main(int argc, char** argv) {
     const auto cameras = cameras_in.empty() ? vision::default_rig(flags.views, fin.chord, flags.width, flags.height,
                                                                   flags.half_field, flags.field_centre)
                                             : vision::read_cameras(cameras_in);
+    // Frames go to frames.tmp, renamed to frames when every one is written: a run killed half way
+    // leaves no folder of frames that looks complete (issue 46).
+    const fs::path frames_dir = out_dir / "frames", frames_tmp = temporary_for(frames_dir);
     fs::create_directories(out_dir);
-    fs::create_directories(out_dir / "frames");
+    fs::remove_all(frames_tmp);
+    fs::create_directories(frames_tmp);
     if (!video)
-      for (const auto& c : cameras) fs::create_directories(out_dir / "frames" / c.name);
+      for (const auto& c : cameras) fs::create_directories(frames_tmp / c.name);
     // With --video the frames are kept and written view by view after rendering (a video is sequential).
     std::vector<std::vector<cv::Mat>> clips(video ? cameras.size() : 0, std::vector<cv::Mat>(nf));
     const int video_quality = jpeg_quality > 0 ? jpeg_quality : 75;
@@ -133,7 +137,7 @@ int main(int argc, char** argv) {
           if (!cv::imencode(".png", img, png)) throw Error("cannot encode PNG");
           char name[32];
           std::snprintf(name, sizeof name, "%06td.png", k);
-          write_text_atomic(out_dir / "frames" / cameras[v].name / name, std::string(png.begin(), png.end()));
+          write_text_atomic(frames_tmp / cameras[v].name / name, std::string(png.begin(), png.end()));
         }
         render_seconds += log::elapsed_seconds() - t0;
 #pragma omp critical
@@ -145,7 +149,9 @@ int main(int argc, char** argv) {
     }
     if (!failure.empty()) throw Error(failure);
     for (std::size_t v = 0; v < clips.size(); ++v)
-      vision::write_mjpg_avi(out_dir / "frames" / (cameras[v].name + ".avi"), clips[v], fps, video_quality);
+      vision::write_mjpg_avi(frames_tmp / (cameras[v].name + ".avi"), clips[v], fps, video_quality);
+    fs::remove_all(frames_dir);
+    fs::rename(frames_tmp, frames_dir);
     progress.finish();
     log::info("render: " + std::to_string(1e3 * render_seconds / (nf * cameras.size())) + " ms per view-frame (" +
               std::to_string(cameras[0].width) + "x" + std::to_string(cameras[0].height) + ", supersample " +
