@@ -1,0 +1,279 @@
+#!/usr/bin/python3
+"""The bad-input suite (issue 46): every executable given something a careless user would give it.
+
+Each case runs one command and asserts
+  - the exit code (2: bad input),
+  - exactly one error line, the project's own ("<tool>: error: ..." or "[<tool> ...] error: ..."),
+    naming the flag, key or file (`names`), and no line from a library,
+  - that none of the case's outputs exists afterwards (nothing under a final name).
+Placeholders in a command: {bin} the executables, {fix} the tiny case's golden mesh.h5 and
+motion.h5 (tests/regression/mesh/tiny_case), {repo} the repository, {w} the case's own scratch
+folder. Cases needing a bad file write it with `make` (a function of the scratch folder).
+
+  /usr/bin/python3 tests/bad_input/run_bad_inputs.py --bin build/bin --repo . --work /tmp/bad_input [--only fin-mesh]
+"""
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+MESH = "{fix}/mesh.h5"
+MOTION = "{fix}/motion.h5"
+MATERIALS = "{repo}/data/cases/trout_fin_materials.json"
+CFD_CASE = "{repo}/data/cases/cfd/cylinder_channel_2d.yaml"
+
+
+def case(tool, args, names, outputs=(), rc=2, make=None, label=None):
+    return {"tool": tool, "args": args, "names": names, "outputs": list(outputs), "rc": rc, "make": make,
+            "label": label or f"{tool} {args}"}
+
+
+def edited(source, pattern, replacement, name):
+    """A `make` that writes a copy of `source` with one regex replacement."""
+    def make(w, fmt):
+        text = open(fmt(source)).read()
+        new = re.sub(pattern, replacement, text, count=1)
+        assert new != text, f"{name}: pattern {pattern!r} not found"
+        with open(os.path.join(w, name), "w") as f:
+            f.write(new)
+    return make
+
+
+def written(name, text):
+    def make(w, fmt):
+        with open(os.path.join(w, name), "w") as f:
+            f.write(text)
+    return make
+
+
+def flag_cases(tool, base, out, flags):
+    """One case per (flag, value): base command + the flag, the flag named in the error."""
+    return [case(tool, f"{base} {flag} {value}", flag, [out]) for flag, value in flags]
+
+
+def cases():
+    c = []
+    # fin-mesh: sizes, signs, NaN, ranges, the template's limits, config files.
+    c += flag_cases("fin-mesh", "--mesh {w}/mesh.h5", "{w}/mesh.h5", [
+        ("--max-edge", "-1"), ("--max-edge", "0"), ("--max-edge", "nan"), ("--max-edge", "inf"),
+        ("--max-edge", "1e-6"), ("--chord", "0"), ("--chord", "-0.01"), ("--height-over-chord", "nan"),
+        ("--membrane-thickness", "-1"), ("--rays", "1"), ("--rays", "-3"), ("--ray-points", "0"),
+        ("--ray-points", "1"), ("--min-angle", "-5"), ("--threads", "-1"), ("--max-edge", "abc"),
+        ("--edge-ray-thickness", "inf"), ("--tip-thickness-ratio", "-0.2"), ("--ray-width-ratio", "0"),
+        ("--root-band", "-1"), ("--ibm-thickness", "nan")])
+    c += [case("fin-mesh", "--mesh {w}/mesh.h5 --rays 100000", "--rays", ["{w}/mesh.h5"]),
+          case("fin-mesh", "--mesh {w}/mesh.h5 --ray-points 100000000", "--ray-points", ["{w}/mesh.h5"]),
+          case("fin-mesh", "--mesh {w}/mesh.h5 --min-angle 40", "--min-angle", ["{w}/mesh.h5"]),
+          case("fin-mesh", "--mesh {w}/mesh.h5 --config {w}/c.toml", "bogus-key", ["{w}/mesh.h5"],
+               make=written("c.toml", "max-edge = 0.1\nbogus-key = 3\n")),
+          case("fin-mesh", "--mesh {w}/mesh.h5 --config {w}/c.toml", "--max-edge", ["{w}/mesh.h5"],
+               make=written("c.toml", "max-edge = -0.1\n")),
+          case("fin-mesh", "--mesh {w}/mesh.h5 --motion-source {w}/missing.h5 --motion {w}/motion.h5",
+               "missing.h5", ["{w}/mesh.h5", "{w}/motion.h5"]),
+          case("fin-mesh", "--mesh {w}/mesh.h5 --template {w}/missing.json", "missing.json", ["{w}/mesh.h5"])]
+
+    # fin-synth: image sizes against the machine, signs and ranges; nothing created.
+    c += flag_cases("fin-synth", "--out-dir {w}/synth", "{w}/synth", [
+        ("--width", "0"), ("--height", "-1"), ("--fps", "0"), ("--fps", "nan"), ("--periods", "-1"),
+        ("--noise-sigma", "-1"), ("--supersample", "0"), ("--blur-samples", "0"), ("--vignetting", "2"),
+        ("--exposure", "-0.5"), ("--chord", "0"), ("--reynolds", "-10"), ("--viscosity", "0"),
+        ("--strouhal", "nan"), ("--gain", "-1"), ("--threads", "-4"), ("--rays", "0"),
+        ("--debris", "-3"), ("--field-chords", "inf")])
+    c += [case("fin-synth", "--out-dir {w}/synth --width 1000000", "--width", ["{w}/synth"]),
+          case("fin-synth", "--out-dir {w}/synth --width 100000 --height 100000", "--width", ["{w}/synth"]),
+          case("fin-synth", "--out-dir {w}/synth --jpeg-quality 101", "--jpeg-quality", ["{w}/synth"]),
+          case("fin-synth", "--out-dir {w}/synth --views side,top", "top", ["{w}/synth"])]
+
+    # fin-fit: optimiser sizes, increments and times.
+    fit = f"run --mesh {MESH} --motion {MOTION} --loads {MOTION} --materials {MATERIALS} --out {{w}}/m.h5"
+    c += flag_cases("fin-fit", fit, "{w}/m.h5", [
+        ("--population", "-1"), ("--generations", "-2"), ("--runs", "0"), ("--polish-evaluations", "-5"),
+        ("--instant-count", "0"), ("--dt", "-1"), ("--dt", "nan"), ("--substeps", "0"), ("--periods", "-1"),
+        ("--ramp", "-0.1"), ("--threads", "-2"), ("--instants", "nan")])
+    c += [case("fin-fit", f"run --mesh {{w}}/missing.h5 --motion {MOTION} --materials {MATERIALS} --out {{w}}/m.h5",
+               "missing.h5", ["{w}/m.h5"]),
+          case("fin-fit", f"run --mesh {MESH} --motion {MOTION} --materials {{w}}/missing.json --out {{w}}/m.h5",
+               "missing.json", ["{w}/m.h5"])]
+    c += flag_cases("fin-fit", f"evaluate --mesh {MESH} --motion {MOTION} --materials {MATERIALS}", "{w}/none", [
+        ("--instant-count", "-1"), ("--dt", "inf"), ("--substeps", "-1")])
+
+    # fin-loop: residual and trace flags.
+    res = f"residual --mesh {MESH} --reconstruction {MOTION} --prediction {MOTION} --out {{w}}/r.h5"
+    c += flag_cases("fin-loop", res, "{w}/r.h5", [
+        ("--period", "-1"), ("--period", "nan"), ("--harmonics", "-1"), ("--modes", "-2")])
+    tr = f"trace --mesh {MESH} --motion {MOTION} --materials {MATERIALS} --out {{w}}/l.h5"
+    c += flag_cases("fin-loop", tr, "{w}/l.h5", [
+        ("--lm-evaluations", "-1"), ("--alpha", "2"), ("--alpha", "nan"), ("--max-effects", "-1"),
+        ("--fit-drive", "-1"), ("--fit-drive", "50"), ("--drive-harmonics", "-1"), ("--relative-step", "-0.1"),
+        ("--frequency", "-4.4"), ("--substeps", "0"), ("--spectral-radius", "inf"), ("--ramp", "-1")])
+
+    # fin-cfd fin: flow flags; sizes against the machine.
+    cfd = f"fin --mesh {MESH} --motion {MOTION} --out {{w}}/loads.h5"
+    c += flag_cases("fin-cfd", cfd, "{w}/loads.h5", [
+        ("--speed", "-0.1"), ("--cfl", "0"), ("--cfl", "nan"), ("--periods", "-1"), ("--reynolds", "-5"),
+        ("--viscosity", "-1e-6"), ("--rho", "-1000"), ("--cells-per-chord", "-8"), ("--chord", "-1"),
+        ("--checkpoint-every", "-1"), ("--threads", "-1")])
+    c += [case("fin-cfd", cfd + " --cells-per-chord 1e6", "--cells-per-chord", ["{w}/loads.h5"])]
+    # fin-cfd run: the case file's keys.
+    for name, pattern, repl, names in [
+            ("rho", r"rho: 1\}", "rho: -1}", "fluid.rho"), ("force_every", r"force_every: 10", "force_every: -1",
+                                                                "outputs.force_every"),
+            ("h", r"h: 0.003125 ", "h: 5.0e-9 ", "grid.h"), ("inverted", r"x: \[0, 2.2\]", "x: [2.2, 0]", "domain.x"),
+            ("nu_nan", r"nu: 1.0e-3", "nu: .nan", "fluid.nu"), ("inlet_nan", r"velocity: \[0.3, 0, 0\]",
+                                                              "velocity: [.nan, 0, 0]", "boundaries.x_lo.velocity"),
+            ("nu_neg", r"nu: 1.0e-3", "nu: -1.0e-3", "fluid.nu"), ("cfl", r"cfl: 0.5", "cfl: 0", "time.cfl"),
+            ("t_end", r"t_end: 8 ", "t_end: -8 ", "time.t_end"), ("radius", r"radius: 0.05", "radius: -0.05", "radius"),
+            ("stretch", r"stretch_ratio: 1.05", "stretch_ratio: 0.5", "grid.stretch_ratio"),
+            ("unknown_key", r"cfl: 0.5", "cfl: 0.5\n  cfll: 0.4", "cfll"),
+            ("ramp", r"ramp_time: 1", "ramp_time: -1", "ramp_time"),
+            ("rtol", r"poisson_rtol: 1.0e-9", "poisson_rtol: 0", "solver.poisson_rtol")]:
+        c.append(case("fin-cfd", f"--out-dir {{w}}/out run {{w}}/case_{name}.yaml", names, ["{w}/out"],
+                      make=edited(CFD_CASE, pattern, repl, f"case_{name}.yaml")))
+    c += [case("fin-cfd", "--out-dir {w}/out run {w}/missing.yaml", "missing.yaml", ["{w}/out"])]
+
+    # fin-fem run and loads.
+    fem = f"run --mesh {MESH} --materials {MATERIALS} --out {{w}}/model.h5"
+    c += flag_cases("fin-fem", fem, "{w}/model.h5", [
+        ("--substeps", "0"), ("--max-iterations", "-1"), ("--ramp", "-1"), ("--periods", "nan"),
+        ("--frames-per-period", "0"), ("--rho-inf", "-0.5"), ("--ramp-steps", "-2")])
+    c += flag_cases("fin-fem", f"loads --mesh {MESH} --root-drive {{w}}/none.json --out {{w}}/loads.h5",
+                    "{w}/loads.h5", [("--periods", "-2"), ("--frames-per-period", "0"), ("--reynolds", "nan"),
+                                     ("--density", "-1000"), ("--drag-coefficient", "-2"), ("--start-periods", "-1")])
+
+    # fin-track: flags, and the cameras file (a NaN focal length once crashed it).
+    trk = "--frames {w} --cameras {w}/cameras.yml --out {w}/k.h5"
+    c += [case("fin-track", f"{trk} {flag} {value}", flag, ["{w}/k.h5"])
+          for flag, value in [("--fps", "0"), ("--fps", "nan"), ("--segments", "0"), ("--iterations", "-1"),
+                              ("--min-views", "0"), ("--min-iou", "1.5"), ("--coverage-weight", "-1"),
+                              ("--temporal-sigma", "-1"), ("--rays", "0"), ("--chord", "-1"),
+                              ("--period", "-0.2"), ("--tolerance", "nan")]]
+
+    # fin-fsi fin, fin-calibrate, fin-report, fin-diff: flags.
+    fsi = f"fin --mesh {MESH} --materials {MATERIALS} --out {{w}}/fsi.h5"
+    c += flag_cases("fin-fsi", fsi, "{w}/fsi.h5", [
+        ("--speed", "-1"), ("--cells-per-chord", "nan"), ("--reynolds", "-1"), ("--rho", "-1"), ("--viscosity", "0"),
+        ("--periods", "-1"), ("--substeps", "0"), ("--cfl", "-0.5")])
+    c += flag_cases("fin-calibrate", "simulate --cameras {w}/cameras.yml --out-dir {w}/cal", "{w}/cal", [
+        ("--poses", "-1"), ("--supersample", "0"), ("--noise-sigma", "-1"), ("--marker-fraction", "1.5"),
+        ("--board-fraction", "-0.45")])
+    c += flag_cases("fin-diff", "{fix} {fix}", "{w}/none", [("--atol", "-1"), ("--rtol", "nan"), ("--atol", "inf")])
+    c += flag_cases("fin-report", "--case x --out-dir {w}/rep", "{w}/rep", [("--chord", "-0.01"), ("--chord", "nan")])
+    return c
+
+
+def surface_cases():
+    """fin-cfd run on the STL sphere case with a broken surface file beside it."""
+    source = "{repo}/data/cases/cfd/sphere_re100_stl.yaml"
+    # A closed tetrahedron in ASCII STL, one coordinate of its first vertex replaced by `x`.
+    corners = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    faces = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
+
+    def tetrahedron(x):
+        out = ["solid tet"]
+        for f in faces:
+            out += [" facet normal 0 0 0", "  outer loop"]
+            for v in f:
+                c = [str(a) for a in corners[v]]
+                if v == 0:
+                    c[0] = x
+                out.append("   vertex " + " ".join(c))
+            out += ["  endloop", " endfacet"]
+        return "\n".join(out + ["endsolid tet", ""])
+
+    def with_surface(text):
+        def make(w, fmt):
+            with open(os.path.join(w, "case.yaml"), "w") as f:
+                f.write(re.sub(r"surface: sphere\.stl", "surface: bad.stl", open(fmt(source)).read()))
+            with open(os.path.join(w, "bad.stl"), "w") as f:
+                f.write(text)
+        return make
+    broken = "solid broken\n facet normal 0 0 1\n  outer loop\n   vertex 0 0\n"
+    return [case("fin-cfd", "--out-dir {w}/out run {w}/case.yaml", "bad.stl", ["{w}/out"], make=with_surface(t),
+                 label=f"fin-cfd run: surface file {name}")
+            for name, t in (("nan vertex", tetrahedron("nan")), ("broken", broken))]
+
+
+def contract_cases():
+    """fin-contract check on a mesh.h5 whose triangle names a vertex past the end."""
+    def make(w, fmt):
+        import h5py
+        shutil.copy(fmt(MESH), os.path.join(w, "mesh.h5"))
+        with h5py.File(os.path.join(w, "mesh.h5"), "r+") as f:
+            t = f["triangles"][...]
+            t[3, 1] = 999999
+            f["triangles"][...] = t
+    return [case("fin-contract", "check {w}/mesh.h5", "/triangles", [], make=make, label="fin-contract: index 999999")]
+
+
+CAMERAS_SOURCE = "{repo}/tests/bad_input/cameras.yml"
+
+
+def camera_cases():
+    out = []
+    for name, repl, names in [("nan", ".nan", "camera_matrix"), ("neg", "-5.", "focal"), ("inf", ".inf", "camera_matrix")]:
+        out.append(case("fin-track", f"--frames {{w}} --cameras {{w}}/cam_{name}.yml --out {{w}}/k.h5", names,
+                        ["{w}/k.h5"], make=edited(CAMERAS_SOURCE, r"2\.7927272727272725e\+03", repl,
+                                                  f"cam_{name}.yml")))
+    return out
+
+
+def run_case(i, k, args):
+    w = os.path.join(args.work, f"{i:03d}")
+    shutil.rmtree(w, ignore_errors=True)
+    os.makedirs(w)
+    shutil.copy(args.repo + "/tests/bad_input/cameras.yml", os.path.join(w, "cameras.yml"))
+
+    def fmt(s):
+        return s.format(bin=args.bin, fix=args.fix, repo=args.repo, w=w)
+    if k["make"]:
+        k["make"](w, fmt)
+    argv = [os.path.join(args.bin, k["tool"])] + fmt(k["args"]).split()
+    try:
+        p = subprocess.run(argv, capture_output=True, text=True, timeout=60, cwd=w)
+    except subprocess.TimeoutExpired:
+        return "ran over 60 s (unbounded?)"
+    problems = []
+    if p.returncode != k["rc"]:
+        problems.append(f"exit {p.returncode}, expected {k['rc']}")
+    tool = k["tool"]
+    lines = [l for l in p.stderr.splitlines() if l.strip()]
+    own = re.compile(r"^(\[" + re.escape(tool) + r" [^\]]*\] |" + re.escape(tool) + r": )")
+    foreign = [l for l in lines if not own.match(l)]
+    errors = [l for l in lines if own.match(l) and re.search(r"\berror\b", l)]
+    if foreign:
+        problems.append(f"{len(foreign)} line(s) not the project's own, e.g. {foreign[0][:120]!r}")
+    if len(errors) != 1:
+        problems.append(f"{len(errors)} error lines, expected 1")
+    elif fmt(k["names"]) not in errors[0]:
+        problems.append(f"the error line does not name {fmt(k['names'])!r}: {errors[0][:160]!r}")
+    left = [o for o in map(fmt, k["outputs"]) if os.path.exists(o)]
+    if left:
+        problems.append(f"left behind: {left}")
+    return "; ".join(problems)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--bin", required=True)
+    ap.add_argument("--repo", required=True)
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--only", help="run only this executable's cases")
+    args = ap.parse_args()
+    args.bin, args.repo, args.work = map(os.path.abspath, (args.bin, args.repo, args.work))
+    args.fix = os.path.join(args.repo, "tests", "regression", "mesh", "tiny_case")
+    all_cases = cases() + camera_cases() + surface_cases() + contract_cases()
+    selected = [(i, k) for i, k in enumerate(all_cases) if not args.only or k["tool"] == args.only]
+    failed = 0
+    for i, k in selected:
+        why = run_case(i, k, args)
+        if why:
+            failed += 1
+            print(f"FAIL {k['label']}: {why}")
+    print(f"bad-input suite: {len(selected) - failed} of {len(selected)} cases pass")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
