@@ -17,11 +17,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include "core/atomic_file.hpp"
 #include "core/cli.hpp"
@@ -33,6 +32,7 @@
 #include "vision/charuco_board.hpp"
 #include "vision/digitised_template.hpp"
 #include "vision/dlt_import.hpp"
+#include "vision/image_file.hpp"
 #include "vision/validation/calibration_scores.hpp"
 #include "vision/validation/checkerboard_recording.hpp"
 
@@ -173,8 +173,7 @@ int main(int argc, char** argv) {
 
   return cli::run(app, standard, argc, argv, [&]() -> int {
     if (*tpl) {
-      const cv::Mat img = cv::imread(image.string(), cv::IMREAD_UNCHANGED);
-      if (img.empty()) throw Error(image.string() + ": cannot read the image (--image)");
+      const cv::Mat img = vision::read_image(image, cv::IMREAD_UNCHANGED);
       const auto fin = read_digitised_fin(points);
       if (mm_per_px) {
         dto.metres_per_px = 1e-3 * *mm_per_px;

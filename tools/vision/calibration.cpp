@@ -7,20 +7,18 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <set>
-#include <tuple>
-
+#include <nlohmann/json.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-
-
-#include <nlohmann/json.hpp>
+#include <set>
+#include <tuple>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "vision/charuco_board.hpp"
+#include "vision/image_file.hpp"
 #include "vision/rig_bundle_adjustment.hpp"
 #include "vision/video_clip.hpp"
 
@@ -146,9 +144,7 @@ CameraRecording read_recording(const std::string& view, const fs::path& path, in
       return na != nb ? na < nb : a.filename() < b.filename();
     });
     for (std::size_t k = 0; k < files.size(); k += static_cast<std::size_t>(every)) {
-      cv::Mat img = cv::imread(files[k].string(), cv::IMREAD_GRAYSCALE);
-      if (img.empty()) throw Error(files[k].string() + ": cannot read the image (view " + view + ")");
-      rec.frames.push_back(img);
+      rec.frames.push_back(read_image(files[k], cv::IMREAD_GRAYSCALE));
     }
   } else if (fs::is_regular_file(path)) {
     const VideoClip clip(path);  // throws naming the file when it cannot decode it

@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "vision/image_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -66,9 +67,7 @@ cv::Mat FrameFiles::load(std::size_t view, long frame) const {
   if (clips[view]) return frame >= 0 && frame < clips[view]->frames() ? clips[view]->grey(frame) : cv::Mat();
   const auto it = files[view].find(frame);
   if (it == files[view].end()) return {};
-  cv::Mat img = cv::imread(it->second.string(), cv::IMREAD_GRAYSCALE);
-  if (img.empty()) throw Error(it->second.string() + ": unreadable image");
-  return img;
+  return read_image(it->second, cv::IMREAD_GRAYSCALE);
 }
 
 std::size_t FrameFiles::count(std::size_t view) const {
