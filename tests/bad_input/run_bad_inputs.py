@@ -6,6 +6,8 @@ Each case runs one command and asserts
   - exactly one error line, the project's own ("<tool>: error: ..." or "[<tool> ...] error: ..."),
     naming the flag, key or file (`names`), and no line from a library,
   - that none of the case's outputs exists afterwards (nothing under a final name).
+The stages that run longer than a second are also killed (SIGKILL) half way: none of their
+outputs may exist afterwards.
 Placeholders in a command: {bin} the executables, {fix} the tiny case's golden mesh.h5 and
 motion.h5 (tests/regression/mesh/tiny_case), {repo} the repository, {w} the case's own scratch
 folder. Cases needing a bad file write it with `make` (a function of the scratch folder).
@@ -207,7 +209,88 @@ def contract_cases():
     return [case("fin-contract", "check {w}/mesh.h5", "/triangles", [], make=make, label="fin-contract: index 999999")]
 
 
+DRIVE = ('{"heave_over_chord": 0.44, "pitch_center_deg": 12, "pitch_edge_deg": 22, "pitch_phase_deg": -90, '
+         '"pitch_phase_w_deg": -20, "frequency_hz": 4.4, "ramp_periods": 0.5}')
+
+
+def kill_cases():
+    """Stages killed (SIGKILL) after `after` seconds of a run that takes longer: nothing of theirs
+    may be left under a final name."""
+    def run_first(*commands):
+        def make(w, fmt):
+            with open(os.path.join(w, "drive.json"), "w") as f:
+                f.write(DRIVE)
+            for c in commands:
+                subprocess.run([fmt("{bin}/" + c.split()[0])] + fmt(" ".join(c.split()[1:])).split(), cwd=w,
+                               check=True, capture_output=True, timeout=120)
+        return make
+    small_synth = "fin-synth --out-dir {w}/s --width 160 --height 160 --fps 100 --periods 1 --vtk false --threads 1"
+    loads = f"fin-fem loads --mesh {MESH} --root-drive {{w}}/drive.json --out {{w}}/loads.h5 --periods 1"
+    return [
+        dict(tool="fin-synth", args="--out-dir {w}/synth --vtk false --threads 1", after=3.0,
+             outputs=["{w}/synth/frames", "{w}/synth/truth.h5", "{w}/synth/cameras.yml"], make=None),
+        dict(tool="fin-mesh", args=f"--threads 1 --mesh {{w}}/mesh.h5 --max-edge 0.008", after=1.0,
+             outputs=["{w}/mesh.h5"], make=None),
+        dict(tool="fin-fem", args=f"--threads 1 run --mesh {MESH} --materials {MATERIALS} --motion {MOTION} "
+             "--out {w}/fem.h5", after=2.0, outputs=["{w}/fem.h5"], make=None),
+        dict(tool="fin-cfd", args=f"--threads 1 fin --mesh {MESH} --motion {MOTION} --out {{w}}/loads.h5 "
+             "--summary {w}/loads.json", after=3.0, outputs=["{w}/loads.h5", "{w}/loads.json"], make=None),
+        dict(tool="fin-fsi", args=f"--threads 1 fin --mesh {MESH} --materials {MATERIALS} --root-drive {{w}}/drive.json "
+             "--out {w}/fsi.h5", after=3.0, outputs=["{w}/fsi.h5"], make=run_first()),
+        dict(tool="fin-track", args="--threads 1 --frames {w}/s/frames --cameras {w}/s/cameras.yml --out {w}/k.h5",
+             after=1.5, outputs=["{w}/k.h5"], make=run_first(small_synth)),
+        dict(tool="fin-fit", args=f"--threads 1 run --mesh {MESH} --motion {MOTION} --loads {{w}}/loads.h5 "
+             f"--materials {MATERIALS} --out {{w}}/m.h5 --summary {{w}}/m.json", after=3.0,
+             outputs=["{w}/m.h5", "{w}/m.json"], make=run_first(loads)),
+        dict(tool="fin-loop", args=f"--threads 1 trace --mesh {MESH} --motion {MOTION} --loads {{w}}/loads.h5 "
+             f"--materials {MATERIALS} --out {{w}}/l.h5 --summary {{w}}/l.json", after=3.0,
+             outputs=["{w}/l.h5", "{w}/l.json"], make=run_first(loads)),
+    ]
+
+
+def run_kill_case(i, k, args):
+    import signal
+    import time
+    w = os.path.join(args.work, f"kill{i:02d}")
+    shutil.rmtree(w, ignore_errors=True)
+    os.makedirs(w)
+
+    def fmt(s):
+        return s.format(bin=args.bin, fix=args.fix, repo=args.repo, w=w)
+    if k["make"]:
+        k["make"](w, fmt)
+    p = subprocess.Popen([os.path.join(args.bin, k["tool"])] + fmt(k["args"]).split(), cwd=w,
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(k["after"])
+    if p.poll() is not None:
+        return f"ended (exit {p.returncode}) before the kill at {k['after']} s: {p.stderr.read()[-200:]!r}"
+    os.kill(p.pid, signal.SIGKILL)
+    p.wait()
+    left = [o for o in map(fmt, k["outputs"]) if os.path.exists(o)]
+    return f"left behind: {left}" if left else ""
+
+
 CAMERAS_SOURCE = "{repo}/tests/bad_input/cameras.yml"
+
+
+def frame_cases():
+    """fin-track on frame folders holding broken PNG and JPEG files: the decoders' own warnings
+    must not reach the user, only our line naming the file."""
+    def frames(content, ext):
+        def make(w, fmt):
+            for view in ("side", "back", "ventral"):
+                os.makedirs(os.path.join(w, "f", view))
+                for k in (1, 2):
+                    with open(os.path.join(w, "f", view, f"{k:06d}.{ext}"), "wb") as f:
+                        f.write(content)
+        return make
+    png_garbage = b"\x89PNG\r\n\x1a\n garbage"
+    png_truncated = b"\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR\x00\x00"
+    jpeg_truncated = b"\xff\xd8\xff\xe0\x00\x10JFIF\x00"
+    return [case("fin-track", "--frames {w}/f --cameras {w}/cameras.yml --out {w}/k.h5", "000001." + ext, ["{w}/k.h5"],
+                 make=frames(content, ext), label=f"fin-track: {name}")
+            for name, content, ext in (("PNG garbage", png_garbage, "png"), ("PNG truncated", png_truncated, "png"),
+                                       ("JPEG truncated", jpeg_truncated, "jpg"))]
 
 
 def camera_cases():
@@ -263,15 +346,22 @@ def main():
     args = ap.parse_args()
     args.bin, args.repo, args.work = map(os.path.abspath, (args.bin, args.repo, args.work))
     args.fix = os.path.join(args.repo, "tests", "regression", "mesh", "tiny_case")
-    all_cases = cases() + camera_cases() + surface_cases() + contract_cases()
+    all_cases = cases() + camera_cases() + frame_cases() + surface_cases() + contract_cases()
     selected = [(i, k) for i, k in enumerate(all_cases) if not args.only or k["tool"] == args.only]
+    kills = [(i, k) for i, k in enumerate(kill_cases()) if not args.only or k["tool"] == args.only]
     failed = 0
     for i, k in selected:
         why = run_case(i, k, args)
         if why:
             failed += 1
             print(f"FAIL {k['label']}: {why}")
-    print(f"bad-input suite: {len(selected) - failed} of {len(selected)} cases pass")
+    for i, k in kills:
+        why = run_kill_case(i, k, args)
+        if why:
+            failed += 1
+            print(f"FAIL kill -9 {k['tool']} after {k['after']} s: {why}")
+    total = len(selected) + len(kills)
+    print(f"bad-input suite: {total - failed} of {total} cases pass ({len(kills)} of them killed mid-run)")
     return 1 if failed else 0
 
 
