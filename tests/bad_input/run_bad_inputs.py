@@ -4,7 +4,8 @@
 Each case runs one command and asserts
   - the exit code (2: bad input),
   - exactly one error line, the project's own ("<tool>: error: ..." or "[<tool> ...] error: ..."),
-    naming the flag, key or file (`names`), and no line from a library,
+    naming the flag, key or file (`names`), its numbers as a person writes them (no 309-digit
+    bound, no "4.000000"), and no line from a library,
   - that none of the case's outputs exists afterwards (nothing under a final name).
 The stages that run longer than a second are also killed (SIGKILL) half way: none of their
 outputs may exist afterwards.
@@ -147,7 +148,7 @@ def cases():
     # fin-track: flags, and the cameras file (a NaN focal length once crashed it).
     trk = "--frames {w} --cameras {w}/cameras.yml --out {w}/k.h5"
     c += [case("fin-track", f"{trk} {flag} {value}", flag, ["{w}/k.h5"])
-          for flag, value in [("--fps", "0"), ("--fps", "nan"), ("--segments", "0"), ("--iterations", "-1"),
+          for flag, value in [("--fps", "0"), ("--fps", "-1"), ("--fps", "nan"), ("--segments", "0"), ("--iterations", "-1"),
                               ("--min-views", "0"), ("--min-iou", "1.5"), ("--coverage-weight", "-1"),
                               ("--temporal-sigma", "-1"), ("--rays", "0"), ("--chord", "-1"),
                               ("--period", "-0.2"), ("--tolerance", "nan")]]
@@ -331,6 +332,8 @@ def run_case(i, k, args):
         problems.append(f"{len(errors)} error lines, expected 1")
     elif fmt(k["names"]) not in errors[0]:
         problems.append(f"the error line does not name {fmt(k['names'])!r}: {errors[0][:160]!r}")
+    elif re.search(r"\d{16,}|\d\.0{6}\b", errors[0]):
+        problems.append(f"a number not as a person writes it: {errors[0][:160]!r}")
     left = [o for o in map(fmt, k["outputs"]) if os.path.exists(o)]
     if left:
         problems.append(f"left behind: {left}")

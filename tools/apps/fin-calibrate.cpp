@@ -159,8 +159,10 @@ int main(int argc, char** argv) {
   tpl->add_option("--points", points, "CSV kind,id,x_px,y_px: outline, root/ray/tip per ray (1: dorsal), scale")
       ->required()
       ->check(CLI::ExistingFile);
-  auto* mpp = tpl->add_option("--mm-per-px", mm_per_px, "image scale")->check(CLI::PositiveNumber);
-  tpl->add_option("--scale-mm", scale_mm, "distance between the CSV's two scale points (mm)")->check(CLI::PositiveNumber)->excludes(mpp);
+  auto* mpp = tpl->add_option("--mm-per-px", mm_per_px, "image scale")->check(finverse::cli::positive());
+  tpl->add_option("--scale-mm", scale_mm, "distance between the CSV's two scale points (mm)")
+      ->check(finverse::cli::positive())
+      ->excludes(mpp);
   tpl->add_option("--outline-tolerance-px", dto.outline_tolerance_px, "a ray may leave the digitised outline by this much")->capture_default_str();
   tpl->add_option("--ray-points", dto.sections.points_per_ray, "template points per ray")->capture_default_str()->check(CLI::Range(2, 1000));
   tpl->add_option("--edge-ray-thickness", dto.sections.edge_root_thickness, "root thickness of the edge rays / c")->capture_default_str();

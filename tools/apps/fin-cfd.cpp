@@ -143,7 +143,7 @@ void add_fin_options(CLI::App* f, FinArgs& a) {
                 "write the flow field (velocity, pressure, vorticity, lambda2) every N-th output time to "
                 "<out stem>.flow.pvd (ParaView; 0: never)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finverse::cli::non_negative());
 }
 
 // fin-cfd thin_plate: the heaving and pitching rigid plate of the thin_plate_loads case as stage files.

@@ -25,8 +25,8 @@ int main(int argc, char** argv) {
   app.add_option("reference", reference, "reference file or directory")->required();
   app.add_option("candidate", candidate, "candidate file or directory")->required();
   app.add_option("--tolerances", tolerance_file, "JSON tolerance file (default: <reference dir>/tolerances.json if present)");
-  app.add_option("--atol", atol, "default absolute tolerance")->check(CLI::NonNegativeNumber);
-  app.add_option("--rtol", rtol, "default relative tolerance")->check(CLI::NonNegativeNumber);
+  app.add_option("--atol", atol, "default absolute tolerance")->check(finverse::cli::non_negative());
+  app.add_option("--rtol", rtol, "default relative tolerance")->check(finverse::cli::non_negative());
   app.add_flag("--update", update, "copy the candidate over the reference instead of comparing");
   app.add_flag("--all", all, "print every compared object, not only the differing ones");
   standard.log_level = "warn";  // a comparison prints its table, not a log

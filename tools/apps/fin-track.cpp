@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
   app.add_option("--cameras", cameras_file, "cameras.yml (OpenCV FileStorage) (required)")->check(CLI::ExistingFile);
   app.add_option("--out", out, "output kinematics.h5 (required)");
   app.add_option("--fps", fps, "camera frame rate (1/s); default: the videos' own, else " + std::to_string(int(to.fps)))
-      ->check(CLI::PositiveNumber);
+      ->check(finverse::cli::positive());
   auto* period_opt =
       app.add_option("--period", period, "period of the motion (s), stored as the T attribute when the record is periodic");
   // Or the period from the flow scales, as fin-synth's motion has it (core/flow_scales.hpp).

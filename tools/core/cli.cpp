@@ -4,7 +4,9 @@
 #include <omp.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
+#include <regex>
 
 #include "core/error.hpp"
 #include "core/flag_ranges.hpp"
@@ -19,8 +21,7 @@ Standard::Standard(CLI::App& app, const std::string& tool_name) : tool(tool_name
   app.set_version_flag("--version", producer_string(tool_name));
   app.set_config("--config", "", "read options from a TOML/INI file (same keys as the long flags)");
   app.allow_config_extras(CLI::config_extras_mode::error);  // a misspelt key is an error, not ignored
-  app.add_option("--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
-      ->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")->check(non_negative());
   app.add_option("--log-level", log_level, "debug, info, warn, error or quiet")->capture_default_str();
 }
 
@@ -48,6 +49,46 @@ nlohmann::json effective_config(const CLI::App& app) {
 
 int threads_in_use() { return omp_get_max_threads(); }
 
+namespace {
+// A number as a person writes it (CLI11 prints its bounds with std::to_string: "0.000000", and
+// the largest double as 309 digits).
+std::string plain_number(const std::string& text) {
+  const double x = std::strtod(text.c_str(), nullptr);
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", x);
+  return b;
+}
+}  // namespace
+
+namespace {
+CLI::Validator sign_check(bool strict) {
+  return CLI::Validator(
+      [strict](std::string& value) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(value.c_str(), &end);
+        if (value.empty() || *end != '\0') return "expected a number, got " + value;
+        if (strict ? !(x > 0) : !(x >= 0))
+          return std::string("expected a number ") + (strict ? "> 0" : ">= 0") + ", got " + value;
+        return {};
+      },
+      strict ? "POSITIVE" : "NONNEGATIVE");
+}
+}  // namespace
+
+CLI::Validator positive() { return sign_check(true); }
+CLI::Validator non_negative() { return sign_check(false); }
+
+std::string readable_ranges(const std::string& message) {
+  static const std::regex range(R"(Value (\S+) not in range (\S+) to (\S+))");
+  std::smatch m;
+  if (!std::regex_search(message, m, range)) return message;
+  const double hi = std::strtod(m[3].str().c_str(), nullptr);
+  const std::string expected = hi >= 1e300
+                                   ? "a number >= " + plain_number(m[2].str())
+                                   : "a number from " + plain_number(m[2].str()) + " to " + plain_number(m[3].str());
+  return m.prefix().str() + "expected " + expected + ", got " + m[1].str() + m.suffix().str();
+}
+
 int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::function<int()>& body) {
   try {
     app.parse(argc, argv);
@@ -65,7 +106,7 @@ int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::fun
     std::fprintf(stderr, "%s: error: --config %s: %s\n", standard.tool.c_str(), file.c_str(), what.c_str());
     return kExitError;
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "%s: error: %s (see --help)\n", standard.tool.c_str(), e.what());
+    std::fprintf(stderr, "%s: error: %s (see --help)\n", standard.tool.c_str(), readable_ranges(e.what()).c_str());
     return kExitError;
   }
   try {

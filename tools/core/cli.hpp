@@ -37,4 +37,13 @@ int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::fun
 
 int threads_in_use();
 
+// Validators whose message says the range as a person writes it ("expected a number > 0, got
+// -1"); CLI11's PositiveNumber printed its bounds as "0.000000 to" a 309-digit number.
+CLI::Validator positive();
+CLI::Validator non_negative();
+
+// CLI11's "Value X not in range A to B" (bounds as std::to_string prints them, the largest double
+// as 309 digits) rewritten as "expected a number from A to B, got X"; other messages unchanged.
+std::string readable_ranges(const std::string& message);
+
 }  // namespace finverse::cli

@@ -1,6 +1,8 @@
 // `fin-fsi fin`'s coupled-run flags (fin_fsi_flags.hpp).
 #include "fsi/fin_fsi_flags.hpp"
 
+#include "core/cli.hpp"
+
 namespace finverse::fsi {
 
 void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
@@ -52,13 +54,13 @@ void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
       "checkpoint file, replaced atomically (default with --checkpoint-every: <out stem>.checkpoint.h5 beside --out)");
   command.add_option("--checkpoint-every", o.checkpoint_every, "steps between checkpoints (0: after the last only)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finverse::cli::non_negative());
   command.add_option("--restart", o.restart, "continue from a checkpoint written with the same options")
       ->check(CLI::ExistingFile);
   command.add_option("--paraview", o.paraview_dir, "ParaView series of the fin and the flow into this folder");
   command.add_option("--paraview-every", o.paraview_every, "every k-th fsi.h5 frame in the ParaView series")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finverse::cli::positive());
   command.add_option("--rayleigh-mass", o.rayleigh_mass, "structure damping a_M [1/s]; < 0: the materials file's")
       ->capture_default_str();
   command

@@ -84,8 +84,11 @@ double min_angle_deg(const Point2& a, const Point2& b, const Point2& c) {
 }
 
 PlanformMesh mesh_planform(const FinTemplate& t, const PlanformMeshOptions& o) {
-  if (!(o.min_angle_deg > 0 && o.min_angle_deg <= 33))
-    throw Error("--min-angle: " + std::to_string(o.min_angle_deg) + " degrees, expected in (0, 33]");
+  if (!(o.min_angle_deg > 0 && o.min_angle_deg <= 33)) {
+    std::ostringstream what;
+    what << "--min-angle " << o.min_angle_deg << ": expected more than 0 and at most 33 degrees";
+    throw Error(what.str());
+  }
   if (!(o.max_edge_over_chord > 0)) throw Error("--max-edge: expected > 0 chords");
   validate(t);
   const double c = t.chord;

@@ -24,8 +24,9 @@ CLI::App* add_midline_command(CLI::App& app, MidlineCommand& c) {
   mid->add_option("--csv", c.csv, "per-frame tail tip and its lateral excursion as CSV");
   mid->add_option("--overlay", c.overlay, "MJPG AVI of the frames with the midline and the tip's track drawn over them");
   mid->add_option("--fps", c.fps, "frame rate (1/s); default: the video's own, else " + std::to_string(int(so.fps)))
-      ->check(CLI::PositiveNumber);
-  mid->add_option("--mm-per-px", c.mm_per_px, "image scale (mm per px): results also in mm")->check(CLI::PositiveNumber);
+      ->check(finverse::cli::positive());
+  mid->add_option("--mm-per-px", c.mm_per_px, "image scale (mm per px): results also in mm")
+      ->check(finverse::cli::positive());
   mid->add_option("--stations", so.stations, "midline points, head to tail")->capture_default_str()->check(CLI::Range(3, 1000));
   mid->add_option("--region", c.region, "x0,y0,x1,y1: the rectangle (px) that holds the fish");
   mid->add_option("--min-contrast", so.segmentation.min_contrast, "segmentation: smallest darkening that counts as fish (levels)")

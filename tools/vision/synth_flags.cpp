@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/machine_memory.hpp"
 
@@ -38,10 +39,10 @@ void add_synth_flags(CLI::App& app, SynthFlags& f) {
       ->capture_default_str();
   app.add_option("--spanwise-phase-deg", f.kin.spanwise_phase_deg, "spanwise cupping phase relative to heave")
       ->capture_default_str();
-  app.add_option("--fps", f.fps, "camera frame rate (1/s)")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--fps", f.fps, "camera frame rate (1/s)")->capture_default_str()->check(finverse::cli::positive());
   app.add_option("--periods", f.periods, "flapping periods to record")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finverse::cli::positive());
   app.add_option("--views", f.views, "camera views (side, back, ventral)")->delimiter(',')->capture_default_str();
   app.add_option("--cameras", f.cameras_in, "use this cameras.yml instead of the default rig")
       ->check(CLI::ExistingFile);
@@ -55,7 +56,7 @@ void add_synth_flags(CLI::App& app, SynthFlags& f) {
   app.add_option("--supersample", f.ren.supersample, "anti-aliasing samples per pixel per axis")->capture_default_str();
   app.add_option("--blur-samples", f.blur_samples, "motion-blur sub-frames per frame (1: no blur)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finverse::cli::positive());
   app.add_option("--exposure", f.exposure, "shutter open time / frame interval (motion blur)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));

@@ -117,3 +117,16 @@ TEST(Cli, FlagRangesRefuseNanAndWrongSigns) {
   EXPECT_EQ(cli::flag_range("population").value_or(""), "a whole number >= 0");
   EXPECT_FALSE(cli::flag_range("phase").has_value());
 }
+
+TEST(Cli, RangesReadAsAPersonWritesThem) {
+  EXPECT_EQ(
+      cli::readable_ranges("--fps: Value -1 not in range 0.000000 to 179769313486231570814527423731704356798070567"
+                           "525844996598917476803157260780028538760589558632766878171540458953514382464234321326"
+                           "889464182768467546703537516986049910576551282076245490090389328944075868508455133942"
+                           "304583236903222948165808559332123348274797826204144723168738177180919299881250404026"
+                           "184124858368.000000"),
+      "--fps: expected a number >= 0, got -1");
+  EXPECT_EQ(cli::readable_ranges("--cells-per-diameter: Value 100000 not in range 4.000000 to 1000.000000"),
+            "--cells-per-diameter: expected a number from 4 to 1000, got 100000");
+  EXPECT_EQ(cli::readable_ranges("--x: something else"), "--x: something else");
+}

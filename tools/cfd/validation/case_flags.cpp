@@ -2,6 +2,7 @@
 #include <type_traits>
 
 #include "cfd/validation/cases.hpp"
+#include "core/cli.hpp"
 
 namespace finverse::cfd::validation {
 
@@ -18,7 +19,7 @@ void add_case_flag(CLI::App* sc, const CaseOption& o) {
       },
       o.target);
   if (o.lo < o.hi) opt->check(CLI::Range(o.lo, o.hi));
-  if (o.positive) opt->check(CLI::PositiveNumber);
+  if (o.positive) opt->check(finverse::cli::positive());
   if (!o.choices.empty()) opt->check(CLI::IsMember(o.choices));
   if (o.existing_file) opt->check(CLI::ExistingFile);
   if (o.show_default) opt->capture_default_str();
