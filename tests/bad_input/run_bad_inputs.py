@@ -145,6 +145,14 @@ def cases():
                     "{w}/loads.h5", [("--periods", "-2"), ("--frames-per-period", "0"), ("--reynolds", "nan"),
                                      ("--density", "-1000"), ("--drag-coefficient", "-2"), ("--start-periods", "-1")])
 
+    # A materials file for another fin: ray 99 on a 20-ray mesh.
+    ray99 = edited(MATERIALS, r'"ray"\s*:\s*\{', '"ray": {"99": {"E": 1e9, "nu": 0.3, "density": 1100}, ',
+                   "m99.json")
+    c += [case("fin-fem", f"run --mesh {MESH} --materials {{w}}/m99.json --motion {MOTION} --out {{w}}/model.h5",
+               "m99.json", ["{w}/model.h5"], make=ray99),
+          case("fin-fit", f"run --mesh {MESH} --materials {{w}}/m99.json --motion {MOTION} --out {{w}}/m.h5",
+               "m99.json", ["{w}/m.h5"], make=ray99)]
+
     # fin-track: flags, and the cameras file (a NaN focal length once crashed it).
     trk = "--frames {w} --cameras {w}/cameras.yml --out {w}/k.h5"
     c += [case("fin-track", f"{trk} {flag} {value}", flag, ["{w}/k.h5"])

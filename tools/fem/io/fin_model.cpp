@@ -79,6 +79,11 @@ FinModel build_fin_model(const stage::Mesh& mesh, const MaterialSpec& spec, cons
     const double E = s_mid >= spec.distal_s_from ? rm.youngs_modulus * spec.distal_factor : rm.youngs_modulus;
     fm.beam_element.push_back(m.add_beam(a, b, it->second, section, hint, E));
   }
+  // A material for a ray the mesh lacks is a mistake (another fin's file), not a default to skip.
+  for (const auto& [id, material] : spec.ray)
+    if (fm.ray_region.find(id) == fm.ray_region.end())
+      throw InvalidInput(spec.source + ": \"ray\" gives ray " + std::to_string(id) + ", which " + source +
+                         " does not have (its beams/ray holds " + std::to_string(fm.ray_region.size()) + " rays)");
 
   for (const auto& ms : spec.modulations) {
     const std::string& t = ms.target;

@@ -79,6 +79,7 @@ Material MaterialSpec::ray_material(int id) const {
 MaterialSpec parse_material_spec(const nlohmann::json& j, const std::string& source) {
   only_keys(j, source, "", {"description", "membrane", "rays", "ray", "shell_region", "distal", "modulation", "rayleigh"});
   MaterialSpec s;
+  s.source = source;
   if (!j.contains("membrane")) fail(source, "membrane", "missing");
   if (!j.contains("rays")) fail(source, "rays", "missing");
   s.membrane = material(j["membrane"], source, "membrane", "membrane", nullptr);

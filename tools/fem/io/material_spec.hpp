@@ -44,6 +44,7 @@ struct MaterialSpec {
   double distal_factor = 1.0;
   std::vector<ModulationSpec> modulations;
   double rayleigh_mass = 0, rayleigh_stiffness = 0;
+  std::string source = "materials";  // the file it came from, for messages
 
   Material ray_material(int id) const;  // "ray" entry or the "rays" default, named "ray<id>"
 };
