@@ -153,6 +153,23 @@ def cases():
           case("fin-fit", f"run --mesh {MESH} --materials {{w}}/m99.json --motion {MOTION} --out {{w}}/m.h5",
                "m99.json", ["{w}/m.h5"], make=ray99)]
 
+    # JSON inputs with unknown keys or out-of-range values, and subcommand keys in a --config file.
+    drive = '{"heave_over_chord": 0.44, "frequency_hz": 4.4, "ramp_periods": 0.5'
+    for name, text, names in [("drive_key", drive + ', "bogus": 1}', "bogus"),
+                              ("drive_heave", drive.replace("0.44", "-0.44") + "}", "heave_over_chord"),
+                              ("drive_freq", drive.replace("4.4", "-4.4") + "}", "frequency_hz"),
+                              ("drive_nan", drive.replace("0.44", "NaN") + "}", "drive_nan.json")]:
+        c.append(case("fin-fem", f"loads --mesh {MESH} --root-drive {{w}}/{name}.json --out {{w}}/loads.h5", names,
+                      ["{w}/loads.h5"], make=written(f"{name}.json", text)))
+    c += [case("fin-fem", "effects --check {w}/e.json", "bogus", [],
+               make=written("e.json", '[{"name": "active_stiffening", "amplitude": 0.3, "bogus": 2}]')),
+          case("fin-fem", "effects --check {w}/e.json", "no_such_effect", [],
+               make=written("e.json", '[{"name": "no_such_effect"}]')),
+          case("fin-fit", f"--config {{w}}/f.toml {fit}", "run.populationn", ["{w}/m.h5"],
+               make=written("f.toml", "[run]\npopulationn = 4\n")),
+          case("fin-fit", f"--config {{w}}/f.toml {fit}", "--population", ["{w}/m.h5"],
+               make=written("f.toml", "[run]\npopulation = -1\n"))]
+
     # fin-track: flags, and the cameras file (a NaN focal length once crashed it).
     trk = "--frames {w} --cameras {w}/cameras.yml --out {w}/k.h5"
     c += [case("fin-track", f"{trk} {flag} {value}", flag, ["{w}/k.h5"])
