@@ -170,6 +170,20 @@ def cases():
           case("fin-fit", f"--config {{w}}/f.toml {fit}", "--population", ["{w}/m.h5"],
                make=written("f.toml", "[run]\npopulation = -1\n"))]
 
+    # fin-calibrate's importers and recordings, fin-report's inputs of the wrong schema.
+    c += [case("fin-calibrate", "dlt --coefficients {w}/dlt.csv --views side back --image-size 512x512 512x512 "
+               "--out {w}/c.yml", "dlt.csv", ["{w}/c.yml"], make=written("dlt.csv", "garbage\n1 2 3\n")),
+          case("fin-calibrate", "anipose --calibration {w}/a.toml --out {w}/c.yml", "a.toml", ["{w}/c.yml"],
+               make=written("a.toml", '[cam_0]\nname = "side"\nsize = [512, 512]\nmatrix = [[1, 0, 0], [0, 1, 0]]\n')),
+          case("fin-calibrate", "anipose --calibration {w}/a.toml --out {w}/c.yml", "a.toml", ["{w}/c.yml"],
+               make=written("a.toml", "not toml ][")),
+          case("fin-calibrate", "checkerboard --view side={w}/none --view back={w}/none --out {w}/c.yml",
+               "--square-mm", ["{w}/c.yml"]),
+          case("fin-calibrate", "checkerboard --view side={w}/none --view back={w}/none --square-mm 10 --out {w}/c.yml",
+               "none", ["{w}/c.yml"]),
+          case("fin-report", f"--case x --out-dir {{w}}/rep --mesh {MESH} --motion {MESH}", "mesh.h5", ["{w}/rep"]),
+          case("fin-report", f"--case x --out-dir {{w}}/rep --mesh {MOTION}", "motion.h5", ["{w}/rep"])]
+
     # fin-track: flags, and the cameras file (a NaN focal length once crashed it).
     trk = "--frames {w} --cameras {w}/cameras.yml --out {w}/k.h5"
     c += [case("fin-track", f"{trk} {flag} {value}", flag, ["{w}/k.h5"])
