@@ -324,13 +324,23 @@ def frame_cases():
                     with open(os.path.join(w, "f", view, f"{k:06d}.{ext}"), "wb") as f:
                         f.write(content)
         return make
+    def clips(content):
+        def make(w, fmt):
+            for view in ("side", "back", "ventral"):
+                with open(os.path.join(w, f"{view}.avi"), "wb") as f:
+                    f.write(content)
+        return make
+    clip_cases = [case("fin-track", "--frames side={w}/side.avi back={w}/back.avi ventral={w}/ventral.avi "
+                       "--cameras {w}/cameras.yml --out {w}/k.h5", "side.avi", ["{w}/k.h5"], make=clips(content),
+                       label=f"fin-track: clip {name}")
+                  for name, content in (("garbage", bytes(range(256)) * 20), ("RIFF header only", b"RIFF\0\0\0\0AVI LIST"))]
     png_garbage = b"\x89PNG\r\n\x1a\n garbage"
     png_truncated = b"\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR\x00\x00"
     jpeg_truncated = b"\xff\xd8\xff\xe0\x00\x10JFIF\x00"
     return [case("fin-track", "--frames {w}/f --cameras {w}/cameras.yml --out {w}/k.h5", "000001." + ext, ["{w}/k.h5"],
                  make=frames(content, ext), label=f"fin-track: {name}")
             for name, content, ext in (("PNG garbage", png_garbage, "png"), ("PNG truncated", png_truncated, "png"),
-                                       ("JPEG truncated", jpeg_truncated, "jpg"))]
+                                       ("JPEG truncated", jpeg_truncated, "jpg"))] + clip_cases
 
 
 def camera_cases():
