@@ -43,8 +43,11 @@ _L_NOISY = f"--blur-samples 3 --exposure {0.15 * _L_FPS / 500:.6g} --noise-sigma
 _L_PARAMETERS = "E_membrane,E_ray1,E_ray20"
 # Root rotations per ray from the reconstruction (the drive pitches each ray's root): with one
 # fitted rotation the model missed the control's truth by 4 % c RMS at the trailing edge, per ray by 0.85 % c.
+# The drive is read through 2 harmonics of the beat, which drops the tracking's frame-to-frame noise
+# from the root tangents: the control's refitted trailing edge 83 -> 68 um, nothing added; refitting
+# the drive itself soaked up the planted root curvature (docs/studies/loop_virtual_fish.md, session 40).
 _L_TRACE = (f"--parameters {_L_PARAMETERS} --frequency {_L_FREQ:.9g} --period {1 / _L_FREQ:.9g} --lm-evaluations 12"
-            " --root-rotation per_ray")
+            " --root-rotation per_ray --drive-harmonics 2")
 
 if not COARSE:
     for _name in _LOOP_CASES:
