@@ -232,28 +232,10 @@ CaseBody plane_body(const Reader& r, const YAML::Node& n, const std::string& at)
   return b;
 }
 
-FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
-  // The coarse (CI) variant: its coarse: section is merged over the file.
-  if (root["coarse"]) {
-    if (!root["coarse"].IsMap()) r.fail(root["coarse"], "coarse", "expected a section of keys");
-    if (coarse) {
-      const YAML::Node c = root["coarse"];
-      root = merged(root, c);
-    }
-  }
-  r.only(root, "",
-         {"case", "name", "description", "domain", "grid", "fluid", "boundaries", "initial", "bodies", "time", "solver",
-          "outputs", "coarse"});
-  FlowCaseSpec s;
-  const auto need = [&](const char* key) -> YAML::Node {
-    if (!root[key]) r.fail(root, key, "missing");
-    return root[key];
-  };
-  s.name = root["name"] ? r.scalar<std::string>(root["name"], "name", "a name") : r.file.stem().string();
-  if (root["description"]) s.description = r.scalar<std::string>(root["description"], "description", "text");
-  const YAML::Node d = need("domain");
+// The domain box, the uniform core and its cell width h, checked against the machine's memory
+// before any grid is built.
+void domain_and_grid(const Reader& r, const YAML::Node& d, const YAML::Node& g, FlowCaseSpec& s) {
   r.only(d, "domain", {"x", "y", "z"});
-  const YAML::Node g = need("grid");
   r.only(g, "grid", {"h", "core", "stretch_ratio"});
   if (!g["core"]) r.fail(g, "grid.core", "missing");
   r.only(g["core"], "grid.core", {"x", "y", "z"});
@@ -288,6 +270,28 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
     what << r.file.string() << ": grid.h " << s.h << ": at least " << std::setprecision(3) << cells << " cells";
     require_memory((s.dim == 3 ? 400.0 : 200.0) * cells, what.str());
   }
+}
+
+FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
+  // The coarse (CI) variant: its coarse: section is merged over the file.
+  if (root["coarse"]) {
+    if (!root["coarse"].IsMap()) r.fail(root["coarse"], "coarse", "expected a section of keys");
+    if (coarse) {
+      const YAML::Node c = root["coarse"];
+      root = merged(root, c);
+    }
+  }
+  r.only(root, "",
+         {"case", "name", "description", "domain", "grid", "fluid", "boundaries", "initial", "bodies", "time", "solver",
+          "outputs", "coarse"});
+  FlowCaseSpec s;
+  const auto need = [&](const char* key) -> YAML::Node {
+    if (!root[key]) r.fail(root, key, "missing");
+    return root[key];
+  };
+  s.name = root["name"] ? r.scalar<std::string>(root["name"], "name", "a name") : r.file.stem().string();
+  if (root["description"]) s.description = r.scalar<std::string>(root["description"], "description", "text");
+  domain_and_grid(r, need("domain"), need("grid"), s);
   const YAML::Node f = need("fluid");
   r.only(f, "fluid", {"nu", "rho"});
   if (!f["nu"]) r.fail(f, "fluid.nu", "missing");
@@ -384,6 +388,7 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
     if (o["reference_area"]) s.reference_area = r.number(o["reference_area"], "outputs.reference_area");
     if (const YAML::Node cv = o["control_volume"]) {
       r.only(cv, "outputs.control_volume", {"x", "y", "z"});
+      const char* axes[] = {"x", "y", "z"};
       for (int a = 0; a < s.dim; ++a) {
         const auto box = r.numbers<2>(cv[axes[a]], std::string("outputs.control_volume.") + axes[a]);
         s.control_volume_box[2 * a] = box[0];
@@ -392,9 +397,6 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
       s.control_volume = true;
     }
   }
-  if (!(s.h > 0)) r.fail(g["h"], "grid.h", "expected > 0");
-  if (!(s.t_end > 0)) r.fail(t["t_end"], "time.t_end", "expected > 0");
-  if (!(s.nu > 0)) r.fail(f["nu"], "fluid.nu", "expected > 0");
   if (s.mean_from >= s.t_end)
     r.fail(root["outputs"]["mean_from"], "outputs.mean_from", "expected a time before time.t_end");
   return s;
