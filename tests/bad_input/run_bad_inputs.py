@@ -87,7 +87,15 @@ def cases():
     c += [case("fin-synth", "--out-dir {w}/synth --width 1000000", "--width", ["{w}/synth"]),
           case("fin-synth", "--out-dir {w}/synth --width 100000 --height 100000", "--width", ["{w}/synth"]),
           case("fin-synth", "--out-dir {w}/synth --jpeg-quality 101", "--jpeg-quality", ["{w}/synth"]),
-          case("fin-synth", "--out-dir {w}/synth --views side,top", "top", ["{w}/synth"])]
+          case("fin-synth", "--out-dir {w}/synth --views side,top", "top", ["{w}/synth"]),
+          # issue 47: the deep body's pectoral fins.
+          case("fin-synth", "--out-dir {w}/synth --pectoral-length 1", "--pectoral-length", ["{w}/synth"]),
+          case("fin-synth", "--out-dir {w}/synth --body --pectoral-station 0.3", "--pectoral-station", ["{w}/synth"]),
+          case("fin-synth", "--out-dir {w}/synth --body --pectoral-length -1", "--pectoral-length", ["{w}/synth"]),
+          case("fin-synth", "--out-dir {w}/synth --body --pectoral-length 1 --pectoral-open 80,10", "--pectoral-open",
+               ["{w}/synth"]),
+          case("fin-synth", "--out-dir {w}/synth --body --pectoral-length 1 --pectoral-station 1.5",
+               "--pectoral-station", ["{w}/synth"])]
 
     # fin-fit: optimiser sizes, increments and times.
     fit = f"run --mesh {MESH} --motion {MOTION} --loads {MOTION} --materials {MATERIALS} --out {{w}}/m.h5"

@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   vision::add_synth_flags(app, flags);
 
   return cli::run(app, standard, argc, argv, [&] {
-    const auto appearance = vision::apply_appearance_flags(app, flags);
+    auto appearance = vision::apply_appearance_flags(app, flags);
     log::info("appearance: " + appearance.dump());
     vision::check_appearance_flags(app, flags);
     // The flags the render uses, as set once the preset is applied.
@@ -102,8 +102,14 @@ int main(int argc, char** argv) {
     vision::record_synth_motion(flags, motion, fin.chord, truth);
 
     std::optional<vision::FishBody> fish_body;
+    if (flags.body && flags.body_options.pectoral_length > 0 && app.count("--pectoral-frequency") == 0) {
+      flags.body_options.pectoral_frequency = 1 / T;  // the pectoral fins keep the tail's beat
+      appearance["body_options"]["pectoral"]["frequency_hz"] = 1 / T;
+    }
     if (flags.body) fish_body.emplace(surface, flags.body_options);
     const vision::Renderer renderer(surface, flags.ren, fish_body ? &*fish_body : nullptr);
+    if (fish_body)
+      truth.body_axis = NdArray<double>({nf, static_cast<std::size_t>(flags.body_options.stations) + 2, 3});
     std::vector<vision::Debris> specks;
     for (std::size_t v = 0; v < cameras.size(); ++v)
       specks.emplace_back(flags.debris, seed, v, cameras[v].width, cameras[v].height);
@@ -120,12 +126,19 @@ int main(int argc, char** argv) {
         std::copy(p.data.begin(), p.data.end(), truth.points.data.begin() + k * p.data.size());
         truth.time(k) = t;
         std::vector<NdArray<double>> sub;
-        if (blur_samples == 1) sub.push_back(p);
-        for (int j = 0; j < blur_samples && blur_samples > 1; ++j)
-          sub.push_back(source.positions(surface, t + exposure * dt * (j / (blur_samples - 1.0) - 0.5)));
+        std::vector<double> sub_times;
+        if (blur_samples == 1) sub.push_back(p), sub_times.push_back(t);
+        for (int j = 0; j < blur_samples && blur_samples > 1; ++j) {
+          sub_times.push_back(t + exposure * dt * (j / (blur_samples - 1.0) - 0.5));
+          sub.push_back(source.positions(surface, sub_times.back()));
+        }
+        if (fish_body) {  // the body's axis, the 2-D mode's true midline (issue 47)
+          const auto a = fish_body->axis(p);
+          std::copy(a.data.begin(), a.data.end(), truth.body_axis.data.begin() + k * a.data.size());
+        }
         const double t0 = log::elapsed_seconds();
         for (std::size_t v = 0; v < cameras.size(); ++v) {
-          cv::Mat exposure = renderer.render_exposure(cameras[v], sub);
+          cv::Mat exposure = renderer.render_exposure(cameras[v], sub, sub_times);
           specks[v].draw(exposure, t);
           cv::Mat img = renderer.sensor(exposure, vision::noise_key(seed, v, k));
           if (video) {

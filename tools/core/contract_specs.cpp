@@ -81,6 +81,12 @@ std::vector<FileSpec> build() {
            opt({"root/heave_phase", f64, {"nr"}, "rad", "root heave phase"}),
            opt({"root/pitch_amplitude", f64, {"nr"}, "rad", "root pitch amplitude about the dorsal axis z"}),
            opt({"root/pitch_phase", f64, {"nr"}, "rad", "root pitch phase relative to the heave (< 0: lags)"}),
+           // Optional (issue 47): fin-synth's fish body, snout to peduncle, the 2-D mode's true midline.
+           opt({"body/axis",
+                f64,
+                {"nf", "nb", "3"},
+                "m",
+                "the body's axis per frame: snout, cross-section centres, peduncle"}),
        },
        {period_attr(),
         {"effects", "",

@@ -38,6 +38,8 @@ struct Truth {
   NdArray<double> root_eta, root_heave_amplitude, root_heave_phase, root_pitch_amplitude, root_pitch_phase;
   std::optional<double> period;
   std::optional<std::string> effects, motion_source, root_drive;
+  // The fish body's axis per frame (optional: realistic footage with a body, issue 47).
+  NdArray<double> body_axis;
 
   template <class V> void fields(V&& v) {
     v("template/points", template_points);
@@ -53,6 +55,7 @@ struct Truth {
     v("root/heave_phase", root_heave_phase);
     v("root/pitch_amplitude", root_pitch_amplitude);
     v("root/pitch_phase", root_pitch_phase);
+    v("body/axis", body_axis);
   }
   template <class A> void attributes(A&& a) {
     a("T", period);

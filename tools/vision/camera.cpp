@@ -69,8 +69,11 @@ std::vector<Camera> default_rig(const std::vector<std::string>& views, double ch
       c = look_at(v, width, height, focal, centre + distance * cv::normalize(cv::Vec3d(1, 0.04, 0.05)), centre, {0, 0, 1});
     else if (v == "ventral")
       c = look_at(v, width, height, focal, centre + distance * cv::normalize(cv::Vec3d(0.05, 0.04, -1)), centre, {1, 0, 0});
+    else if (v == "dorsal")  // from above, as the 2-D mode's lab clips are filmed
+      c = look_at(v, width, height, focal, centre + distance * cv::normalize(cv::Vec3d(0.05, 0.04, 1)), centre,
+                  {1, 0, 0});
     else
-      throw Error("--views: unknown view '" + v + "', expected side, back or ventral");
+      throw Error("--views: unknown view '" + v + "', expected side, back, ventral or dorsal");
     c.dist = {-0.08, 0.02, 0.0005, -0.0003, 0};
     c.K(0, 2) += 3.2;  // principal point off-centre, as in a real calibration
     c.K(1, 2) -= 2.1;

@@ -31,7 +31,8 @@ Camera look_at(const std::string& name, int width, int height, double focal_px, 
                const cv::Vec3d& target, const cv::Vec3d& up);
 
 // The paper's views of a fin of chord c (root at x = 0, span along z): "side" (from -y, flow to
-// the right), "back" (from downstream, +x) and "ventral" (from below, -z). Each sees a square of
+// the right), "back" (from downstream, +x), "ventral" (from below, -z) and "dorsal" (from above,
+// +z: the 2-D mode's lab clips, issue 47). Each sees a square of
 // about 2.2 c around the fin with mild barrel distortion, as a macro lens would give. A wider
 // field (half_field chords either side of the aim point at x = centre_x chords) frames the whole
 // fish, as a 2-D swimming clip does.

@@ -8,6 +8,11 @@
 // from 1 at the peduncle to head_motion at the snout, quadratic in the distance from the snout (a
 // swimming fish's lateral excursion grows towards its tail; the head moves little). The bend is
 // in phase along the body (a standing, not a travelling wave). Drawn opaque, lit as the fin is.
+// Pectoral fins (issue 47: fins that stick out of a deep-bodied fish's silhouette seen from above):
+// two flat fans in the body's mid-depth plane, hinged on the flanks at pectoral_station of the
+// length; each fan's rays spread from the flank (pectoral_open_min) to a leading ray whose angle
+// from the flank swings between pectoral_open_min and pectoral_open_max at pectoral_frequency, the
+// left fin half a cycle after the right (they open and close in turn, as a labriform swimmer's do).
 #pragma once
 
 #include <limits>
@@ -30,6 +35,12 @@ struct FishBodyOptions {
   double head_motion = 0.1;      // the snout's lateral excursion over the peduncle's
   int stations = 48;             // cross-sections from snout to peduncle
   int sides = 32;                // vertices around a cross-section
+  double pectoral_length = 0;    // pectoral fin length, in chords (0: none)
+  double pectoral_station = 0.3;  // hinge, as a fraction of the length from the snout
+  double pectoral_open_min = 10;  // angle of the fin's rays from the flank, closed (degrees)
+  double pectoral_open_max = 80;  // ... of the leading ray, fully open (degrees)
+  double pectoral_frequency = 1;  // opening and closing cycles per second
+  double pectoral_level = 0.3;    // grey level of a lit pectoral fin
 };
 
 // One sample layer of the opaque body in a camera: camera-frame depth (+inf where the body is
@@ -43,12 +54,18 @@ class FishBody {
   // Throws finverse::Error naming the flag when an option is out of range.
   FishBody(const FinSurface& fin, const FishBodyOptions& options);
 
-  // The body's vertices [nb,3] (m) for the fin at `fin_positions` [nv,3].
-  NdArray<double> place(const NdArray<double>& fin_positions) const;
+  // The body's vertices [nb,3] (m), pectoral fins included, for the fin at `fin_positions`
+  // [nv,3] at time `t` (s; the pectoral fins' phase).
+  NdArray<double> place(const NdArray<double>& fin_positions, double t = 0) const;
   const NdArray<std::int32_t>& triangles() const { return triangles_; }
 
+  // The body's axis [stations + 2, 3] (m): the snout, the centre of every cross-section and the
+  // peduncle's end, placed as place() places the body (the true midline of the 2-D mode, issue 47).
+  NdArray<double> axis(const NdArray<double>& fin_positions) const;
+
   // Z-buffered rasterisation at `supersample` samples per pixel and axis (the renderer's grid).
-  OpaqueLayer rasterize(const Camera& camera, const NdArray<double>& fin_positions, int supersample) const;
+  OpaqueLayer rasterize(const Camera& camera, const NdArray<double>& fin_positions, int supersample,
+                        double time = 0) const;
 
  private:
   const FinSurface& fin_;
@@ -57,6 +74,12 @@ class FishBody {
   NdArray<std::int32_t> triangles_;   // [nt,3]
   std::vector<std::size_t> root_;     // the fin's root vertices (s = 0)
   std::vector<double> envelope_;      // per body vertex: its share of the root's y and z motion
+  std::size_t trunk_ = 0;             // vertices of the trunk; the pectoral fans' follow
+  cv::Vec3d hinge_[2];                // the pectoral hinges at rest (right, left)
+  double pectoral_envelope_ = 0;      // the hinges' share of the root's y and z motion
+
+  void add_pectoral_fins(std::vector<std::int32_t>& triangles);
+  double pectoral_opening(int side, double t) const;  // the leading ray's angle from the flank (rad)
 };
 
 }  // namespace finverse::vision

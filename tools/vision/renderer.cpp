@@ -60,7 +60,7 @@ Renderer::Renderer(const FinSurface& surface, const RenderOptions& options, cons
   if (!(o_.gain > 0)) throw Error("--gain: expected > 0");
 }
 
-cv::Mat Renderer::render_clean(const Camera& cam, const NdArray<double>& pos) const {
+cv::Mat Renderer::render_clean(const Camera& cam, const NdArray<double>& pos, double time) const {
   const int S = o_.supersample;
   const int W = cam.width * S, H = cam.height * S;
   const std::size_t nv = surface_.size();
@@ -166,7 +166,7 @@ cv::Mat Renderer::render_clean(const Camera& cam, const NdArray<double>& pos) co
   cv::Mat img(H, W, CV_32F);
   const double cx = 0.5 * (W - 1), cy = 0.5 * (H - 1), r2max = cx * cx + cy * cy;
   // The opaque body hides the background and every fin fragment behind it.
-  const OpaqueLayer body = body_ ? body_->rasterize(cam, pos, S) : OpaqueLayer{};
+  const OpaqueLayer body = body_ ? body_->rasterize(cam, pos, S, time) : OpaqueLayer{};
   for (int y = 0; y < H; ++y) {
     float* row = img.ptr<float>(y);
     const float* body_depth = body_ ? body.depth.ptr<float>(y) : nullptr;
@@ -199,10 +199,13 @@ cv::Mat Renderer::render_frame(const Camera& cam, const std::vector<NdArray<doub
   return sensor(render_exposure(cam, subframes), key);
 }
 
-cv::Mat Renderer::render_exposure(const Camera& cam, const std::vector<NdArray<double>>& subframes) const {
+cv::Mat Renderer::render_exposure(const Camera& cam, const std::vector<NdArray<double>>& subframes,
+                                  const std::vector<double>& times) const {
   if (subframes.empty()) throw Error("renderer: no sub-frames to render");
+  if (!times.empty() && times.size() != subframes.size()) throw Error("renderer: expected one time per sub-frame");
   cv::Mat acc = cv::Mat::zeros(cam.height, cam.width, CV_32F);
-  for (const auto& p : subframes) acc += render_clean(cam, p);
+  for (std::size_t j = 0; j < subframes.size(); ++j)
+    acc += render_clean(cam, subframes[j], times.empty() ? 0.0 : times[j]);
   acc /= static_cast<double>(subframes.size());
   return acc;
 }

@@ -44,16 +44,19 @@ class Renderer {
   // `body` (optional, not owned): the fish's opaque body drawn with the fin (fish_body.hpp).
   Renderer(const FinSurface& surface, const RenderOptions& options, const FishBody* body = nullptr);
 
-  // Noise-free image in [0, 1] (CV_32F) of the surface at `positions` [nv,3].
-  cv::Mat render_clean(const Camera& camera, const NdArray<double>& positions) const;
+  // Noise-free image in [0, 1] (CV_32F) of the surface at `positions` [nv,3] at `time` (s:
+  // the body's pectoral fins move on their own clock).
+  cv::Mat render_clean(const Camera& camera, const NdArray<double>& positions, double time = 0) const;
 
   // The 8-bit frame: the average of the sub-frame images (motion blur over the exposure; one
   // entry means none) plus sensor noise drawn from a generator seeded with `noise_key`, so a
   // frame is a pure function of its inputs.
   cv::Mat render_frame(const Camera& camera, const std::vector<NdArray<double>>& subframes, std::uint64_t noise_key) const;
   // render_frame in two steps, so scene effects (footage_effects.hpp) can come between: the
-  // average of the sub-frame images (CV_32F, [0, 1]), then the sensor (gain, noise, 8 bits).
-  cv::Mat render_exposure(const Camera& camera, const std::vector<NdArray<double>>& subframes) const;
+  // average of the sub-frame images (CV_32F, [0, 1]) at `times` (one per sub-frame; empty: all
+  // at 0), then the sensor (gain, noise, 8 bits).
+  cv::Mat render_exposure(const Camera& camera, const std::vector<NdArray<double>>& subframes,
+                          const std::vector<double>& times = {}) const;
   cv::Mat sensor(const cv::Mat& exposure, std::uint64_t noise_key) const;
 
  private:

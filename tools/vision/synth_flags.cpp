@@ -43,7 +43,9 @@ void add_synth_flags(CLI::App& app, SynthFlags& f) {
   app.add_option("--periods", f.periods, "flapping periods to record")
       ->capture_default_str()
       ->check(finverse::cli::positive());
-  app.add_option("--views", f.views, "camera views (side, back, ventral)")->delimiter(',')->capture_default_str();
+  app.add_option("--views", f.views, "camera views (side, back, ventral, dorsal)")
+      ->delimiter(',')
+      ->capture_default_str();
   app.add_option("--cameras", f.cameras_in, "use this cameras.yml instead of the default rig")
       ->check(CLI::ExistingFile);
   app.add_option("--field-chords", f.half_field, "default rig: half the field of view around the aim point (chords)")
@@ -77,6 +79,21 @@ void add_synth_flags(CLI::App& app, SynthFlags& f) {
   app.add_option("--body-level", f.body_options.level, "body: grey level when lit (0..1)")->capture_default_str();
   app.add_option("--body-head-motion", f.body_options.head_motion,
                  "body: the snout's lateral excursion over the peduncle's (0..1)")
+      ->capture_default_str();
+  app.add_option("--pectoral-length", f.body_options.pectoral_length,
+                 "body: pectoral fin length (chords; 0: none), fans in the mid-depth plane that open and close")
+      ->capture_default_str();
+  app.add_option("--pectoral-station", f.body_options.pectoral_station,
+                 "body: the pectoral fins' hinge, as a fraction of the body's length from the snout")
+      ->capture_default_str();
+  app.add_option("--pectoral-open", f.pectoral_open,
+                 "body: the pectoral fins' rays from the flank, closed,open (degrees); left and right in turn")
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
+  app.add_option("--pectoral-frequency", f.body_options.pectoral_frequency,
+                 "body: pectoral opening cycles per second (default: the tail beat's)");
+  app.add_option("--pectoral-level", f.body_options.pectoral_level, "body: grey level of a lit pectoral fin (0..1)")
       ->capture_default_str();
   app.add_option("--background-level", f.ren.background, "backlight at the image centre (fraction of full scale)")
       ->capture_default_str();
@@ -123,6 +140,10 @@ void add_synth_flags(CLI::App& app, SynthFlags& f) {
 nlohmann::json apply_appearance_flags(const CLI::App& app, SynthFlags& f) {
   auto& ren = f.ren;
   auto& debris = f.debris;
+  if (f.pectoral_open.size() == 2) {  // else refused by check_appearance_flags
+    f.body_options.pectoral_open_min = f.pectoral_open[0];
+    f.body_options.pectoral_open_max = f.pectoral_open[1];
+  }
   if (f.footage == "realistic") {
     auto unset = [&](const char* flag) { return app.count(flag) == 0; };
     if (unset("--body")) f.body = true;
@@ -153,6 +174,12 @@ nlohmann::json apply_appearance_flags(const CLI::App& app, SynthFlags& f) {
                                   {"max_width", b.max_width},
                                   {"level", b.level},
                                   {"head_motion", b.head_motion}};
+  if (f.body && b.pectoral_length > 0)
+    appearance["body_options"]["pectoral"] = {{"length", b.pectoral_length},
+                                              {"station", b.pectoral_station},
+                                              {"open_deg", {b.pectoral_open_min, b.pectoral_open_max}},
+                                              {"frequency_hz", b.pectoral_frequency},
+                                              {"level", b.pectoral_level}};
   return appearance;
 }
 
@@ -165,8 +192,16 @@ void check_appearance_flags(const CLI::App& app, const SynthFlags& f) {
                  "--width " + std::to_string(f.width) + " --height " + std::to_string(f.height) + " --supersample " +
                      std::to_string(f.ren.supersample));
   if (f.jpeg_quality < 0 || f.jpeg_quality > 100) throw Error("--jpeg-quality: expected 1..100 (0: no compression)");
-  for (const char* flag : {"--body-length", "--body-depth", "--body-width", "--body-level", "--body-head-motion"})
+  for (const char* flag :
+       {"--body-length", "--body-depth", "--body-width", "--body-level", "--body-head-motion", "--pectoral-length",
+        "--pectoral-station", "--pectoral-open", "--pectoral-frequency", "--pectoral-level"})
     if (!f.body && app.count(flag) > 0) throw Error(std::string(flag) + ": only with --body (or --footage realistic)");
+  for (const char* flag : {"--pectoral-station", "--pectoral-open", "--pectoral-frequency", "--pectoral-level"})
+    if (!(f.body_options.pectoral_length > 0) && app.count(flag) > 0)
+      throw Error(std::string(flag) + ": only with --pectoral-length > 0");
+  if (f.pectoral_open.size() != 2 ||
+      !(f.pectoral_open[0] >= 0 && f.pectoral_open[0] < f.pectoral_open[1] && f.pectoral_open[1] <= 120))
+    throw Error("--pectoral-open: expected closed,open degrees with 0 <= closed < open <= 120");
   for (const char* flag : {"--field-chords", "--field-centre"})
     if (!f.cameras_in.empty() && app.count(flag) > 0)
       throw Error(std::string(flag) + ": only for the default rig, not with --cameras");

@@ -33,6 +33,7 @@ struct SynthFlags {
   std::string footage = "clean";  // clean, realistic
   bool body = false;
   FishBodyOptions body_options;
+  std::vector<double> pectoral_open{10, 80};  // closed, open (degrees from the flank)
   DebrisOptions debris;
   int jpeg_quality = 0;
   bool video = false;
