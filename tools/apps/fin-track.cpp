@@ -106,26 +106,27 @@ int main(int argc, char** argv) {
   auto* mid = vision::add_midline_command(app, midline);
 
   return cli::run(app, standard, argc, argv, [&] {
-    if (*mid) {
-      vision::run_midline_command(midline, app);
-      return static_cast<int>(kExitOk);
-    }
+    if (*mid) return vision::run_midline_command(midline, app);
     if (frames_spec.empty() || cameras_file.empty() || out.empty())
       throw Error("--frames, --cameras and --out are required (or the subcommand midline: fin-track midline --help)");
     if (!summary_out.empty() && truth_file.empty()) throw Error("--summary: needs --truth");
-    if (reynolds && !(strouhal && excursion_over_chord)) throw Error("--reynolds: needs --strouhal and --excursion-over-chord");
+    if (reynolds && !(strouhal && excursion_over_chord))
+      throw Error("--reynolds: needs --strouhal and --excursion-over-chord");
     const auto fin = mesh::make_template(tmpl);
     if (reynolds)
       period = flapping_period(*strouhal, free_stream_speed(*reynolds, fin.chord, viscosity), *excursion_over_chord * fin.chord);
-    if (period && !(*period > 0)) throw Error(reynolds ? "--reynolds ...: the period must be > 0" : "--period: expected > 0");
+    if (period && !(*period > 0))
+      throw Error(reynolds ? "--reynolds ...: the period must be > 0" : "--period: expected > 0");
     to.period = period;
     auto cameras = vision::read_cameras(cameras_file);
     vision::apply_tracker_flags(flags, cameras, cameras_file.string());
     const auto calibrated = cameras;  // scoring projects with the calibration as given, never perturbed
     if (perturb_px > 0) vision::perturb_principal_points(cameras, perturb_px, seed);
     const auto files = vision::list_frame_files(frames_spec, cameras, ignore_views, cameras_file.string());
-    if (fps) to.fps = *fps;
-    else if (files.container_fps) to.fps = *files.container_fps;
+    if (fps)
+      to.fps = *fps;
+    else if (files.container_fps)
+      to.fps = *files.container_fps;
     log::info("frame rate " + std::to_string(to.fps) + " fps (" + (fps ? "--fps" : files.container_fps ? "the videos'" : "default") + ")");
     for (const auto& [flag, names] : {std::pair{"--coverage-views", &fo.coverage_views}, std::pair{"--ray-views", &fo.ray_views}})
       for (const auto& name : *names)

@@ -46,6 +46,9 @@ def metric(name, value, kind, reference, tol, source, units=""):
     elif kind == "max":
         err = value / tol
         ok = value <= tol
+    elif kind == "min":
+        err = value / tol
+        ok = value >= tol
     else:
         err, ok, reference, tol = None, None, None, None
     if kind != "info" and not np.isfinite(value):
@@ -67,6 +70,7 @@ def write(out, name, description, metrics, parameters):
 
 
 ISSUE = "issue 35 validation"
+ISSUE_2D = "issue 47 validation"
 
 
 def three_view(a):
@@ -110,7 +114,8 @@ def read_camera(path, view):
         cams = yaml.safe_load(text)
         c = cams[view]
         return (np.asarray(c["camera_matrix"]), np.asarray(c["distortion_coefficients"]).ravel(),
-                np.asarray(c["rvec"]).ravel(), np.asarray(c["tvec"]).ravel())
+                np.asarray(c["rvec"]).ravel(), np.asarray(c["tvec"]).ravel(), int(c["image_width"]),
+                int(c["image_height"]))
     except (OSError, yaml.YAMLError, KeyError, TypeError) as e:
         fail(f"--cameras {path}: view {view!r}: {e}; expected fin-synth's cameras.yml")
 
@@ -133,6 +138,62 @@ def project(X, K, dist, rvec, tvec):
     return np.stack([K[0, 0] * xd + K[0, 1] * yd + K[0, 2], K[1, 1] * yd + K[1, 2]], axis=-1)
 
 
+def fin_silhouette_middle(uv_fin, triangles, u, step=2.0):
+    """The middle of the fin's true silhouette across the axis `u`, per frame: a list of [m, 2]
+    polylines, root to tip. Seen from above the fin is a plate edge-on whose span its twist and
+    cupping spread across the axis; the 2-D mode sees only that spread, so its axis there is the
+    spread's middle: in slices `step` px long along `u`, the middle between the outermost points of
+    the projected triangles (their corners, edge midpoints and centroids)."""
+    n = np.array([-u[1], u[0]])
+    A, B, C = (uv_fin[:, triangles[:, k], :] for k in range(3))
+    pts = np.concatenate([A, B, C, 0.5 * (A + B), 0.5 * (B + C), 0.5 * (C + A), (A + B + C) / 3], axis=1)
+    out = []
+    for p in pts:
+        along, across = p @ u, p @ n
+        k = np.floor((along - along.min()) / step).astype(int)
+        lo = np.full(k.max() + 1, np.inf)
+        hi = np.full(k.max() + 1, -np.inf)
+        np.minimum.at(lo, k, across)
+        np.maximum.at(hi, k, across)
+        s = np.bincount(k, weights=along) / np.maximum(np.bincount(k), 1)
+        ok = np.isfinite(lo)
+        out.append(s[ok, None] * u + (0.5 * (lo[ok] + hi[ok]))[:, None] * n)
+    return out
+
+
+def distance_to_polyline(q, line):
+    """Distance of points q [n, 2] to the polyline `line` [m, 2]; NaN for a point whose nearest
+    point is the polyline's far end (beyond it)."""
+    a, b = line[:-1], line[1:]
+    ab = b - a
+    t = np.clip(np.einsum("nmk,mk->nm", q[:, None, :] - a[None], ab) / np.maximum((ab * ab).sum(1), 1e-12), 0, 1)
+    foot = a[None] + t[..., None] * ab[None]
+    d = np.sqrt(((q[:, None, :] - foot) ** 2).sum(-1))
+    nearest = d.argmin(axis=1)
+    beyond = (nearest == len(ab) - 1) & (t[np.arange(len(q)), nearest] >= 1)
+    return np.where(beyond, np.nan, d.min(axis=1))
+
+
+def axis_scores(mid, valid, uv, uv_axis, triangles, u, width, height):
+    """Per-station RMS distance of the measured midline to the true axis (the body's projected axis,
+    snout to peduncle, then the middle of the caudal fin's true silhouette), and which frames show
+    the whole fish."""
+    fin = fin_silhouette_middle(uv, triangles, u)
+    dist = np.full(mid.shape[:2], np.nan)
+    for i in np.flatnonzero(valid):
+        behind = fin[i] @ u > uv_axis[i, -1] @ u  # the fin's part behind the peduncle's end
+        line = np.concatenate([uv_axis[i], fin[i][behind]], axis=0)
+        ok = np.isfinite(mid[i, :, 0])
+        dist[i, ok] = distance_to_polyline(mid[i, ok], line)
+    graded = np.isfinite(dist).sum(axis=0) >= 0.5 * max(1, valid.sum())
+    with np.errstate(invalid="ignore"):
+        per_station = np.where(graded, np.sqrt(np.nanmean(dist ** 2, axis=0)), np.nan)
+    allpts = np.concatenate([uv, uv_axis], axis=1)
+    whole = np.all((allpts[..., 0] >= 1) & (allpts[..., 0] <= width - 2) & (allpts[..., 1] >= 1) &
+                   (allpts[..., 1] <= height - 2), axis=1)
+    return per_station, whole
+
+
 def midline(a):
     try:
         with h5py.File(a.midline, "r") as f:
@@ -149,11 +210,14 @@ def midline(a):
         with h5py.File(a.truth, "r") as f:
             P = np.asarray(f["points"][...], float)
             T = float(f.attrs["T"]) if "T" in f.attrs else float(f["points"].attrs["T"])
+            axis = np.asarray(f["body/axis"][...], float) if "body/axis" in f else None
+            triangles = np.asarray(f["template/triangles"][...], int)
     except (OSError, KeyError, ValueError) as e:
         fail(f"--truth {a.truth}: {e}; expected fin-synth's truth.h5 with points and T")
     if P.shape[0] != tip.shape[0]:
         fail(f"--midline {a.midline}: {tip.shape[0]} frames, but --truth {a.truth} has {P.shape[0]}")
-    uv = project(P, *read_camera(a.cameras, a.view))  # [nf, nv, 2]
+    camera = read_camera(a.cameras, a.view)
+    uv = project(P, *camera[:4])  # [nf, nv, 2]
     # The record's head-to-tail axis: the midline's mean direction.
     d = np.nanmean(mid[valid, -1, :] - mid[valid, 0, :], axis=0)
     u = d / np.linalg.norm(d)
@@ -170,13 +234,27 @@ def midline(a):
     metrics = [metric("tail_tip_error_mean", err.mean(), "max", None, 1.0, f"{ISSUE}: tail-tip position error <= 1 px mean", "px"),
                metric("tail_beat_frequency", freq, "relative", 1 / T, 0.01, f"{ISSUE}: within 1 % of the truth's 1/T", "Hz"),
                metric("tail_beat_amplitude", amp, "relative", truth_amp, 0.02,
-                      f"{ISSUE}: within 2 % of the projected truth tip's half peak-to-peak per beat", "px"),
-               info("tail_tip_error_max", err.max(), "px"), info("tail_tip_error_p95", np.percentile(err, 95), "px"),
-               info("frames_with_fish", int(valid.sum())), info("frames", len(valid)),
-               info("body_wavelength", wavelength, "px")]
-    return write(a.out, a.name, "realistic virtual footage, one view: fin-track midline's tail tip, tail-beat "
-                 "frequency and amplitude against the projected truth", metrics,
-                 {"midline": a.midline, "truth": a.truth, "cameras": a.cameras, "view": a.view})
+                      f"{ISSUE}: within 2 % of the projected truth tip's half peak-to-peak per beat", "px")]
+    if axis is not None:
+        uv_axis = project(axis, *camera[:4])
+        per_station, whole = axis_scores(mid, valid, uv, uv_axis, triangles, u, camera[4], camera[5])
+        length = float(np.median(np.linalg.norm(truth_tip - uv_axis[:, 0], axis=1)))
+        metrics += [
+            metric("midline_axis_rms_worst_station", np.nanmax(per_station), "max", None, min(2.0, 0.01 * length),
+                   f"{ISSUE_2D}: midline RMS distance to the true axis <= 2 px (<= 1 % of the length), every station", "px"),
+            metric("frames_valid_when_whole", valid[whole].mean() if whole.any() else np.nan, "min", 0.98, 0.98,
+                   f"{ISSUE_2D}: frames valid when the fish is whole in view >= 98 %"),
+            info("midline_axis_rms_mean", float(np.sqrt(np.nanmean(per_station ** 2))), "px"),
+            info("midline_stations_graded", int(np.isfinite(per_station).sum())),
+            info("fish_length", length, "px"), info("frames_whole", int(whole.sum()))]
+    metrics += [info("tail_tip_error_max", err.max(), "px"), info("tail_tip_error_p95", np.percentile(err, 95), "px"),
+                info("frames_with_fish", int(valid.sum())), info("frames", len(valid)),
+                info("body_wavelength", wavelength, "px")]
+    return write(a.out, a.name, "realistic virtual footage, one view: fin-track midline's midline against the true "
+                 "axis, tail tip, tail-beat frequency and amplitude against the projected truth", metrics,
+                 {"midline": a.midline, "truth": a.truth, "cameras": a.cameras, "view": a.view,
+                  "midline_axis_rms_per_station_px": None if axis is None else
+                  [round(float(x), 3) if np.isfinite(x) else None for x in per_station]})
 
 
 def single_view(a):

@@ -7,10 +7,10 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
-
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.hpp"
+#include "vision/fish_centreline.hpp"
 
 namespace finverse::vision {
 namespace {
@@ -144,37 +144,42 @@ std::vector<MidlineFrame> extract_midlines(const std::vector<cv::Mat>& masks, in
   if (axis_out) *axis_out = u;
 
   std::vector<MidlineFrame> out(masks.size());
-  std::vector<double> length(masks.size(), 0.0);  // the silhouette's extent on the axis (px)
+  std::vector<double> length(masks.size(), 0.0);  // the midline's arc length to the tip (px)
   for (std::size_t i = 0; i < masks.size(); ++i) {
     auto& f = out[i];
+    f.reason = "no fish";
     if (pts[i].size() < 8) continue;
     double lo = 1e300, hi = -1e300;
     for (const auto& p : pts[i]) {
       const double s = (cv::Point2d(p) - centroid[i]).dot(u);
       lo = std::min(lo, s), hi = std::max(hi, s);
     }
-    const double len = hi - lo;
-    if (len < stations) continue;
-    std::vector<double> sum(stations, 0), cnt(stations, 0), tip_sum(2, 0);
-    double tip_n = 0;
+    if (hi - lo < stations) {
+      f.reason = "the fish is shorter than the stations (px)";
+      continue;
+    }
+    double tip_sum = 0, tip_n = 0;
     for (const auto& p : pts[i]) {
       const cv::Point2d d = cv::Point2d(p) - centroid[i];
-      const double s = d.dot(u), t = d.dot(n);
-      const int b = std::clamp(static_cast<int>((s - lo) / len * stations), 0, stations - 1);
-      sum[b] += t, cnt[b] += 1;
-      if (s >= hi - 1.5) tip_sum[0] += t, tip_n += 1;  // the last pixel and a half on the axis
+      if (d.dot(u) >= hi - 1.5) tip_sum += d.dot(n), tip_n += 1;  // the last pixel and a half on the axis
     }
-    f.points.resize(stations);
-    for (int b = 0; b < stations; ++b) {
-      const double s = lo + (b + 0.5) * len / stations;
-      f.points[b] = cnt[b] > 0 ? centroid[i] + s * u + (sum[b] / cnt[b]) * n : cv::Point2d(kNaN, kNaN);
-    }
-    f.tip = centroid[i] + (hi + 0.5) * u + (tip_sum[0] / tip_n) * n;
+    f.points = fish_centreline(masks[i], body_core(masks[i]), centroid[i], u, lo, hi, stations);
+    f.tip = centroid[i] + (hi + 0.5) * u + (tip_sum / tip_n) * n;
     if (evidence) f.tip = refine_tail_tip(masks[i], (*evidence)[i], u, f.tip);
     f.centroid = centroid[i];
     f.valid = true;
-    length[i] = len;
+    f.reason.clear();
+    cv::Point2d last(kNaN, kNaN);
+    for (const auto& p : f.points)
+      if (!std::isnan(p.x)) {
+        if (!std::isnan(last.x)) length[i] += cv::norm(p - last);
+        last = p;
+      }
+    length[i] += std::isnan(last.x) ? 0.0 : cv::norm(f.tip - last);
   }
+  // A silhouette much shorter along its own midline than the record's median has lost its tail
+  // (the fin too faint to segment): the fish is not whole, the frame not measured. Along the
+  // midline, not the axis: a fish that bends or turns keeps its length.
   std::vector<double> lengths;
   for (double l : length)
     if (l > 0) lengths.push_back(l);
@@ -182,7 +187,10 @@ std::vector<MidlineFrame> extract_midlines(const std::vector<cv::Mat>& masks, in
     std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
     const double median = lengths[lengths.size() / 2];
     for (std::size_t i = 0; i < masks.size(); ++i)
-      if (out[i].valid && length[i] < (1 - kLostFinFraction) * median) out[i].valid = false, out[i].lost_fin = true;
+      if (out[i].valid && length[i] < (1 - kLostFinFraction) * median) {
+        out[i].valid = false, out[i].lost_fin = true;
+        out[i].reason = "the silhouette ends short of the fish's length (the tail lost)";
+      }
   }
   return out;
 }

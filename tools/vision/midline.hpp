@@ -3,11 +3,13 @@
 // record the tail-beat frequency, amplitude and body wavelength (the quantities trackter and
 // similar tools report). The midline is sampled along the fish's mean axis over the record (a
 // swimming fish's heading changes slowly against its undulation): at each of `stations` equal
-// steps from head to tail, the centre of the silhouette's pixels across the axis. The tail tip is
-// the silhouette's end on the axis, refined in the image where given (refine_tail_tip). A frame
-// whose silhouette is shorter on the axis than the record's median by more than kLostFinFraction has lost the fin (its end jumped back to the
-// peduncle): not measured. Lateral: across the mean axis, from the centroid averaged over one
-// whole beat (frequency found on the tip's excursion from the frame's own centroid).
+// steps from head to tail, the middle of the body's run across the axis, its fins left out
+// (fish_centreline.hpp, issue 47). The tail tip is the silhouette's end on the axis, refined in
+// the image where given (refine_tail_tip). A frame whose midline, snout to tail tip, is shorter
+// than the record's median by more than kLostFinFraction has lost the fin (its end jumped back to
+// the peduncle): not measured, with its reason. Lateral: across the mean axis, from the centroid
+// averaged over one whole beat (frequency found on the tip's excursion from the frame's own
+// centroid).
 //   frequency: the spectral peak of the tip's lateral excursion (parabolic refinement of the
 //     DFT magnitude, mean removed, Hann window);
 //   amplitude: half the mean peak-to-peak excursion per beat;
@@ -15,9 +17,9 @@
 //     the posterior half of the midline.
 #pragma once
 
-#include <vector>
-
 #include <opencv2/core.hpp>
+#include <string>
+#include <vector>
 
 namespace finverse::vision {
 
@@ -28,6 +30,7 @@ inline constexpr double kLostFinFraction = 0.1;
 struct MidlineFrame {
   bool valid = false;
   bool lost_fin = false;            // the silhouette's end jumped back (not valid)
+  std::string reason;               // why the frame is not valid (empty when it is)
   std::vector<cv::Point2d> points;  // head to tail (px); NaN where a station has no pixel
   cv::Point2d tip;                  // tail tip (px)
   cv::Point2d centroid;             // of the silhouette (px): the lateral excursions' reference

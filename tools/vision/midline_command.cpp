@@ -39,7 +39,7 @@ CLI::App* add_midline_command(CLI::App& app, MidlineCommand& c) {
   return mid;
 }
 
-void run_midline_command(MidlineCommand& c, const CLI::App& app) {
+int run_midline_command(MidlineCommand& c, const CLI::App& app) {
   auto& so = c.options;
   so.segmentation.background = background_model(c.background);
   so.mm_per_px = c.mm_per_px;
@@ -68,6 +68,12 @@ void run_midline_command(MidlineCommand& c, const CLI::App& app) {
   write_single_view_h5(c.out, r, so, config, inputs);
   if (!c.csv.empty()) write_single_view_csv(c.csv, r, so);
   if (!c.overlay.empty()) write_overlay_video(c.overlay, files.frames, load, r, so.fps);
+  if (r.mostly_invalid()) {
+    log::error(c.frames + ": " + std::to_string(r.invalid) + " of " + std::to_string(r.frames.size()) +
+               " frames could not be measured, most often because " + r.commonest_reason +
+               " (written, flagged: " + c.out.string() + ")");
+    return kExitDifferent;
+  }
   char line[256];
   std::snprintf(line, sizeof line, "tail beat %.4g Hz, amplitude %.4g px, body wavelength %.4g px over %d beats",
                 r.beat.frequency_hz, r.beat.amplitude_px, r.beat.wavelength_px, r.beat.beats);
@@ -78,6 +84,7 @@ void run_midline_command(MidlineCommand& c, const CLI::App& app) {
     log::info(line);
   }
   log::info("wrote " + c.out.string());
+  return kExitOk;
 }
 
 }  // namespace finverse::vision

@@ -22,8 +22,10 @@ struct MidlineCommand {
 // Adds the subcommand "midline" to `app`, its flags bound to `command`.
 CLI::App* add_midline_command(CLI::App& app, MidlineCommand& command);
 
-// Runs it: reads the frames, tracks the midlines and writes the files. Throws finverse::Error
-// naming the flag or file for bad input.
-void run_midline_command(MidlineCommand& command, const CLI::App& app);
+// Runs it: reads the frames, tracks the midlines and writes the files. Returns kExitOk, or
+// kExitDifferent when most frames could not be measured (the files written, flagged, and one
+// error line with the count and the commonest reason). Throws finverse::Error naming the flag or
+// file for bad input, a clip without a fish and a fish that fills the frame.
+int run_midline_command(MidlineCommand& command, const CLI::App& app);
 
 }  // namespace finverse::vision

@@ -4,10 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
-
+#include <limits>
+#include <map>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
+#include <sstream>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -18,6 +19,44 @@
 namespace fs = std::filesystem;
 
 namespace finverse::vision {
+namespace {
+
+// Refuses a clip in which the 2-D mode cannot work at all: no fish in any frame, or a fish that
+// fills the frame (more than kFillsTheFrame of the image in the median frame with a fish), so
+// that neither its outline nor a background is seen.
+void check_the_fish_is_seen(const std::vector<cv::Mat>& masks, const std::string& source) {
+  std::vector<double> cover;
+  for (const auto& m : masks)
+    if (const int n = cv::countNonZero(m); n > 0)
+      cover.push_back(static_cast<double>(n) / static_cast<double>(m.total()));
+  if (cover.empty())
+    throw Error(source + ": no fish found in any of the " + std::to_string(masks.size()) +
+                " frames (nothing darker than the background by --min-contrast)");
+  std::nth_element(cover.begin(), cover.begin() + cover.size() / 2, cover.end());
+  const double median = cover[cover.size() / 2];
+  if (median > kFillsTheFrame) {
+    char line[160];
+    std::snprintf(line, sizeof line,
+                  "the fish fills the frame (%.0f %% of the image in the median frame); expected the "
+                  "whole fish in view with background around it",
+                  100 * median);
+    throw Error(source + ": " + line);
+  }
+}
+
+// The frames not measured, and the reason given most often.
+std::size_t count_invalid(const std::vector<MidlineFrame>& midlines, std::string& commonest) {
+  std::map<std::string, std::size_t> reasons;
+  std::size_t invalid = 0;
+  for (const auto& m : midlines)
+    if (!m.valid) ++invalid, ++reasons[m.reason];
+  std::size_t most = 0;
+  for (const auto& [reason, n] : reasons)
+    if (n > most) most = n, commonest = reason;
+  return invalid;
+}
+
+}  // namespace
 
 SingleViewResult track_single_view(const std::vector<long>& frames, const std::function<cv::Mat(long)>& load,
                                    const SingleViewOptions& o, const std::string& source) {
@@ -35,6 +74,7 @@ SingleViewResult track_single_view(const std::vector<long>& frames, const std::f
   SingleViewResult r;
   r.frames = frames;
   r.segmentation_doubt.assign(nf, 0);
+  std::vector<char> seg_lost(nf, 0);
   std::vector<cv::Mat> masks(nf);
   std::vector<TipEvidence> tips(nf);  // the darkening around the fish, for the sub-pixel tail tip
   for (std::size_t i = 0; i < nf; ++i) {
@@ -53,15 +93,32 @@ SingleViewResult track_single_view(const std::vector<long>& frames, const std::f
       tips[i].blur_sigma = o.segmentation.blur_sigma_px;
     }
     r.segmentation_doubt[i] = seg.touches_border || seg.lost;
+    seg_lost[i] = seg.lost;
     if (cv::countNonZero(seg.mask) > 0) ctx.previous = seg.mask;
   }
+  check_the_fish_is_seen(masks, source);
   cv::Point2d axis;
   r.midlines = extract_midlines(masks, o.stations, &axis, &tips);
-  const auto lost = std::count_if(r.midlines.begin(), r.midlines.end(), [](const MidlineFrame& m) { return m.lost_fin; });
-  if (lost > 0)
-    log::warn(source + ": in " + std::to_string(lost) + " of " + std::to_string(nf) +
-              " frames the silhouette ends short of the fish's length (the fin lost); not measured (valid 0)");
-  r.beat = tail_beat(r.midlines, axis, o.fps);
+  // A frame is measured only when the fish is whole in view and its segmentation not in doubt.
+  for (std::size_t i = 0; i < nf; ++i) {
+    auto& m = r.midlines[i];
+    if (!m.valid || !r.segmentation_doubt[i]) continue;
+    m.valid = false;
+    m.reason = seg_lost[i] ? "no fish near the previous frame's (segmentation in doubt)"
+                           : "the fish touches the image border (not whole in view)";
+  }
+  r.invalid = count_invalid(r.midlines, r.commonest_reason);
+  if (r.invalid > 0)
+    log::warn(source + ": " + std::to_string(r.invalid) + " of " + std::to_string(nf) +
+              " frames not measured (valid 0); the commonest reason: " + r.commonest_reason);
+  if (nf - r.invalid >= kMinBeatFrames) {
+    r.beat = tail_beat(r.midlines, axis, o.fps);
+  } else {
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    r.beat.frequency_hz = r.beat.amplitude_px = r.beat.wavelength_px = kNaN;
+    r.beat.tip_lateral_px.assign(nf, kNaN);
+    r.beat.axis = axis;
+  }
   return r;
 }
 
@@ -70,13 +127,13 @@ void write_single_view_csv(const fs::path& csv, const SingleViewResult& r, const
   out.precision(9);
   out << "frame,time_s,valid,tip_x_px,tip_y_px,tip_lateral_px";
   if (o.mm_per_px) out << ",tip_x_mm,tip_y_mm,tip_lateral_mm";
-  out << ",segmentation_doubt\n";
+  out << ",segmentation_doubt,reason\n";
   for (std::size_t i = 0; i < r.frames.size(); ++i) {
     const auto& m = r.midlines[i];
     out << r.frames[i] << ',' << r.frames[i] / o.fps << ',' << int(m.valid) << ',' << m.tip.x << ',' << m.tip.y << ','
         << r.beat.tip_lateral_px[i];
     if (o.mm_per_px) out << ',' << m.tip.x * *o.mm_per_px << ',' << m.tip.y * *o.mm_per_px << ',' << r.beat.tip_lateral_px[i] * *o.mm_per_px;
-    out << ',' << int(r.segmentation_doubt[i]) << '\n';
+    out << ',' << int(r.segmentation_doubt[i]) << ",\"" << m.reason << "\"\n";
   }
   write_text_atomic(csv, out.str());
 }
@@ -100,6 +157,9 @@ void write_single_view_h5(const fs::path& h5, const SingleViewResult& r, const S
   f.write("time", time);
   f.write("valid", valid);
   f.write("segmentation_doubt", doubt);
+  std::vector<std::string> reasons;
+  for (const auto& m : r.midlines) reasons.push_back(m.reason);
+  f.write("invalid_reason", reasons);
   f.write("px/midline", mid);
   f.write("px/tip", tip);
   f.write("px/tip_lateral", lat);
@@ -108,6 +168,8 @@ void write_single_view_h5(const fs::path& h5, const SingleViewResult& r, const S
   f.set_attr(".", "body_wavelength_px", r.beat.wavelength_px);
   f.set_attr(".", "beats", static_cast<std::int64_t>(r.beat.beats));
   f.set_attr(".", "fps", o.fps);
+  f.set_attr(".", "frames_invalid", static_cast<std::int64_t>(r.invalid));
+  f.set_attr(".", "flagged", static_cast<std::int64_t>(r.mostly_invalid() ? 1 : 0));
   if (o.mm_per_px) {
     const double k = *o.mm_per_px;
     for (auto& v : mid.data) v *= k;

@@ -27,16 +27,28 @@ struct SingleViewOptions {
   cv::Rect region;                   // the user's rectangle that holds the fish (empty: the frame)
 };
 
+// A clip whose fish covers more of the image than this in its median frame fills the frame.
+inline constexpr double kFillsTheFrame = 0.5;
+// The tail beat needs this many measured frames.
+inline constexpr std::size_t kMinBeatFrames = 8;
+
 struct SingleViewResult {
   std::vector<long> frames;
-  std::vector<MidlineFrame> midlines;
+  std::vector<MidlineFrame> midlines;            // each invalid one with its reason
   std::vector<std::uint8_t> segmentation_doubt;  // per frame: blob at the border, or lost
-  TailBeat beat;
+  TailBeat beat;                                 // NaN when fewer than kMinBeatFrames are valid
+  std::size_t invalid = 0;                       // frames not measured
+  std::string commonest_reason;                  // ... and why, most often
+  // Most frames not measured: the record is written, flagged, and the run exits 1.
+  bool mostly_invalid() const { return 2 * invalid > frames.size(); }
 };
 
 // Segments every frame (temporal median background as BackgroundModel says, the previous frame's
-// fish chosen among the blobs) and measures the midlines and the tail beat. `load(k)` gives frame
-// index frames[k]'s grey image; `source` names the record in messages.
+// fish chosen among the blobs) and measures the midlines and the tail beat. A frame is not
+// measured when the fish is not whole in view (it touches the border), its segmentation is in
+// doubt (no blob near the previous fish, the tail lost) or there is no fish; its reason is kept.
+// Throws finverse::Error when no frame shows a fish or the fish fills the frame. `load(k)` gives
+// frame index frames[k]'s grey image; `source` names the record in messages.
 SingleViewResult track_single_view(const std::vector<long>& frames, const std::function<cv::Mat(long)>& load,
                                    const SingleViewOptions& options, const std::string& source);
 

@@ -90,6 +90,31 @@ TEST(Midline, AFrameThatLostTheFinIsNotMeasured) {
   EXPECT_NEAR(beat.amplitude_px, s.a_tail, 0.05 * s.a_tail);
 }
 
+// A fish that turns: a slender body (an ellipse 100 x 16 px) with a 40 px tail, its heading
+// swinging from -35 to +35 degrees over the record about its centre. Its extent on the record's
+// mean axis shrinks by up to 18 %; along its own midline it keeps its length, so every frame is
+// valid (issue 47: the length rule once dropped such frames as "the fin lost").
+TEST(Midline, AFishThatTurnsKeepsItsLengthAndStaysValid) {
+  std::vector<cv::Mat> masks;
+  const int nf = 24, scale = 4;
+  for (int k = 0; k < nf; ++k) {
+    const double a = (-35 + 70.0 * k / (nf - 1)) * std::numbers::pi / 180;
+    const cv::Point2d c(120, 120), u(std::cos(a), std::sin(a));
+    cv::Mat big = cv::Mat::zeros(240 * scale, 240 * scale, CV_8U);
+    cv::ellipse(big, cv::Point(static_cast<int>(c.x * scale), static_cast<int>(c.y * scale)),
+                cv::Size(50 * scale, 8 * scale), a * 180 / std::numbers::pi, 0, 360, cv::Scalar(255), cv::FILLED);
+    const cv::Point2d t0 = c + 48.0 * u, t1 = c + 88.0 * u;
+    cv::line(big, cv::Point(static_cast<int>(t0.x * scale), static_cast<int>(t0.y * scale)),
+             cv::Point(static_cast<int>(t1.x * scale), static_cast<int>(t1.y * scale)), cv::Scalar(255), 3 * scale);
+    cv::Mat m;
+    cv::resize(big, m, cv::Size(240, 240), 0, 0, cv::INTER_AREA);
+    masks.push_back(m > 127);
+  }
+  cv::Point2d axis;
+  const auto m = extract_midlines(masks, 25, &axis);
+  for (int k = 0; k < nf; ++k) EXPECT_TRUE(m[k].valid) << k << ": " << m[k].reason;
+}
+
 // A forked tail drawn here at 1/16 px and blurred (sigma 1 px) as a camera does: two lobes with
 // square ends at x = 52.3 (upper, y 23-27.4) and 49.6 (lower), 40 levels dark. A mask from a
 // threshold above half the fin's contrast (a faint fin in noise) ends a pixel short; the tip read
@@ -190,7 +215,9 @@ TEST(FinTrackMidline, AnAviClipGivesTheTailBeatInPxAndMm) {
   std::ifstream csv(dir / "m.csv");
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header, "frame,time_s,valid,tip_x_px,tip_y_px,tip_lateral_px,tip_x_mm,tip_y_mm,tip_lateral_mm,segmentation_doubt");
+  EXPECT_EQ(
+      header,
+      "frame,time_s,valid,tip_x_px,tip_y_px,tip_lateral_px,tip_x_mm,tip_y_mm,tip_lateral_mm,segmentation_doubt,reason");
   cv::VideoCapture overlay((dir / "o.avi").string());
   ASSERT_TRUE(overlay.isOpened());
   EXPECT_EQ(static_cast<int>(overlay.get(cv::CAP_PROP_FRAME_COUNT)), 64);
