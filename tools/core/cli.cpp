@@ -90,6 +90,9 @@ std::string readable_ranges(const std::string& message) {
 }
 
 int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::function<int()>& body) {
+  // In an MPI job only rank 0 speaks: the other ranks read the same flags and files, so their
+  // messages would repeat rank 0's (fin-fit run's evaluations across ranks, issue 48).
+  const bool quiet_rank = mpi_launch_rank() > 0;
   try {
     app.parse(argc, argv);
     check_flag_ranges(app);   // before any work (issue 46)
@@ -103,14 +106,16 @@ int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::fun
     if (what.rfind(prefix, 0) == 0) what = "unknown key '" + what.substr(prefix.size()) + "' (no such flag)";
     const CLI::Option* config = app.get_config_ptr();
     const std::string file = config && config->count() > 0 ? config->as<std::string>() : std::string("config");
-    std::fprintf(stderr, "%s: error: --config %s: %s\n", standard.tool.c_str(), file.c_str(), what.c_str());
+    if (!quiet_rank)
+      std::fprintf(stderr, "%s: error: --config %s: %s\n", standard.tool.c_str(), file.c_str(), what.c_str());
     return kExitError;
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "%s: error: %s (see --help)\n", standard.tool.c_str(), readable_ranges(e.what()).c_str());
+    if (!quiet_rank)
+      std::fprintf(stderr, "%s: error: %s (see --help)\n", standard.tool.c_str(), readable_ranges(e.what()).c_str());
     return kExitError;
   }
   try {
-    log::set_level(log::parse_level(standard.log_level));
+    log::set_level(quiet_rank ? log::Level::quiet : log::parse_level(standard.log_level));
     if (standard.threads > 0) omp_set_num_threads(standard.threads);
     log::info(producer_string(standard.tool));
     log::info("configuration: " + effective_config(app).dump());
@@ -118,9 +123,22 @@ int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::fun
     log::timing_summary(threads_in_use());
     return rc;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: error: %s\n", standard.tool.c_str(), e.what());
+    if (!quiet_rank) std::fprintf(stderr, "%s: error: %s\n", standard.tool.c_str(), e.what());
     return kExitError;
   }
+}
+
+int mpi_launch_rank() {
+  // Open MPI's mpirun, PMIx launchers (srun --mpi=pmix) and Hydra (MPICH) set one of these.
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (const char* v = std::getenv(name)) return std::atoi(v);
+  return 0;
+}
+
+int mpi_launch_size() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_SIZE", "PMI_SIZE"})
+    if (const char* v = std::getenv(name)) return std::atoi(v);
+  return 1;
 }
 
 }  // namespace finverse::cli

@@ -35,6 +35,11 @@ nlohmann::json effective_config(const CLI::App& app);
 // CLI11 usage errors -> CLI11's message + 2, --help/--version -> 0.
 int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::function<int()>& body);
 
+// This process's rank and its job's size as an MPI launcher (mpirun, srun, Hydra) set them in the
+// environment: 0 and 1 for a plain run. Ranks above 0 print nothing from run().
+int mpi_launch_rank();
+int mpi_launch_size();
+
 int threads_in_use();
 
 // Validators whose message says the range as a person writes it ("expected a number > 0, got

@@ -10,6 +10,7 @@
 #include "fit/errors.hpp"
 #include "fit/ga_run.hpp"
 #include "fit/population_evaluation.hpp"
+#include "fit/rank_pool.hpp"
 
 namespace finverse::fit {
 
@@ -167,7 +168,7 @@ FitResult run_fit(const ParameterSpace& space, const ResidualFunction& function,
       done.run = run_cmaes(space, search, c);
     }
     if (options.polish) {
-      function.expect_near(done.run.best_x);
+      expect_near_everywhere(function, done.run.best_x);
       const LmResult lm = levenberg_marquardt(space, function, space.to_scaled(done.run.best_x), lm_options);
       done.run.polished_x = space.to_physical(lm.z);
       done.run.polished_objective = lm.objective;

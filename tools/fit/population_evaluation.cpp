@@ -1,13 +1,14 @@
 // Parallel evaluation of a batch of scaled vectors (population_evaluation.hpp).
 #include "fit/population_evaluation.hpp"
 
+#include <omp.h>
+
 #include <cmath>
 #include <exception>
 #include <limits>
 
-#include <omp.h>
-
 #include "fit/errors.hpp"
+#include "fit/rank_pool.hpp"
 
 namespace finverse::fit {
 
@@ -43,6 +44,14 @@ One evaluate_one(const ParameterSpace& space, const ResidualFunction& function,
 BatchEvaluation evaluate_batch(const ParameterSpace& space, const ResidualFunction& function,
                                const std::vector<Eigen::VectorXd>& scaled, int threads,
                                bool keep_residuals) {
+  RankPool* pool = RankPool::current();
+  if (pool && pool->size() > 1 && scaled.size() > 1)
+    if (const auto id = pool->id_of(function)) return pool->evaluate(*id, space, scaled, threads, keep_residuals);
+  return evaluate_batch_here(space, function, scaled, threads, keep_residuals);
+}
+
+BatchEvaluation evaluate_batch_here(const ParameterSpace& space, const ResidualFunction& function,
+                                    const std::vector<Eigen::VectorXd>& scaled, int threads, bool keep_residuals) {
   const int n = static_cast<int>(scaled.size());
   std::vector<One> results(scaled.size());
   if (threads <= 1 || n <= 1) {

@@ -25,8 +25,15 @@ struct BatchEvaluation {
 // A std::exception from the residual function (fem::NotConverged, ...) or a non-finite residual
 // gives objective +infinity and counts as a failure; fit::Error (bad input, not a bad parameter
 // vector) and anything not derived from std::exception is rethrown after the batch.
+// In an MPI job (rank_pool.hpp) a batch of two or more vectors of a function the pool knows is
+// spread over the ranks; the result is the same.
 BatchEvaluation evaluate_batch(const ParameterSpace& space, const ResidualFunction& function,
                                const std::vector<Eigen::VectorXd>& scaled, int threads,
                                bool keep_residuals = false);
+
+// The same on this process's threads only.
+BatchEvaluation evaluate_batch_here(const ParameterSpace& space, const ResidualFunction& function,
+                                    const std::vector<Eigen::VectorXd>& scaled, int threads,
+                                    bool keep_residuals = false);
 
 }  // namespace finverse::fit

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cstdlib>
+
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/flag_ranges.hpp"
@@ -129,4 +131,29 @@ TEST(Cli, RangesReadAsAPersonWritesThem) {
   EXPECT_EQ(cli::readable_ranges("--cells-per-diameter: Value 100000 not in range 4.000000 to 1000.000000"),
             "--cells-per-diameter: expected a number from 4 to 1000, got 100000");
   EXPECT_EQ(cli::readable_ranges("--x: something else"), "--x: something else");
+}
+
+// An MPI launcher's environment gives the rank and the job's size (issue 48); a plain run is rank
+// 0 of 1. Ranks above 0 print nothing from cli::run, so a bad flag is said once.
+TEST(Cli, MpiLaunchRankAndSizeFromTheEnvironment) {
+  for (const char* v :
+       {"OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMIX_SIZE", "PMI_RANK", "PMI_SIZE"})
+    ::unsetenv(v);
+  EXPECT_EQ(finverse::cli::mpi_launch_rank(), 0);
+  EXPECT_EQ(finverse::cli::mpi_launch_size(), 1);
+  ::setenv("PMIX_RANK", "2", 1);
+  ::setenv("PMIX_SIZE", "4", 1);
+  EXPECT_EQ(finverse::cli::mpi_launch_rank(), 2);
+  EXPECT_EQ(finverse::cli::mpi_launch_size(), 4);
+  CLI::App app{"t"};
+  finverse::cli::Standard standard(app, "t");
+  int value = 0;
+  app.add_option("--value", value)->required();
+  char arg0[] = "t";
+  char* argv[] = {arg0};
+  ::testing::internal::CaptureStderr();
+  EXPECT_EQ(finverse::cli::run(app, standard, 1, argv, [] { return 0; }), finverse::kExitError);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");  // rank 2 stays silent; rank 0 says it
+  ::unsetenv("PMIX_RANK");
+  ::unsetenv("PMIX_SIZE");
 }

@@ -23,6 +23,7 @@
 #include "fit/io/materials_file.hpp"
 #include "fit/parameter_space.hpp"
 #include "fit/quasi_static_objective.hpp"
+#include "fit/rank_pool.hpp"
 #include "fit/static_objective.hpp"
 #include "fit/target_motion.hpp"
 
@@ -219,6 +220,16 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
   const ParameterSpace& space = problem.space;
   const auto& factory = problem.factory;
   const ResidualFunction* objective = problem.objective.get();
+  // In an MPI job every rank has read the inputs; the serving ranks now evaluate for rank 0.
+  if (RankPool* pool = RankPool::current()) {
+    pool->set_functions({objective, problem.explore.get()});
+    if (pool->serving()) {
+      pool->serve(space);
+      return {};
+    }
+    log::info("fin-fit: " + std::to_string(pool->size()) + " MPI ranks evaluate, " + std::to_string(o.fit.threads) +
+              " threads each");
+  }
 
   // One evaluation at the materials file's values before any generation: an unconstrained root
   // node set, a singular model or a diverging solve is an input problem, reported as such.
