@@ -39,6 +39,9 @@ heavy+='|FinFsi.TrackedRootMotionDrivesTheFin|FinFsi.EffectsAreAppliedToTheStruc
 # sanitized in FsiCheckpoint.*), and the 3-D towed sphere of the case-file motion (its 2-D
 # neighbours run sanitized).
 heavy+='|FinFsi.RestartFromACheckpointContinuesBitForBit|MovingCaseFile.TowedSphereFeelsTheForceOfTheFixedOne'
+# One process per test executable, not per test: each sanitized process costs 0.2-0.6 s of
+# start-up and leak check, which over ~600 tests was most of two minutes (build_time.md).
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-asan -j "$jobs" --output-on-failure --timeout 1800 -L unit -E "$heavy"
+  /usr/bin/python3 tools/scripts/run_tests_per_executable.py --build build-asan --jobs "$jobs" --timeout 1800 \
+  -- -L unit -E "$heavy"
 echo "== all tests passed"
