@@ -46,6 +46,27 @@
 namespace fs = std::filesystem;
 using namespace finverse;
 
+namespace {
+
+// The sub-frames a frame at time t averages over its exposure (motion blur): their times and the
+// surface at each (`at_t`: the surface at t itself, the one sub-frame without blur).
+struct SubFrames {
+  std::vector<NdArray<double>> positions;
+  std::vector<double> times;
+};
+SubFrames sub_frames(const vision::MotionSource& source, const vision::FinSurface& surface, const NdArray<double>& at_t,
+                     double t, int samples, double exposure_dt) {
+  SubFrames s;
+  if (samples == 1) s.positions.push_back(at_t), s.times.push_back(t);
+  for (int j = 0; j < samples && samples > 1; ++j) {
+    s.times.push_back(t + exposure_dt * (j / (samples - 1.0) - 0.5));
+    s.positions.push_back(source.positions(surface, s.times.back()));
+  }
+  return s;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"fin-synth: simulate the fin's motion and render synchronized camera frames"};
   cli::Standard standard(app, "fin-synth");
@@ -125,20 +146,14 @@ int main(int argc, char** argv) {
         const auto p = source.positions(surface, t);
         std::copy(p.data.begin(), p.data.end(), truth.points.data.begin() + k * p.data.size());
         truth.time(k) = t;
-        std::vector<NdArray<double>> sub;
-        std::vector<double> sub_times;
-        if (blur_samples == 1) sub.push_back(p), sub_times.push_back(t);
-        for (int j = 0; j < blur_samples && blur_samples > 1; ++j) {
-          sub_times.push_back(t + exposure * dt * (j / (blur_samples - 1.0) - 0.5));
-          sub.push_back(source.positions(surface, sub_times.back()));
-        }
+        const SubFrames sub = sub_frames(source, surface, p, t, blur_samples, exposure * dt);
         if (fish_body) {  // the body's axis, the 2-D mode's true midline (issue 47)
           const auto a = fish_body->axis(p);
           std::copy(a.data.begin(), a.data.end(), truth.body_axis.data.begin() + k * a.data.size());
         }
         const double t0 = log::elapsed_seconds();
         for (std::size_t v = 0; v < cameras.size(); ++v) {
-          cv::Mat exposure = renderer.render_exposure(cameras[v], sub, sub_times);
+          cv::Mat exposure = renderer.render_exposure(cameras[v], sub.positions, sub.times);
           specks[v].draw(exposure, t);
           cv::Mat img = renderer.sensor(exposure, vision::noise_key(seed, v, k));
           if (video) {
