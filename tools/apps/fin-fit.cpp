@@ -192,6 +192,7 @@ void add_hybrid_plate_options(CLI::App* c, finverse::fit::validation::HybridPlat
 int main(int argc, char** argv) {
   CLI::App app{"fin-fit: Young's moduli of the fin's rays and membrane from its motion and loads"};
   finverse::cli::Standard standard(app, "fin-fit");
+  standard.mpi = true;  // fin-fit run's evaluations across ranks (tools/fit/rank_pool.hpp)
   app.require_subcommand(1);
 
   ProblemFlags flags;

@@ -116,6 +116,11 @@ int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::fun
   }
   try {
     log::set_level(quiet_rank ? log::Level::quiet : log::parse_level(standard.log_level));
+    if (mpi_launch_size() > 1 && !standard.mpi)
+      throw Error("started by an MPI launcher on " + std::to_string(mpi_launch_size()) + " ranks, but " +
+                  standard.tool +
+                  " does not run on MPI ranks (each rank would do the whole work and write the same files); run it "
+                  "without mpirun");
     if (standard.threads > 0) omp_set_num_threads(standard.threads);
     log::info(producer_string(standard.tool));
     log::info("configuration: " + effective_config(app).dump());

@@ -25,6 +25,10 @@ struct Standard {
   std::string tool;
   int threads = 0;  // 0: OMP_NUM_THREADS or the OpenMP default
   std::string log_level = "info";
+  // Whether the tool runs on MPI ranks (fin-fit run, issue 48). Started by an MPI launcher with
+  // more than one rank, any other tool is refused: each rank would do the whole work and write the
+  // same files.
+  bool mpi = false;
 };
 
 // Effective values of every option (defaults included), keyed by long name without dashes.

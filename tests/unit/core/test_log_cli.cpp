@@ -154,6 +154,18 @@ TEST(Cli, MpiLaunchRankAndSizeFromTheEnvironment) {
   ::testing::internal::CaptureStderr();
   EXPECT_EQ(finverse::cli::run(app, standard, 1, argv, [] { return 0; }), finverse::kExitError);
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");  // rank 2 stays silent; rank 0 says it
+  // A tool that does not run on ranks is refused by every rank, rank 0 saying why in one line.
+  ::setenv("PMIX_RANK", "0", 1);
+  CLI::App plain{"t"};
+  finverse::cli::Standard plain_standard(plain, "t");
+  ::testing::internal::CaptureStderr();
+  EXPECT_EQ(finverse::cli::run(plain, plain_standard, 1, argv, [] { return 0; }), finverse::kExitError);
+  const std::string said = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(said.find("t: error: started by an MPI launcher on 4 ranks, but t does not run on MPI ranks"),
+            std::string::npos)
+      << said;
+  plain_standard.mpi = true;
+  EXPECT_EQ(finverse::cli::run(plain, plain_standard, 1, argv, [] { return 0; }), finverse::kExitOk);
   ::unsetenv("PMIX_RANK");
   ::unsetenv("PMIX_SIZE");
 }
