@@ -208,6 +208,8 @@ void write_overlay_video(const fs::path& avi, const std::vector<long>& frames, c
     char label[64];
     std::snprintf(label, sizeof label, "frame %ld", frames[i]);
     cv::putText(img, label, {4, 14}, cv::FONT_HERSHEY_PLAIN, 0.9, cv::Scalar(0, 0, 255));
+    if (!m.valid)  // why this frame was not measured, as midline.h5 and the CSV say
+      cv::putText(img, "not measured: " + m.reason, {4, 28}, cv::FONT_HERSHEY_PLAIN, 0.9, cv::Scalar(0, 0, 255));
     out.write(img);
   }
   out.release();

@@ -57,7 +57,8 @@ void write_single_view_csv(const std::filesystem::path& csv, const SingleViewRes
 // Everything in HDF5 with the run's configuration (provenance).
 void write_single_view_h5(const std::filesystem::path& h5, const SingleViewResult& r, const SingleViewOptions& o,
                           const nlohmann::json& config, const std::vector<std::filesystem::path>& inputs);
-// MJPG AVI: each frame with the midline, the tip and its track drawn over it.
+// MJPG AVI: each frame with the midline, the tip and its track drawn over it; a frame not measured
+// carries its reason.
 void write_overlay_video(const std::filesystem::path& avi, const std::vector<long>& frames,
                          const std::function<cv::Mat(long)>& load, const SingleViewResult& r, double fps);
 
