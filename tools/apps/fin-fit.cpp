@@ -17,10 +17,8 @@
 #include <vector>
 
 #include "core/cli.hpp"
-#include "core/log.hpp"
 #include "core/summary.hpp"
 #include "fit/io/file_fit.hpp"
-#include "fit/rank_pool.hpp"
 #include "fit/validation/fin_twin_grade.hpp"
 #include "fit/validation/hessenthaler_flap_fit.hpp"
 #include "fit/validation/hybrid_plate_fit.hpp"
@@ -266,7 +264,7 @@ int main(int argc, char** argv) {
   fc->add_option("--load-steps", fl.load_steps, "initial Newton load steps")->capture_default_str();
 
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
-    if (finverse::fit::launched_by_mpi() && app.got_subcommand("run") == false)
+    if (finverse::cli::mpi_launch_size() > 1 && !app.got_subcommand("run"))
       throw finverse::Error(
           "started by an MPI launcher: only fin-fit run spreads its evaluations over ranks; run "
           "this subcommand without mpirun");
@@ -313,11 +311,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     o.fit.threads = finverse::cli::threads_in_use();
-    // Under mpirun: rank 0 fits, the others evaluate for it (tools/fit/rank_pool.hpp).
-    finverse::fit::RankPool ranks;
-    if (ranks.serving()) finverse::log::set_level(finverse::log::Level::quiet);
     const auto result = finverse::fit::io::run_fit_from_files(o, finverse::cli::effective_config(app));
-    if (ranks.serving()) return 0;
+    if (finverse::cli::mpi_launch_rank() > 0) return 0;  // a serving rank: rank 0 writes and says
     std::cerr << "fin-fit run: objective " << result.best_objective << " m after " << result.evaluations
               << " evaluations, wrote " << run.out << "\n";
     return 0;

@@ -1,17 +1,10 @@
-// The fit's evaluations across MPI ranks (issue 48, deliverable 3). One MPI job: every rank reads
-// the same inputs and builds the same residual functions; rank 0 runs the optimisers (pagmo's GA,
-// CMA-ES, the Levenberg-Marquardt polish) and the other ranks serve evaluations. A batch of
-// parameter vectors (a generation, the polish's Jacobian columns) is broadcast, rank r evaluates
-// the vectors i with i mod size = r with its own threads, and the results go back to rank 0 by
-// index, so the fit is the threaded fit's, byte for byte, for any rank count: an evaluation is a
-// pure function of its vector and of the state every rank shares (expect_near is broadcast too).
-// pagmo2 has no MPI island and its batch evaluators do not cover the SGA of Debian's 2.18, so the
-// distribution sits around our own batch evaluation (population_evaluation.hpp), as the threads
-// do.
-//
-// The pool exists only in a job started by an MPI launcher (mpirun, srun: their environment
-// says so); a plain run never initialises MPI. A launch by MPI of an executable built without it
-// is refused (the rank count would be silently ignored and every rank would write the files).
+// The fit's evaluations across MPI ranks (issue 48, deliverable 3). Every rank reads the same
+// inputs and builds the same residual functions; rank 0 runs the optimisers, and each batch of
+// evaluate_batch (a generation, the polish's Jacobian columns) is broadcast, rank r evaluating the
+// vectors i with i mod size = r, results back by index. An evaluation is a pure function of its
+// vector and of the state every rank shares (expect_near is broadcast too), so materials.h5 is the
+// threaded run's byte for byte. pagmo2 has no MPI island, hence the distribution around our own
+// batch evaluation. MPI is initialised only when a launcher's environment says so.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,24 +1,11 @@
-// The fish's centreline in one silhouette seen from above, with the appendages ignored (issue 47:
-// the 2-D mode on deep-bodied fish whose pectoral fins stick out of the silhouette).
-//
-// The body core is the silhouette opened by a disc whose radius is kCoreFraction of the
-// silhouette's largest inscribed radius (the trunk's half-width): a fin, thinner than the trunk,
-// is taken off, while the trunk, a blunt head included, keeps its outline wherever its outline is
-// rounder than the disc. The opening is exact (Euclidean): the points within r of the points at
-// least r deep. Behind the trunk (the peduncle and the caudal fin, narrower than the disc) the
-// silhouette itself is used; a fish has no appendage there that sticks out sideways seen from
-// above.
-//
-// The centreline is read on slices across the record's axis, kSlicesPerStation per station at
-// one-pixel steps; the station's point is the median of its slices. On each slice, the
-// silhouette's run and the core's run inside it. Where they agree (no appendage), the middle of
-// the run. Where the silhouette overhangs the core on one side only, a fin is attached there, and
-// the flank beneath it is hidden: then the middle is the clean edge moved by the trunk's
-// half-width, read off the clean slices around it (a quadratic in s through them). The opening's
-// fillet where a fin meets the trunk (a disc that fits in the trunk and the fin's base together)
-// is what keeps the core's own edge on that side from serving. Where the silhouette overhangs on
-// both sides (the core's rounded ends; fins on both flanks, as symmetric as the body), the middle
-// of the silhouette's run.
+// The fish's centreline in one silhouette seen from above, fins left out (issue 47; method and
+// measurements: docs/studies/midline_deep_body.md). The body core is the silhouette opened by a
+// disc of kCoreFraction of its largest inscribed radius: fins, thinner than the trunk, go; a
+// blunt head stays. On slices across the record's axis the middle of the silhouette's run where
+// it agrees with the core's. Where it overhangs the core on one side a fin hides that flank, and
+// the opening's fillet under the fin keeps the core's edge from serving either, so the middle is
+// the clean edge moved by the trunk's half-width fitted through the clean slices. Overhung on
+// both sides: the core's middle when the core is whole there, else the silhouette's.
 #pragma once
 
 #include <cstddef>

@@ -216,18 +216,19 @@ MisfitReport evaluate_misfit(const FileFitOptions& o, const std::vector<std::pai
 }
 
 FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& config) {
+  RankPool ranks;  // under mpirun: rank 0 fits, the others evaluate for it (rank_pool.hpp)
   FitProblem problem = load_fit_problem(o);
   const ParameterSpace& space = problem.space;
   const auto& factory = problem.factory;
   const ResidualFunction* objective = problem.objective.get();
   // In an MPI job every rank has read the inputs; the serving ranks now evaluate for rank 0.
-  if (RankPool* pool = RankPool::current()) {
-    pool->set_functions({objective, problem.explore.get()});
-    if (pool->serving()) {
-      pool->serve(space);
+  if (ranks.size() > 1) {
+    ranks.set_functions({objective, problem.explore.get()});
+    if (ranks.serving()) {
+      ranks.serve(space);
       return {};
     }
-    log::info("fin-fit: " + std::to_string(pool->size()) + " MPI ranks evaluate, " + std::to_string(o.fit.threads) +
+    log::info("fin-fit: " + std::to_string(ranks.size()) + " MPI ranks evaluate, " + std::to_string(o.fit.threads) +
               " threads each");
   }
 

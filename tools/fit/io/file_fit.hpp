@@ -82,6 +82,8 @@ std::string format_misfit(const MisfitReport& report);
 std::vector<std::pair<std::string, double>> parse_parameter_values(const std::vector<std::string>& entries);
 
 // Throws fit::InvalidInput / fem::InvalidInput / finverse::Error naming the file for bad input.
+// Under an MPI launcher the ranks share the evaluations (fit/rank_pool.hpp); a serving rank
+// writes nothing and returns an empty result.
 FitResult run_fit_from_files(const FileFitOptions& options, const nlohmann::json& config);
 
 }  // namespace finverse::fit::io
