@@ -105,6 +105,53 @@ rule validation_fit_trout_twin:
         " 2> {log} " + METRIC_MISSED_IS_A_RESULT
 
 
+# The same twin fitted through tracking noise (issue 45, goal 6): the twin's target with
+# fin-track's mean vertex error (0.3 % c) as independent Gaussian noise, target and drive alike,
+# one fit per seed (fin-fit run --target-noise); fin-fit grade_twin_noise grades the intervals'
+# coverage, the rays identified and the median ray error over the seeds.
+_TWIN_NOISE = "results/validation/fit_trout_noise"
+_TWIN_NOISE_SEEDS = range(2 if COARSE else 10)
+register_validation("fit_trout_noise", "22-parameter trout fin twin through fin-track's noise, 10 seeds: 95 % "
+                    "interval coverage >= 80 %, rays identified >= 80 %, median ray error <= 5 %")
+
+
+rule fit_trout_noise_fit:
+    input:
+        exe=EXE("fin-fit"),
+        mesh=f"{_FIT_OUT}/mesh.h5",
+        motion=f"{_TWIN}/twin_motion.h5",
+        loads=f"{_FIT_OUT}/loads.h5",
+        materials=_TWIN_TRUTH,
+    output:
+        f"{_TWIN_NOISE}/seed{{seed}}/materials.h5",
+    log:
+        "results/logs/validation/fit_trout_noise_seed{seed}.log",
+    wildcard_constraints:
+        seed=r"\d+",
+    threads: THREADS
+    params:
+        # Stress-free bases: a carried base turns the noise into stress (docs/studies/fit_noise_twin.md).
+        flags=f"--seed {config['seed']} " + _TWIN_FLAGS + " --target-noise 0.003 --base stress_free --increment hybrid",
+    shell:
+        "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} run --mesh {input.mesh} --motion {input.motion}"
+        " --loads {input.loads} --materials {input.materials} --out {output} {params.flags}"
+        " --target-noise-seed $((1000 + {wildcards.seed})) 2> {log}"
+
+
+rule validation_fit_trout_noise:
+    input:
+        exe=EXE("fin-fit"),
+        materials=expand(f"{_TWIN_NOISE}/seed{{seed}}/materials.h5", seed=_TWIN_NOISE_SEEDS),
+        truth=_TWIN_TRUTH,
+    output:
+        f"{_TWIN_NOISE}/summary.json",
+    log:
+        "results/logs/validation/fit_trout_noise.log",
+    shell:
+        "{input.exe} grade_twin_noise --materials-h5 {input.materials} --truth {input.truth}"
+        " --out-dir results/validation 2> {log} " + METRIC_MISSED_IS_A_RESULT
+
+
 # The fit is the pipeline's last stage (after loads): `snakemake -c2` writes materials.h5. Its
 # budget (config fit.flags) keeps it to minutes: a short GA for the basin, the Levenberg-Marquardt
 # polish for the digits and the Jacobian that the uncertainty comes from. Its bases are stress-free

@@ -7,6 +7,7 @@
 //   fin-fit uniform_plate                                            sec. 3.3 twin, eq. (1)
 //   fin-fit hybrid_plate --case data/cases/hybrid_plate_small_heave.json   eq. (1), eq. (2)
 //   fin-fit noise | identifiability --case ...                       noise; no loads
+//   fin-fit grade_twin_noise --materials-h5 s0.h5 s1.h5 ... --truth trout_fin_materials.json
 //   fin-fit flap --reference data/reference/hessenthaler2017.json    flap modulus (issue 34)
 #include <CLI/CLI.hpp>
 #include <chrono>
@@ -20,6 +21,7 @@
 #include "core/summary.hpp"
 #include "fit/io/file_fit.hpp"
 #include "fit/validation/fin_twin_grade.hpp"
+#include "fit/validation/fin_twin_noise_grade.hpp"
 #include "fit/validation/hessenthaler_flap_fit.hpp"
 #include "fit/validation/hybrid_plate_fit.hpp"
 #include "fit/validation/uniform_plate_fit.hpp"
@@ -97,6 +99,11 @@ void add_problem_options(CLI::App* c, ProblemFlags& f) {
                 "with linear, the polish and intervals use stored; docs/studies/fit_evaluation_speed.md)")
       ->check(CLI::IsMember({"newton", "stored", "linear", "hybrid"}))
       ->capture_default_str();
+  c->add_option("--target-noise", f.o.target_noise,
+                "a synthetic check: add Gaussian noise of this mean vertex error (fraction of the chord, e.g. "
+                "0.003 for fin-track's) to the motion before fitting (0: none)")
+      ->capture_default_str();
+  c->add_option("--target-noise-seed", f.o.target_noise_seed, "seed of --target-noise")->capture_default_str();
 }
 
 // The help's closing paragraph for run and evaluate: how to give one's own data.
@@ -185,6 +192,46 @@ void add_hybrid_plate_options(CLI::App* c, finverse::fit::validation::HybridPlat
   c->add_option("--noise-objective", hp.noise_objective, "noise: dynamic or quasi_static")->capture_default_str();
 }
 
+// The fin twin's grading subcommands: one fit against the true materials, or a fit per noise seed.
+struct GradeFlags {
+  std::string graded, truth, twin_name = "fit_trout_twin";
+  std::vector<std::string> noisy_fits;
+  std::string noise_name = "fit_trout_noise";
+};
+
+std::pair<CLI::App*, CLI::App*> add_grade_commands(CLI::App& app, GradeFlags& g, std::string& out_dir) {
+  auto* gc = app.add_subcommand("grade_twin", "fin twin: a fin-fit run's materials.h5 against the true materials");
+  gc->add_option("--materials-h5", g.graded, "materials.h5 of fin-fit run on the twin's target")->required();
+  gc->add_option("--name", g.twin_name, "case name (<out-dir>/<name>/summary.json)")->capture_default_str();
+  auto* nc = app.add_subcommand("grade_twin_noise", "fin twin through tracking noise: fits of several seeds graded");
+  nc->add_option("--materials-h5", g.noisy_fits, "materials.h5 of fin-fit run --target-noise, one per seed")
+      ->required();
+  nc->add_option("--name", g.noise_name, "case name (<out-dir>/<name>/summary.json)")->capture_default_str();
+  for (auto* c : {gc, nc}) {
+    c->add_option("--truth", g.truth, "materials JSON the target was computed with")->required();
+    c->add_option("--out-dir", out_dir, "directory that receives <case>/summary.json")->capture_default_str();
+  }
+  return {gc, nc};
+}
+
+int run_grade(const GradeFlags& g, const CLI::App* which, const std::string& out_dir) {
+  namespace v = finverse::fit::validation;
+  using finverse::stage::Materials;
+  const auto truth = finverse::fem::io::read_material_spec(g.truth);
+  if (which->get_name() == "grade_twin") {
+    auto summary = v::grade_fin_twin(finverse::stage::read<Materials>(g.graded), truth, g.twin_name);
+    summary.parameters()["materials_h5"] = g.graded;
+    summary.parameters()["truth"] = g.truth;
+    return finish(std::move(summary), g.twin_name, out_dir, 0.0);
+  }
+  std::vector<Materials> fits;
+  for (const auto& f : g.noisy_fits) fits.push_back(finverse::stage::read<Materials>(f));
+  auto summary = v::grade_fin_twin_noise(fits, g.noisy_fits, truth, g.noise_name);
+  summary.parameters()["materials_h5"] = g.noisy_fits;
+  summary.parameters()["truth"] = g.truth;
+  return finish(std::move(summary), g.noise_name, out_dir, 0.0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -242,13 +289,8 @@ int main(int argc, char** argv) {
                  "evaluation cap of each Levenberg-Marquardt polish (0: 6 (n + 1))")
       ->capture_default_str();
 
-  // A fin twin's materials.h5 against the modulus field its target was computed with.
-  std::string graded, truth_file, twin_name = "fit_trout_twin";
-  auto* gc = app.add_subcommand("grade_twin", "fin twin: a fin-fit run's materials.h5 against the true materials");
-  gc->add_option("--materials-h5", graded, "materials.h5 of fin-fit run on the twin's target")->required();
-  gc->add_option("--truth", truth_file, "materials JSON the target was computed with")->required();
-  gc->add_option("--name", twin_name, "case name (<out-dir>/<name>/summary.json)")->capture_default_str();
-  gc->add_option("--out-dir", out_dir, "directory that receives <case>/summary.json")->capture_default_str();
+  GradeFlags grade;
+  auto [gc, nc] = add_grade_commands(app, grade, out_dir);
 
   // The Hessenthaler (2017) flap: E from its measured buoyancy-only deflection (issue 34).
   finverse::fit::validation::FlapFitOptions fl;
@@ -275,14 +317,7 @@ int main(int argc, char** argv) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return finish(std::move(summary), fl.name, out_dir, wall);
     }
-    if (*gc) {
-      auto summary =
-          finverse::fit::validation::grade_fin_twin(finverse::stage::read<finverse::stage::Materials>(graded),
-                                                    finverse::fem::io::read_material_spec(truth_file), twin_name);
-      summary.parameters()["materials_h5"] = graded;
-      summary.parameters()["truth"] = truth_file;
-      return finish(std::move(summary), twin_name, out_dir, 0.0);
-    }
+    if (*gc || *nc) return run_grade(grade, *gc ? gc : nc, out_dir);
     if (*uc) {
       const auto start = std::chrono::steady_clock::now();
       up.fit.threads = finverse::cli::threads_in_use();

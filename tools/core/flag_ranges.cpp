@@ -171,6 +171,7 @@ const std::map<std::string, Rule>& table() {
       {"core-margin", Rule::non_negative},
       // fractions
       {"min-iou", Rule::fraction},
+      {"target-noise", Rule::fraction},
       {"marker-fraction", Rule::fraction},
       {"board-fraction", Rule::fraction},
       {"keypoint-min-score", Rule::fraction},

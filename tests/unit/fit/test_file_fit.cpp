@@ -16,6 +16,7 @@
 #include "fem/io/file_run.hpp"
 #include "fit/errors.hpp"
 #include "fit/io/file_fit.hpp"
+#include "fit/io/tracking_noise.hpp"
 
 using namespace finverse;
 namespace fs = std::filesystem;
@@ -207,4 +208,38 @@ TEST_F(FileFit, StaticLoadLevelsFromStructuralFilesGiveBackTheRayModulus) {
   EXPECT_NEAR(m.best.data[0] / 1e9, 1.0, 1e-3);
   EXPECT_EQ(m.identified.data[0], 1) << m.verdict[0];
   EXPECT_EQ(*m.objective_kind, "static");
+}
+
+// A synthetic check (issue 45, goal 6): --target-noise puts a tracking's error back into the
+// motion, target and drive alike; the fit through it must still cover the truth with its interval
+// or say it cannot tell. The noise needs the mesh's chord to be sized.
+TEST_F(FileFit, ThroughTrackingNoiseTheIntervalCoversTheModulusOrSaysItCannotTell) {
+  o_.target_noise = 0.003;
+  o_.stress_free_base = true;
+  expect_failure("chord");
+  mesh_.chord = test::strip::chord;
+  stage::write(dir_ / "mesh.h5", mesh_, Provenance{"test", {}, {}});
+  fit::io::run_fit_from_files(o_, {});
+  const auto m = stage::read<stage::Materials>(o_.out);
+  std::printf("strip through 0.3 %% c noise: E_rays %.6e, 95 %% [%.4e, %.4e], identified %d\n", m.best.data[0],
+              m.ci95(0, 0), m.ci95(0, 1), m.identified.data[0]);
+  EXPECT_GT(std::abs(m.best.data[0] / 1e9 - 1.0), 1e-6);  // the noise arrived
+  EXPECT_TRUE(m.identified.data[0] == 0 || (m.ci95(0, 0) <= 1e9 && 1e9 <= m.ci95(0, 1)));
+}
+
+TEST(TrackingNoise, MeanVertexErrorAsAskedAndTheSameForTheSameSeed) {
+  stage::Motion m;
+  m.time = NdArray<double>({2}, {0.0, 0.01});
+  m.points = NdArray<double>({2, 5000, 3}, 1.0);
+  m.velocity = NdArray<double>({2, 5000, 3}, 0.0);
+  const double mean_error = 2e-4;
+  const auto a = fit::io::with_tracking_noise(m, fit::io::sigma_for_mean_error(mean_error), 7);
+  double mean = 0;
+  for (size_t i = 0; i < a.points.data.size(); i += 3)
+    mean += std::hypot(a.points.data[i] - 1, a.points.data[i + 1] - 1, a.points.data[i + 2] - 1);
+  mean /= a.points.data.size() / 3.0;
+  EXPECT_NEAR(mean / mean_error, 1.0, 0.02);  // 10 000 samples: 0.4 % standard error
+  EXPECT_TRUE(a.velocity.data.empty());       // a tracked motion's velocity is its positions'
+  EXPECT_EQ(fit::io::with_tracking_noise(m, 1e-4, 7).points, fit::io::with_tracking_noise(m, 1e-4, 7).points);
+  EXPECT_NE(fit::io::with_tracking_noise(m, 1e-4, 7).points, fit::io::with_tracking_noise(m, 1e-4, 8).points);
 }

@@ -21,6 +21,7 @@
 #include "fit/errors.hpp"
 #include "fit/fin_parameters.hpp"
 #include "fit/io/materials_file.hpp"
+#include "fit/io/tracking_noise.hpp"
 #include "fit/parameter_space.hpp"
 #include "fit/quasi_static_objective.hpp"
 #include "fit/rank_pool.hpp"
@@ -80,6 +81,14 @@ FitProblem load_fit_problem(const FileFitOptions& o) {
   // Stages that disagree (issue 33): the motion on another mesh, loads from another mesh or motion.
   check_made_from(o.motion, o.mesh);
   if (o.loads) check_made_from(*o.loads, o.mesh), check_made_from(*o.loads, o.motion);
+  if (o.target_noise > 0) {
+    if (!mesh.chord || !(*mesh.chord > 0))
+      throw InvalidInput(o.mesh.string() + ": --target-noise needs the mesh's chord attribute (a fin mesh has one)");
+    const double sigma = sigma_for_mean_error(o.target_noise * *mesh.chord);
+    motion = with_tracking_noise(std::move(motion), sigma, o.target_noise_seed);
+    log::info(o.motion.string() + ": Gaussian noise of " + sci(sigma) + " m per component added (mean vertex error " +
+              sci(o.target_noise) + " c, seed " + std::to_string(o.target_noise_seed) + ")");
+  }
   if (loads && !loads->time.data.empty() &&
       fem::io::needs_periodic_extension(motion, loads->time.data.front(), loads->time.data.back())) {
     motion = fem::io::periodic_extension(motion, loads->time.data.front(), loads->time.data.back());
@@ -258,6 +267,9 @@ FitResult run_fit_from_files(const FileFitOptions& o, const nlohmann::json& conf
     s << rate << " evaluations/s, ETA " << log::format_duration(eta);
     log::info(s.str());
   };
+  // The polish is minutes on a fin (a Jacobian of n columns per step): each step is said too.
+  if (!fo.polish_options.progress)
+    fo.polish_options.progress = [](const std::string& line) { log::info("fin-fit polish: " + line); };
   FitResult result = run_fit(space, *objective, fo, o.objective, problem.explore.get());
 
   for (int i = 0; i < space.size(); ++i) {

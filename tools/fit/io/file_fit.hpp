@@ -10,6 +10,7 @@
 // warned about.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -51,6 +52,10 @@ struct FileFitOptions {
   // quasi_static with a converged increment (newton, stored): the GA and CMA-ES explore with the linearised one,
   // the polish and the intervals use Newton's (fit_driver.hpp's explore; goal 8 of issue 45).
   bool explore_linear = false;
+  // A synthetic check (issue 45, goal 6): the motion, target and drive alike, with isotropic
+  // Gaussian noise of this mean vertex error [fraction of the mesh's chord] (0: none) and seed.
+  double target_noise = 0;
+  std::uint64_t target_noise_seed = 1;
   FitOptions fit;
 };
 

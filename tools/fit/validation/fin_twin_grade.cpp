@@ -10,9 +10,7 @@
 
 namespace finverse::fit::validation {
 
-namespace {
-
-double truth_value(const std::string& name, const fem::io::MaterialSpec& truth) {
+double fin_twin_truth_value(const std::string& name, const fem::io::MaterialSpec& truth) {
   if (name == "E_membrane") return truth.membrane.youngs_modulus;
   if (name == "E_rays") return truth.rays.youngs_modulus;
   if (name == "nu") return truth.membrane.poisson_ratio;
@@ -25,8 +23,6 @@ double truth_value(const std::string& name, const fem::io::MaterialSpec& truth) 
   throw InvalidInput("fin twin: the truth defines no parameter '" + name + "'");
 }
 
-}  // namespace
-
 Summary grade_fin_twin(const stage::Materials& m, const fem::io::MaterialSpec& truth, const std::string& case_name,
                        const FinTwinGoals& goals) {
   Summary s("validation", case_name,
@@ -36,7 +32,7 @@ Summary grade_fin_twin(const stage::Materials& m, const fem::io::MaterialSpec& t
   int rays = 0, identified = 0;
   for (size_t i = 0; i < m.names.size(); ++i) {
     const std::string& name = m.names[i];
-    const double t = truth_value(name, truth), v = m.best.data[i];
+    const double t = fin_twin_truth_value(name, truth), v = m.best.data[i];
     const bool ok = m.identified.data.empty() || m.identified.data[i] != 0;
     if (name.rfind("E_ray", 0) == 0 && name != "E_rays") {
       ++rays;

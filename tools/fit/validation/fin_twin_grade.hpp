@@ -19,8 +19,10 @@ struct FinTwinGoals {
   double membrane = 0.10;
 };
 
-// Parameters: E_membrane, E_ray<id>, E_rays, nu (fin_parameters.hpp). Throws fit::InvalidInput
-// for a parameter name that the truth does not define.
+// The truth's value of a fin parameter: E_membrane, E_ray<id>, E_rays, nu (fin_parameters.hpp).
+// Throws fit::InvalidInput for a parameter name that the truth does not define.
+double fin_twin_truth_value(const std::string& name, const fem::io::MaterialSpec& truth);
+
 Summary grade_fin_twin(const stage::Materials& fitted, const fem::io::MaterialSpec& truth,
                        const std::string& case_name, const FinTwinGoals& goals = {});
 

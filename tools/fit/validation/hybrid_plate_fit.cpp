@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <numbers>
 #include <random>
 #include <sstream>
 
@@ -14,6 +13,7 @@
 #include "fit/dynamic_objective.hpp"
 #include "fit/errors.hpp"
 #include "fit/io/materials_file.hpp"
+#include "fit/io/tracking_noise.hpp"
 #include "fit/quasi_static_objective.hpp"
 #include "fit/validation/hybrid_plate_setup.hpp"
 #include "fit/validation/hybrid_plate_twin.hpp"
@@ -113,8 +113,7 @@ Summary run_hybrid_plate_noise(const HybridPlateFitOptions& o) {
   const HybridPlateTwinRun t = make_hybrid_plate_twin(o, true);
   const ParameterSpace space = hybrid_plate_space(*t.factory);
   const Eigen::VectorXd truth = space.truth();
-  // Isotropic Gaussian per node: E|e| = sigma 2 sqrt(2/pi) for three components.
-  const double sigma = o.noise_over_chord * t.plate.chord / (2 * std::sqrt(2 / std::numbers::pi));
+  const double sigma = io::sigma_for_mean_error(o.noise_over_chord * t.plate.chord);
   std::vector<int> covered(space.size(), 0), identified(space.size(), 0);
   std::vector<double> abs_error(space.size(), 0.0);
   for (int seed = 0; seed < o.noise_seeds; ++seed) {
