@@ -35,7 +35,8 @@ void ParameterisedEffect::configure(const nlohmann::json& spec) {
   for (const auto& p : params_) v.push_back(p.value);
   for (const auto& [key, val] : spec.items()) {
     if (key == "name") continue;
-    auto it = std::find_if(params_.begin(), params_.end(), [&](const EffectParameter& p) { return p.name == key; });
+    auto it =
+        std::find_if(params_.begin(), params_.end(), [&key = key](const EffectParameter& p) { return p.name == key; });
     if (it != params_.end()) {
       if (!val.is_number()) throw InvalidInput("effect " + name_ + ": " + key + " must be a number");
       v[static_cast<std::size_t>(it - params_.begin())] = val.get<double>();
