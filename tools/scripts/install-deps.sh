@@ -18,6 +18,8 @@
 #   clang, libclang-rt-14-dev  the sanitized test build (test-all.sh; the runtime is only a
 #                        recommendation of clang): clang compiles that build in about
 #                        0.65 of GCC's time, which keeps CI under its 40 minutes (build_time.md).
+#   slurm-wlm            SLURM's daemons and commands for ctest workflow_slurm: the workflow through
+#                        profiles/slurm on a one-node cluster the test starts itself (issue 48).
 #   libopenmpi-dev, openmpi-bin  MPI for fin-fit run's evaluations across ranks (issue 48): the
 #                        engine a cluster already has, not a scheduler of ours; mpirun for its test.
 set -euo pipefail
@@ -30,7 +32,7 @@ pkgs=(
   libeigen3-dev libopencv-dev libcgal-dev libvtk9-dev libhdf5-dev
   libpagmo-dev libcli11-dev libgtest-dev libgmock-dev nlohmann-json3-dev libsuitesparse-dev libyaml-cpp-dev
   clang libclang-rt-14-dev libomp-dev libopenmpi-dev openmpi-bin
-  snakemake python3-jsonschema python3-yaml python3-numpy python3-h5py python3-matplotlib
+  snakemake slurm-wlm python3-jsonschema python3-yaml python3-numpy python3-h5py python3-matplotlib
 )
 peers=(openfoam calculix-ccx libhypre-dev)
 

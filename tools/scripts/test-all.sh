@@ -8,11 +8,13 @@ cd "$(dirname "$0")/../.."
 jobs=${JOBS:-$(nproc)}
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
+# Each stage's heading with the time it starts, so that a CI log shows where the minutes go.
+stage() { echo "== $* ($(date -u +%T))"; }
 
-echo "== Release build"
+stage "Release build"
 cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DFINVERSE_WERROR=ON -DFINVERSE_SKIP_AREAS=
 cmake --build build -j "$jobs"
-echo "== Debug + ASan/UBSan configure"
+stage "Debug + ASan/UBSan configure"
 # -O1 keeps the sanitizers exact (ASan's own advice) and makes the sanitized tests several times
 # faster than -O0. Warnings are errors only in the Release build. -g1 (line tables only) is all a
 # sanitizer report needs for file:line stack frames; full -g made the objects 2.4x larger.
@@ -23,16 +25,21 @@ if command -v clang++ >/dev/null; then asan_compiler=(-DCMAKE_C_COMPILER=clang -
 cmake -S . -B build-asan "${generator[@]}" "${asan_compiler[@]}" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
   -DFINVERSE_SANITIZE=ON -DFINVERSE_WERROR=OFF -DFINVERSE_SKIP_AREAS=
 
-echo "== Release tests, the sanitized build beside them"
+stage "Release tests, the sanitized build beside them"
 # The Release tests leave about a sixth of the cores idle (the workflow test's serial stages at
 # the end); the sanitized build, at the lowest priority, takes what they leave. Only what the unit
 # tests need: the sanitized build runs no other test. Its output goes to a log, shown on failure.
+# Its own process group (set -m), to be stopped whole if the tests fail; not its own session
+# (setsid): with the kernel's autogroups a session is scheduled as a whole, and nice would then
+# count only inside it (measured: the workflow test ran at half speed beside a setsid build).
 asan_log=build-asan/build.log
-setsid nice -n 19 cmake --build build-asan -j "$jobs" --target unit_tests > "$asan_log" 2>&1 &
+set -m
+nice -n 19 cmake --build build-asan -j "$jobs" --target unit_tests > "$asan_log" 2>&1 &
 asan_build=$!
+set +m
 trap 'kill -- -"$asan_build" 2>/dev/null || true' EXIT
 ctest --test-dir build -j "$jobs" --output-on-failure --timeout 900
-echo "== Debug + ASan/UBSan build (finishing)"
+stage "Debug + ASan/UBSan build (finishing)"
 if ! wait "$asan_build"; then
   tail -n 60 "$asan_log"
   echo "the sanitized build failed (whole log: $asan_log)"
@@ -40,7 +47,7 @@ if ! wait "$asan_build"; then
 fi
 trap - EXIT
 tail -n 1 "$asan_log"
-echo "== Debug + ASan/UBSan unit tests"
+stage "Debug + ASan/UBSan unit tests"
 # Tests that repeat a code path many times over (objective scans, short fits, a noise run, a whole
 # fin-track run, a 48-pose calibration) take 10-90 s each under the sanitizers; their code paths run
 # in the quicker tests of the same suites, and they themselves run in the Release stage above.
@@ -60,4 +67,4 @@ heavy+='|FinFsi.RestartFromACheckpointContinuesBitForBit|MovingCaseFile.TowedSph
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   /usr/bin/python3 tools/scripts/run_tests_per_executable.py --build build-asan --jobs "$jobs" --timeout 1800 \
   -- -L unit -E "$heavy"
-echo "== all tests passed"
+stage "all tests passed"
