@@ -20,8 +20,13 @@ stage "Debug + ASan/UBSan configure"
 # sanitizer report needs for file:line stack frames; full -g made the objects 2.4x larger.
 # clang, where installed (install-deps.sh installs it), compiles this build in about 0.65 of GCC's
 # time; the Release build stays on GCC, Debian's own compiler (docs/studies/build_time.md).
+# clang also compiles a target's files in batches of 64 instead of 16: its optimiser then works on
+# each template instantiation once per 64 files (two of fem's batches together: 150 s -> 116 s);
+# GCC gains nothing from larger batches (100 s -> 120 s), so the Release build keeps 16.
 asan_compiler=()
-if command -v clang++ >/dev/null; then asan_compiler=(-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++); fi
+if command -v clang++ >/dev/null; then
+  asan_compiler=(-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DFINVERSE_UNITY_BATCH=64)
+fi
 cmake -S . -B build-asan "${generator[@]}" "${asan_compiler[@]}" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
   -DFINVERSE_SANITIZE=ON -DFINVERSE_WERROR=OFF -DFINVERSE_SKIP_AREAS=
 
@@ -62,6 +67,14 @@ heavy+='|FinFsi.TrackedRootMotionDrivesTheFin|FinFsi.EffectsAreAppliedToTheStruc
 # sanitized in FsiCheckpoint.*), and the 3-D towed sphere of the case-file motion (its 2-D
 # neighbours run sanitized).
 heavy+='|FinFsi.RestartFromACheckpointContinuesBitForBit|MovingCaseFile.TowedSphereFeelsTheForceOfTheFixedOne'
+# The five slowest of the rest, 25-97 s each under the sanitizers (1-9 s in Release): the 3-D
+# heaving sphere's cut-cell balance (its 2-D twin MovingBody.CutCellBalance* runs sanitized), the
+# rigid-pitching plate as a closed body (the sheet variant runs sanitized), and three scans of
+# the fin's eq. (2) objective (QuasiStaticObjective's other tests and fem's LinearIncrement.* run
+# sanitized). Measured in docs/studies/build_time.md.
+heavy+='|ImmersedFlow3D.CutCellBalanceSmoothsTheForceOfAHeavingSphere|PitchingPlateFsi.StiffPlateFollowsTheRigidPitching'
+heavy+='|QuasiStaticObjective.SmallHeaveTwinWithLoadsIsClosestAtTheTruthScale'
+heavy+='|QuasiStaticObjective.LinearIncrementFollowsNewtonOnTheFin|QuasiStaticObjective.WithoutLoadsTheModulusScaleIsNotIdentifiable'
 # One process per test executable, not per test: each sanitized process costs 0.2-0.6 s of
 # start-up and leak check, which over ~600 tests was most of two minutes (build_time.md).
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

@@ -30,7 +30,7 @@ std::string error_of(const std::filesystem::path& p) {
 }
 
 TEST(CaseFile, ValidationCaseKeysBecomeItsFlagsAndCoarseOverridesThem) {
-  test::ScratchDir dir;
+  finverse::test::ScratchDir dir;
   write(dir / "c.yaml",
         "case: dfg_2d2\nreference: ../ref.json\ngrid:\n  cells_per_diameter: 24\n  wall_stretch_ratio: 0.97\n"
         "time: {t_end: 10}\nsolver: {staircase_balance: true, zero_wall_pressure_gradient: false}\n"
@@ -55,7 +55,7 @@ TEST(CaseFile, ValidationCaseKeysBecomeItsFlagsAndCoarseOverridesThem) {
 }
 
 TEST(CaseFile, RunOfAValidationCaseBecomesItsSubcommandAndCommandLineFlagsComeLast) {
-  test::ScratchDir dir;
+  finverse::test::ScratchDir dir;
   write(dir / "c.yaml",
         "case: sphere_re100\ngrid: {cells_per_diameter: 20}\ncoarse: {grid: {cells_per_diameter: 6}}\n");
   const auto flags_of = [](const std::string& name) -> std::optional<std::vector<std::string>> {
@@ -83,7 +83,7 @@ TEST(CaseFile, RunOfAValidationCaseBecomesItsSubcommandAndCommandLineFlagsComeLa
 // The sphere validation's own set-up and the same flow written as a case file run the same
 // numbers: the file format loses nothing of the set-up.
 TEST(CaseFile, FlowCaseFileRunsTheSphereValidationBitForBit) {
-  test::ScratchDir dir;
+  finverse::test::ScratchDir dir;
   write(dir / "s.yaml", R"(case: flow
 name: s
 domain: {x: [-2, 4], y: [-2, 2], z: [-2, 2]}
@@ -122,7 +122,7 @@ outputs: {force_every: 2, reference_speed: 1, reference_area: 0.7853981633974483
 }
 
 TEST(CaseFile, MisspeltOrMissingKeysNameTheFileTheKeyAndTheLine) {
-  test::ScratchDir dir;
+  finverse::test::ScratchDir dir;
   const auto p = dir / "f.yaml";
   write(p, "case: flow\ndomain: {x: [0, 1], y: [0, 1], z: [0, 1]}\ngridd: {h: 0.1}\n");
   EXPECT_EQ(error_of(p), p.string() + ":3: gridd: unknown key");
@@ -138,7 +138,7 @@ TEST(CaseFile, MisspeltOrMissingKeysNameTheFileTheKeyAndTheLine) {
 }
 
 TEST(CaseFile, PlaneFlowTakesAnOutlineFileAndHasNoZSides) {
-  test::ScratchDir dir;
+  finverse::test::ScratchDir dir;
   write(dir / "flap.txt", "# x y\n0 0\n0.1 0\n0.1 0.02\n\n0 0.02\n");
   const std::string head =
       "case: flow\ndomain: {x: [-1, 2], y: [-1, 1]}\ngrid: {h: 0.05, core: {x: [-0.2, 0.4], y: [-0.2, 0.2]}}\n"
@@ -178,7 +178,7 @@ std::string box_stl(bool inside_out) {
 }
 
 TEST(SurfaceFile, StlCornersAreMergedAndTheSurfaceTurnedOutward) {
-  test::ScratchDir dir;
+  finverse::test::ScratchDir dir;
   for (bool inside_out : {false, true}) {
     write(dir / "box.stl", box_stl(inside_out));
     const TriangulatedSurface s = read_surface_file(dir / "box.stl");

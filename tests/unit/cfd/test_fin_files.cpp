@@ -30,7 +30,7 @@ template <class F> std::string error_of(F&& f) {
 
 TEST(FinFiles, PlateFilesPassTheContractsAndReadBack) {
   const auto f = make_thin_plate({});
-  const test::ScratchDir scratch;
+  const finverse::test::ScratchDir scratch;
   const fs::path& d = scratch.path();
   Provenance prov{"test", {}, {}};
   auto mesh = f.mesh;
@@ -139,7 +139,7 @@ TEST(FinFiles, LoadsRoundTripThroughTheContract) {
   EXPECT_DOUBLE_EQ(l.thrust(2), -l.force_total(2, 0) / q);
   EXPECT_DOUBLE_EQ(l.lateral(3), l.force_total(3, 1) / q);
   EXPECT_DOUBLE_EQ(l.vertical(1), l.force_total(1, 2) / q);
-  const test::ScratchDir scratch;
+  const finverse::test::ScratchDir scratch;
   const fs::path& d = scratch.path();
   stage::write(d / "loads.h5", l, Provenance{"test", {}, {}});
   EXPECT_FALSE(fs::exists(d / "loads.h5.tmp"));

@@ -75,7 +75,7 @@ Difference towed_against_fixed(const std::filesystem::path& dir, const std::stri
 }
 
 TEST(MovingCaseFile, TowedSheetFeelsTheForceOfTheFixedSheet) {
-  test::ScratchDir dir;
+  finverse::test::ScratchDir dir;
   // c/32: the built-in sheet_towed_plate gives 3.2 % on fixed steps (docs/studies/thin_surface.md).
   const double d =
       towed_against_fixed(dir.path(), "shape: plate, leading_edge: [2.53, 0], chord: 1, incidence: 10, cells: 8",
@@ -96,7 +96,7 @@ TEST(MovingCaseFile, BandCorrectionTakesTheKernelBandsMassOffAHeavingPlate) {
   // span in potential flow. The raw sheet also drags the fluid band of the kernel's width along:
   // measured amplitudes 0.905 raw (+46 %) and 0.790 corrected (+27 %; the rest is the smeared
   // edges), c/32: 0.734 and 0.686 (docs/studies/thin_surface.md, "The entrained band").
-  test::ScratchDir dir;
+  finverse::test::ScratchDir dir;
   const auto amplitude = [&](bool corrected) {
     write_case(dir.path() / "heave.yaml",
                std::string("case: flow\ndomain: {x: [-4, 5], y: [-4, 4]}\n"
@@ -121,7 +121,7 @@ TEST(MovingCaseFile, BandCorrectionTakesTheKernelBandsMassOffAHeavingPlate) {
 }
 
 TEST(MovingCaseFile, TowedClosedEllipseFeelsTheForceOfTheFixedOne) {
-  test::ScratchDir dir;
+  finverse::test::ScratchDir dir;
   // A closed body's cells change kind as it moves: its towed force carries one-step impulses
   // (24 % here), so the means over the window are compared.
   const Difference d = towed_against_fixed(
@@ -132,7 +132,7 @@ TEST(MovingCaseFile, TowedClosedEllipseFeelsTheForceOfTheFixedOne) {
 
 TEST(MovingCaseFile, TowedSphereFeelsTheForceOfTheFixedOne) {
   // 3-D: a closed sphere (d = 1, Re 20) in a periodic box at h = d/8; its means over the window.
-  test::ScratchDir dir;
+  finverse::test::ScratchDir dir;
   const auto box = [](const std::string& initial, const std::string& motion) {
     return "case: flow\ndomain: {x: [0, 4], y: [-1.5, 1.5], z: [-1.5, 1.5]}\n"
            "grid: {h: 0.125, core: {x: [0, 4], y: [-1.5, 1.5], z: [-1.5, 1.5]}}\nfluid: {nu: 0.05, rho: 1}\n"
@@ -159,7 +159,7 @@ TEST(MovingCaseFile, TowedSphereFeelsTheForceOfTheFixedOne) {
 }
 
 TEST(MovingCaseFile, APoseTableMovesTheBodyAsItsHarmonicsDo) {
-  test::ScratchDir dir;
+  finverse::test::ScratchDir dir;
   // Heave 0.1 sin(2 pi t) and pitch 10 sin(2 pi t + 90) deg, as harmonics and as a 32-row table.
   std::string table = "# heaving and pitching plate\nt, y, angle\n";
   for (int k = 0; k < 32; ++k) {

@@ -14,7 +14,7 @@
 namespace finverse::cfd {
 
 namespace {
-constexpr double kNu = 1e-3, kRho = 1000;
+constexpr double kTurekHronNu = 1e-3, kRho = 1000;
 }  // namespace
 
 Polygon turek_hron_body(const TurekHronGeometry& g, int circle_vertices) {
@@ -90,7 +90,7 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
                                            .wall_ratio = ts.wall_stretch_ratio});
 
   if (ts.kick_velocity != 0 && !(ts.kick_duration > 0)) throw Error("turek_hron: kick_duration must be > 0");
-  FlowOptions options = channel_benchmark_options(kNu, ts.cfl, hc, Um);
+  FlowOptions options = channel_benchmark_options(kTurekHronNu, ts.cfl, hc, Um);
   options.cut_cell_continuity_fixed = ts.cut_cell_continuity;
   options.viscous_wall_pressure = ts.viscous_wall_pressure;
   if (ts.kick_velocity != 0)
@@ -119,7 +119,7 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
     poisson += st.poisson_iterations;
     r.max_poisson_iterations = std::max(r.max_poisson_iterations, static_cast<double>(st.poisson_iterations));
     ++r.steps;
-    const SurfaceLoads L = traction.evaluate(solver.u(0), solver.u(1), solver.p(), kNu, kRho);
+    const SurfaceLoads L = traction.evaluate(solver.u(0), solver.u(1), solver.p(), kTurekHronNu, kRho);
     TurekHronSample q;
     q.t = st.time;
     q.drag = L.force[0];
@@ -133,7 +133,8 @@ TurekHronResult run_turek_hron(const TurekHronSetup& ts) {
       q.lift_flag += L.traction[n][1] * sm.ds;
     }
     r.history.push_back(q);
-    cv.push_back(control_volume.evaluate(st.time, solver.u(0), solver.u(1), solver.face_velocity(), solver.p(), kNu));
+    cv.push_back(
+        control_volume.evaluate(st.time, solver.u(0), solver.u(1), solver.face_velocity(), solver.p(), kTurekHronNu));
     if (ts.progress) ts.progress(st);
   }
   if (r.history.empty()) throw Error("turek_hron: t_end must be > 0");
