@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <deque>
 
@@ -14,14 +15,54 @@
 
 namespace finverse::fem {
 
+namespace {
+// Identifies an increment's reference in the workspaces' caches; never reused, unlike an address.
+std::atomic<std::uint64_t> next_increment_id{1};
+}  // namespace
+
 StoredTangentIncrement::StoredTangentIncrement(const std::vector<const Model*>& models, const std::vector<double>& nus,
                                                const NodalState& reference, double t_next, StoredTangentOptions options)
-    : reference_(reference), opt_(options) {
+    : reference_(reference), id_(next_increment_id++), opt_(options) {
   if (models.empty() || !models[0]) throw InvalidInput("stored-tangent increment: no model");
   if (opt_.max_iterations < 1 || opt_.history < 0)
     throw InvalidInput("stored-tangent increment: max_iterations must be >= 1 and history >= 0");
   basis_ = std::make_unique<TangentBasis>(models, nus, reference, t_next);
   lchar_ = models[0]->characteristic_length();
+}
+
+void StoredTangentIncrement::set_reference_moduli(std::vector<double> element_moduli, double nu) {
+  if (element_moduli.size() != basis_->assembler().model().elements().size())
+    throw InvalidInput("stored-tangent increment: " + std::to_string(element_moduli.size()) + " reference moduli for " +
+                       std::to_string(basis_->assembler().model().elements().size()) + " elements");
+  reference_moduli_ = std::move(element_moduli);
+  reference_nu_ = nu;
+}
+
+bool StoredTangentIncrement::near_reference(const std::vector<double>& element_moduli, double nu) const {
+  if (!(opt_.reuse_within > 0) || reference_moduli_.size() != element_moduli.size()) return false;
+  if (!(std::abs(nu - reference_nu_) <= opt_.reuse_nu)) return false;
+  for (size_t e = 0; e < element_moduli.size(); ++e)
+    if (!(std::abs(element_moduli[e] - reference_moduli_[e]) <= opt_.reuse_within * reference_moduli_[e])) return false;
+  return true;
+}
+
+// The reference's tangent K(x_ref; E_ref, nu_ref), factorised once per workspace; the last few
+// references are kept (one per instant of an objective).
+const StoredTangentIncrement::Workspace::ReferenceFactor& StoredTangentIncrement::reference_factor(Workspace& w) const {
+  for (const auto& r : w.references)
+    if (r.id == id_) return r;
+  constexpr size_t kKept = 8;
+  if (w.references.size() >= kKept) w.references.erase(w.references.begin());
+  Workspace::ReferenceFactor r;
+  r.id = id_;
+  r.solver = std::make_unique<SparseSolver>(w.backend);
+  const DofMap& dofs = basis_->dofs();
+  r.solver->set_equation_names([&dofs](int eq) { return describe_equation(dofs, eq); });
+  basis_->combine(reference_moduli_, reference_nu_, w.matrix, nullptr, w.scratch);
+  r.solver->factorize(w.matrix, "stored tangent at the reference solution");
+  r.floor = roundoff_force_floor(w.matrix, dofs, basis_->assembler().model().position_scale());
+  w.references.push_back(std::move(r));
+  return w.references.back();
 }
 
 namespace {
@@ -53,14 +94,24 @@ bool StoredTangentIncrement::solve(Assembler& assembler, double time, const std:
   const DofMap& dofs = basis_->dofs();
   if (assembler.dofs().free() != dofs.free() || assembler.dofs().total() != dofs.total())
     throw InvalidInput("stored-tangent increment: the model's DOFs differ from the basis's");
-  basis_->combine(element_moduli, nu, w.matrix, nullptr, w.scratch);
+  StoredTangentInfo out;
   w.solver.set_equation_names([&dofs](int eq) { return describe_equation(dofs, eq); });
-  w.solver.factorize(w.matrix, "stored tangent at the reference solution");
-  const double floor = roundoff_force_floor(w.matrix, dofs, assembler.model().position_scale());
+  // The solver of this iteration: the reference's tangent when near it, else K(x_ref; E, nu).
+  const SparseSolver* solver = &w.solver;
+  double floor = 0;
+  if (near_reference(element_moduli, nu)) {
+    const Workspace::ReferenceFactor& r = reference_factor(w);
+    solver = r.solver.get();
+    floor = r.floor;
+    out.reused_reference = true;
+  } else {
+    basis_->combine(element_moduli, nu, w.matrix, nullptr, w.scratch);
+    w.solver.factorize(w.matrix, "stored tangent at the reference solution");
+    floor = roundoff_force_floor(w.matrix, dofs, assembler.model().position_scale());
+  }
   const Eigen::VectorXd units = unit_weights(dofs, lchar_);
 
   x = reference_;
-  StoredTangentInfo out;
   // Anderson mixing on u (the free DOFs' accumulated increment) with g = K^-1 r: the columns are
   // differences of successive g and u; the step is g minus their least-squares part.
   std::deque<Eigen::VectorXd> dg, du;
@@ -86,13 +137,14 @@ bool StoredTangentIncrement::solve(Assembler& assembler, double time, const std:
       with_matrix.matrix = true;
       assembler.assemble(x, with_matrix);
       w.solver.factorize(assembler.matrix(), "tangent stiffness");
+      solver = &w.solver;
       dg.clear(), du.clear();
       since_refresh = 0;
       ++out.refreshes;
     }
     ++since_refresh;
     rn_prev = rn;
-    const Eigen::VectorXd g = w.solver.solve(r);
+    const Eigen::VectorXd g = solver->solve(r);
     if (!g.allFinite()) break;
     Eigen::VectorXd step = g;
     if (since_refresh > 1 && opt_.history > 0) {

@@ -6,11 +6,14 @@
 // K(x_ref; E, nu) once and iterates u += K^-1 r(x) with Anderson mixing (the least-squares secant
 // of fsi/iqn_ils.hpp), one force assembly and one back-substitution per iteration, a true tangent
 // when it stalls. It stops on StaticSolver's test, so its answer is Newton's equilibrium; solve()
-// returns false where it does not converge and the caller uses Newton.
-// Numbers: docs/studies/fit_evaluation_speed.md, "Sessions 38-39".
+// returns false where it does not converge and the caller uses Newton. Near the reference (a
+// polish's Jacobian column) the reference's own tangent, factorised once per workspace, serves
+// instead of a new factorisation; the answer depends on the moduli and the reference alone.
+// Numbers: docs/studies/fit_evaluation_speed.md, "Sessions 38-39" and "Session 43".
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -31,13 +34,19 @@ struct StoredTangentOptions {
   // iterate is assembled and factorised (a Newton step), at most max_refreshes times.
   double refresh_ratio = 0.9;
   int max_refreshes = 4;
+  // Near the reference (every element modulus within this relative change of the reference's and
+  // nu within reuse_nu) the iteration runs on the reference's tangent instead of factorising
+  // K(x_ref; E, nu). 0 turns this off; it needs set_reference_moduli().
+  double reuse_within = 0.05;
+  double reuse_nu = 0.01;
 };
 
 struct StoredTangentInfo {
   int iterations = 0;
   int refreshes = 0;  // true tangents factorised (the reference's not counted)
   bool converged = false;
-  double residual = 0;  // relative, last
+  bool reused_reference = false;  // ran on the reference's factorised tangent
+  double residual = 0;            // relative, last
 };
 
 class StoredTangentIncrement {
@@ -48,12 +57,24 @@ class StoredTangentIncrement {
   StoredTangentIncrement(const std::vector<const Model*>& models, const std::vector<double>& nus,
                          const NodalState& reference, double t_next, StoredTangentOptions options = {});
 
-  // Per-thread state: the factorisation (its symbolic analysis is kept) and scratch.
+  // The moduli (per element) and nu at which the reference was solved: evaluations near them
+  // reuse the reference's tangent (StoredTangentOptions::reuse_within).
+  void set_reference_moduli(std::vector<double> element_moduli, double nu);
+
+  // Per-thread state: the factorisation (its symbolic analysis is kept) and scratch, and the
+  // reference tangents of the last few increments this workspace solved near their references.
   struct Workspace {
-    explicit Workspace(SolverBackend backend = SolverBackend::cholmod) : solver(backend) {}
+    explicit Workspace(SolverBackend backend = SolverBackend::cholmod) : solver(backend), backend(backend) {}
     SparseSolver solver;
+    SolverBackend backend;
     Assembler::SparseMatrix matrix;
     TangentBasis::Scratch scratch;
+    struct ReferenceFactor {
+      std::uint64_t id = 0;  // the StoredTangentIncrement's
+      std::unique_ptr<SparseSolver> solver;
+      double floor = 0;  // roundoff_force_floor of the reference tangent
+    };
+    std::vector<ReferenceFactor> references;
   };
 
   // Solves f_int(x) = f_target on the free DOFs from the reference. assembler: of the model at the
@@ -67,11 +88,17 @@ class StoredTangentIncrement {
              StoredTangentInfo* info = nullptr) const;
 
   const NodalState& reference() const { return reference_; }
+  bool near_reference(const std::vector<double>& element_moduli, double nu) const;
   const TangentBasis& basis() const { return *basis_; }
 
  private:
+  const Workspace::ReferenceFactor& reference_factor(Workspace& w) const;
+
   std::unique_ptr<TangentBasis> basis_;
   NodalState reference_;
+  std::vector<double> reference_moduli_;
+  double reference_nu_ = 0;
+  std::uint64_t id_;
   StoredTangentOptions opt_;
   double lchar_ = 1;
 };

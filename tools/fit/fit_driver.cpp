@@ -98,6 +98,7 @@ FitResult run_fit(const ParameterSpace& space, const ResidualFunction& function,
       options.cmaes_population > 0 ? options.cmaes_population : default_cmaes_population(n);
   LmOptions lm_options = options.polish_options;
   lm_options.threads = options.threads;
+  lm_options.moved = [&](const Eigen::VectorXd& z) { expect_near_everywhere(function, space.to_physical(z)); };
 
   if (explore && (explore->parameter_count() != n || explore->residual_count() != function.residual_count()))
     throw InvalidInput("fit: the exploring residual function differs from the fit's in its parameters or residuals");

@@ -104,6 +104,7 @@ LmResult levenberg_marquardt(const ParameterSpace& space, const ResidualFunction
       break;
     }
     if (!jacobian_current) {
+      if (out.iterations > 0 && options.moved) options.moved(out.z);
       out.jacobian = finite_difference_jacobian(space, function, out.z, out.residuals, options.fd_step,
                                                 options.central, options.threads, &out.evaluations);
       jacobian_current = true;
@@ -180,9 +181,11 @@ LmResult levenberg_marquardt(const ParameterSpace& space, const ResidualFunction
     }
   }
   // The uncertainty needs the Jacobian at the returned point; the cap reserved its cost.
-  if (!jacobian_current)
+  if (!jacobian_current) {
+    if (out.iterations > 0 && options.moved) options.moved(out.z);
     out.jacobian = finite_difference_jacobian(space, function, out.z, out.residuals, options.fd_step,
                                               options.central, options.threads, &out.evaluations);
+  }
   return finish(reason);
 }
 

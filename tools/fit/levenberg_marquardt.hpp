@@ -24,6 +24,10 @@ struct LmOptions {
   int threads = 2;                    // for the Jacobian columns
   // One line per tried step (|r|^2, damping, evaluations so far): a refit of model runs takes minutes.
   std::function<void(const std::string&)> progress;
+  // Called with the scaled point after each accepted step, before its Jacobian: the objective may
+  // move its reference solutions there (ResidualFunction::expect_near), so that the Jacobian's
+  // columns, a small step away, are cheap.
+  std::function<void(const Eigen::VectorXd&)> moved;
 };
 
 struct LmResult {

@@ -167,7 +167,7 @@ void QuasiStaticObjective::set_up_stored_tangents(const TargetMotion& target) {
       linear_.push_back(std::make_unique<fem::LinearIncrement>(pointers, nus, base_[j], t, t + dt_, load_change(j)));
       basis = &linear_.back()->basis();
     } else {
-      stored_.push_back(stored_at(j, *check));
+      stored_.push_back(stored_at(j, *check, poisson_of(p0)));
       basis = &stored_.back()->basis();
     }
     if (nu_index >= 0) linear_form_error_ = std::max(linear_form_error_, basis->form_error(*check, p0(nu_index)));
@@ -178,26 +178,53 @@ void QuasiStaticObjective::set_up_stored_tangents(const TargetMotion& target) {
 }
 
 // Solve::stored: instant j's reference, the converged increment of `model` (the factory's model
-// at the reference parameters), and the stored tangent there.
-std::unique_ptr<fem::StoredTangentIncrement> QuasiStaticObjective::stored_at(size_t j, const fem::Model& model) const {
+// at the reference parameters), and the stored tangent there. With `from` (the current reference)
+// the increment is solved from it, at a tenth of Newton's cost from the base, and to Newton's
+// tolerances; Newton from the base where that does not converge.
+std::unique_ptr<fem::StoredTangentIncrement> QuasiStaticObjective::stored_at(
+    size_t j, const fem::Model& model, double nu, const fem::StoredTangentIncrement* from) const {
   const double t = instants_[j];
+  std::vector<double> moduli(model.elements().size());
+  for (size_t e = 0; e < moduli.size(); ++e) moduli[e] = model.element_youngs_modulus(static_cast<int>(e), t + dt_);
   fem::QuasiStaticIncrement newton(model, options_.static_options);
-  const fem::NodalState reference = newton.solve(base_[j], t, t + dt_, nullptr, load_change(j));
+  fem::NodalState reference;
+  bool solved = false;
+  if (from) {
+    const Eigen::VectorXd f_target = model.external_load(t + dt_) - newton.base_offset(base_[j], t, load_change(j));
+    fem::StoredTangentIncrement::Workspace w(options_.static_options.backend);
+    solved = from->solve(newton.solver().assembler(), t + dt_, moduli, nu, f_target, reference, w);
+  }
+  if (!solved) reference = newton.solve(base_[j], t, t + dt_, nullptr, load_change(j));
   std::vector<const fem::Model*> pointers;
   for (const auto& m : linear_models_[rebased_.empty() ? 0 : j]) pointers.push_back(m.get());
   const fem::StoredTangentOptions so{.residual_tolerance = options_.static_options.residual_tolerance,
-                                     .increment_tolerance = options_.static_options.increment_tolerance};
-  return std::make_unique<fem::StoredTangentIncrement>(pointers, basis_poisson_, reference, t + dt_, so);
+                                     .increment_tolerance = options_.static_options.increment_tolerance,
+                                     .reuse_within = options_.reuse_reference_tangent ? 0.05 : 0.0};
+  auto stored = std::make_unique<fem::StoredTangentIncrement>(pointers, basis_poisson_, reference, t + dt_, so);
+  stored->set_reference_moduli(std::move(moduli), nu);
+  return stored;
 }
 
+// The references move only when p is outside their reuse window: within it a Jacobian's columns
+// already run on the references' own tangents, and a move costs a converged increment and a new
+// tangent basis per instant.
 void QuasiStaticObjective::expect_near(const Eigen::VectorXd& p) const {
   if (stored_.empty()) return;
+  std::vector<std::unique_ptr<fem::Model>> models;
+  bool near = true;
+  for (size_t j = 0; j < instants_.size(); ++j) {
+    models.push_back((rebased_.empty() ? *factory_ : *rebased_[j]).build(p));
+    const fem::Model& m = *models.back();
+    std::vector<double> moduli(m.elements().size());
+    for (size_t e = 0; e < moduli.size(); ++e)
+      moduli[e] = m.element_youngs_modulus(static_cast<int>(e), instants_[j] + dt_);
+    near = near && stored_[j]->near_reference(moduli, poisson_of(p));
+  }
+  if (near) return;
   std::vector<std::unique_ptr<fem::StoredTangentIncrement>> moved;
   try {
-    for (size_t j = 0; j < instants_.size(); ++j) {
-      const std::unique_ptr<fem::Model> model = (rebased_.empty() ? *factory_ : *rebased_[j]).build(p);
-      moved.push_back(stored_at(j, *model));
-    }
+    for (size_t j = 0; j < instants_.size(); ++j)
+      moved.push_back(stored_at(j, *models[j], poisson_of(p), stored_[j].get()));
   } catch (const fem::NotConverged&) {
     return;  // keep the references there are: p is a hint, and Newton fails at p anyway
   } catch (const fem::SingularMatrix&) {
@@ -331,13 +358,13 @@ std::vector<fem::Vec3> QuasiStaticObjective::stored_increment(size_t j, fem::Qua
   const fem::Model& m = increment.solver().model();
   std::vector<double> moduli(m.elements().size());
   for (size_t e = 0; e < moduli.size(); ++e) moduli[e] = m.element_youngs_modulus(static_cast<int>(e), t_next);
-  const int nu_index = factory_->poisson_index();
   const Eigen::VectorXd f_target = m.external_load(t_next) - increment.base_offset(base_[j], t, load_change(j));
   fem::NodalState x;
   fem::StoredTangentInfo info;
-  const bool ok = stored_[j]->solve(increment.solver().assembler(), t_next, moduli, nu_index < 0 ? 0.0 : p(nu_index),
-                                    f_target, x, *w.stored, &info);
+  const bool ok =
+      stored_[j]->solve(increment.solver().assembler(), t_next, moduli, poisson_of(p), f_target, x, *w.stored, &info);
   ++stored_solves_;
+  stored_reuses_ += info.reused_reference ? 1 : 0;
   stored_iterations_ += info.iterations;
   if (!ok) {
     ++stored_fallbacks_;

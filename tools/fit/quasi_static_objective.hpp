@@ -59,6 +59,9 @@ struct QuasiStaticOptions {
   // (ModelFactory::moduli_and_poisson_only) and bases that do not depend on them
   // (stress_free_base, or relax_rotations false).
   enum class Solve { newton, stored, linear } solve = Solve::newton;
+  // stored: near a reference, run on its own factorised tangent (StoredTangentOptions::
+  // reuse_within); false only to measure what that saves (fit_fin_rate bench).
+  bool reuse_reference_tangent = true;
 };
 
 // "newton" / "stored" / "linear"; throws InvalidInput naming the flag otherwise.
@@ -104,13 +107,14 @@ class QuasiStaticObjective : public ResidualFunction {
   const std::vector<Eigen::VectorXd>& inertial_load_changes() const { return load_change_; }
   // Solve::linear, stored: the largest relative error of the stored tangent's form (tangent_basis.hpp).
   double linear_form_error() const { return linear_form_error_; }
-  // Solve::stored: increments solved so far, how many fell back to Newton, and the stored
-  // iteration's iterations in all (converged or not).
+  // Solve::stored: increments solved so far, how many fell back to Newton, the stored
+  // iteration's iterations in all (converged or not), and how many ran on the reference's own
+  // tangent (near it).
   struct StoredCounts {
-    long solves = 0, fallbacks = 0, iterations = 0;
+    long solves = 0, fallbacks = 0, iterations = 0, reuses = 0;
   };
   StoredCounts stored_counts() const {
-    return {stored_solves_.load(), stored_fallbacks_.load(), stored_iterations_.load()};
+    return {stored_solves_.load(), stored_fallbacks_.load(), stored_iterations_.load(), stored_reuses_.load()};
   }
 
  private:
@@ -123,7 +127,11 @@ class QuasiStaticObjective : public ResidualFunction {
   }
   std::unique_ptr<Workspace> acquire(const Eigen::VectorXd& physical) const;
   bool rekey(Workspace& workspace, const Eigen::VectorXd& key) const;
-  std::unique_ptr<fem::StoredTangentIncrement> stored_at(size_t instant, const fem::Model& model) const;
+  std::unique_ptr<fem::StoredTangentIncrement> stored_at(size_t instant, const fem::Model& model, double nu,
+                                                         const fem::StoredTangentIncrement* from = nullptr) const;
+  double poisson_of(const Eigen::VectorXd& p) const {
+    return factory_->poisson_index() < 0 ? 0.0 : p(factory_->poisson_index());
+  }
   void release(std::unique_ptr<Workspace> workspace) const;
 
   std::shared_ptr<const ModelFactory> factory_;
@@ -145,7 +153,7 @@ class QuasiStaticObjective : public ResidualFunction {
   mutable std::vector<std::unique_ptr<fem::StoredTangentIncrement>> stored_;
   std::vector<double> basis_poisson_;  // the Poisson ratios of linear_models_
   double linear_form_error_ = 0;
-  mutable std::atomic<long> stored_solves_{0}, stored_fallbacks_{0}, stored_iterations_{0};
+  mutable std::atomic<long> stored_solves_{0}, stored_fallbacks_{0}, stored_iterations_{0}, stored_reuses_{0};
   mutable std::mutex mutex_;
   mutable std::list<std::unique_ptr<Workspace>> idle_;  // most recently used first
   mutable std::atomic<long> builds_{0}, rekeys_{0};

@@ -121,6 +121,7 @@ FitProblem load_fit_problem(const FileFitOptions& o) {
     qs.stress_free_base = o.stress_free_base;
     qs.inertia = o.inertia;
     qs.solve = o.increment;
+    qs.reuse_reference_tangent = o.reuse_reference_tangent;
     qs.dt = o.dt > 0 ? o.dt : target.frame_spacing();
     double t_lo = target.times.front(), t_hi = target.times.back();
     if (loads) {

@@ -49,6 +49,7 @@ struct FileFitOptions {
   // quasi_static: eq. (2) with inertia, and how each increment is solved (QuasiStaticOptions).
   bool inertia = false;
   QuasiStaticOptions::Solve increment = QuasiStaticOptions::Solve::newton;
+  bool reuse_reference_tangent = true;  // QuasiStaticOptions' (benchmarks only)
   // quasi_static with a converged increment (newton, stored): the GA and CMA-ES explore with the linearised one,
   // the polish and the intervals use Newton's (fit_driver.hpp's explore; goal 8 of issue 45).
   bool explore_linear = false;

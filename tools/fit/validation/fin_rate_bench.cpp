@@ -9,6 +9,7 @@
 
 #include "core/elapsed.hpp"
 #include "core/log.hpp"
+#include "fit/levenberg_marquardt.hpp"
 #include "fit/population_evaluation.hpp"
 #include "fit/quasi_static_objective.hpp"
 
@@ -80,6 +81,39 @@ RouteDifference route_difference(const ParameterSpace& space, const std::vector<
   return d;
 }
 
+// The polish's workload: LM moves the references to its point (expect_near), then evaluates one
+// finite-difference Jacobian there, every column a 1e-4 step from the point. Timed on the stored
+// route, whose columns run on the reference's own tangent, and on the same route factorising per
+// column (the peer); checked against Newton's Jacobian when `newton` is given.
+struct PolishTiming {
+  double move_seconds = 0, jacobian_seconds = 0, jacobian_difference = 0;
+  long columns = 0, reuses = 0, solves = 0;
+};
+
+PolishTiming time_polish_jacobian(const ParameterSpace& space, const Eigen::VectorXd& z, const ResidualFunction& stored,
+                                  const ResidualFunction* newton, const QuasiStaticObjective& qs, int threads) {
+  PolishTiming t;
+  const Eigen::VectorXd p = space.to_physical(z);
+  auto t0 = std::chrono::steady_clock::now();
+  stored.expect_near(p);
+  t.move_seconds = seconds_since(t0);
+  const Eigen::VectorXd r0 = stored.residuals(p);
+  const QuasiStaticObjective::StoredCounts before = qs.stored_counts();
+  t0 = std::chrono::steady_clock::now();
+  const Eigen::MatrixXd js = finite_difference_jacobian(space, stored, z, r0, 1e-4, false, threads, &t.columns);
+  t.jacobian_seconds = seconds_since(t0);
+  const QuasiStaticObjective::StoredCounts after = qs.stored_counts();
+  t.reuses = after.reuses - before.reuses;
+  t.solves = after.solves - before.solves;
+  if (!newton) return t;
+  const Eigen::MatrixXd jn =
+      finite_difference_jacobian(space, *newton, z, newton->residuals(p), 1e-4, false, threads, nullptr);
+  for (int j = 0; j < jn.cols(); ++j)
+    t.jacobian_difference =
+        std::max(t.jacobian_difference, (js.col(j) - jn.col(j)).norm() / std::max(jn.col(j).norm(), 1e-300));
+  return t;
+}
+
 }  // namespace
 
 Summary run_fin_rate_bench(const FinRateOptions& o) {
@@ -100,6 +134,8 @@ Summary run_fin_rate_bench(const FinRateOptions& o) {
   const io::FitProblem newton = load(QuasiStaticOptions::Solve::newton, nullptr);
   const io::FitProblem stored = load(QuasiStaticOptions::Solve::stored, &setup_stored);
   const io::FitProblem linear = load(QuasiStaticOptions::Solve::linear, &setup_linear);
+  files.reuse_reference_tangent = false;  // the peer: the polish's columns each factorise
+  const io::FitProblem no_reuse = load(QuasiStaticOptions::Solve::stored, nullptr);
   const ParameterSpace& space = newton.space;
   const auto x = rate_points(space, newton.factory->default_parameters(), o);
   log::info("fit_fin_rate: " + newton.description + "; " + std::to_string(x.size()) + " points");
@@ -110,6 +146,13 @@ Summary run_fin_rate_bench(const FinRateOptions& o) {
   const RouteTiming rs = time_route(space, *stored.objective, x, o.threads);
   const QuasiStaticObjective::StoredCounts after = qs.stored_counts();
   const RouteTiming rl = time_route(space, *linear.objective, x, o.threads);
+  const PolishTiming pj =
+      time_polish_jacobian(space, x.front(), *stored.objective, newton.objective.get(), qs, o.threads);
+  const PolishTiming pn =
+      time_polish_jacobian(space, x.front(), *no_reuse.objective, nullptr,
+                           dynamic_cast<const QuasiStaticObjective&>(*no_reuse.objective), o.threads);
+  const double rate_polish = static_cast<double>(pj.columns) / pj.jacobian_seconds;
+  const double rate_polish_no_reuse = static_cast<double>(pn.columns) / pn.jacobian_seconds;
   const auto rate = [&](const RouteTiming& r) { return static_cast<double>(x.size() - r.batch.failures) / r.seconds; };
   const double rate_n = rate(rn), rate_s = rate(rs), rate_l = rate(rl);
   const auto& qn = dynamic_cast<const QuasiStaticObjective&>(*newton.objective);
@@ -130,7 +173,16 @@ Summary run_fin_rate_bench(const FinRateOptions& o) {
             "issue 45 goal 8: >= 10 converged evaluations per second on the default fin, 2 threads", "s");
   s.at_most("stored_vs_newton_increment_difference", ds.increment, 1e-6,
             "the stored route converges to Newton's increment (tolerances 1e-8 residual, 1e-10 increment)");
+  s.at_most("polish_jacobian_vs_newton_difference", pj.jacobian_difference, 1e-4,
+            "the polish's Jacobian on the stored route, its columns on the reference's tangent, is Newton's "
+            "(relative, worst column; the columns' finite-difference step is 1e-4 of the scaled bounds)");
   s.info("stored_evaluations_per_second", rate_s, "1/s");
+  s.info("polish_jacobian_evaluations_per_second", rate_polish, "1/s");
+  s.info("polish_jacobian_evaluations_per_second_factorising_each", rate_polish_no_reuse, "1/s");
+  s.info("polish_jacobian_speedup_from_the_reference_tangent", rate_polish / rate_polish_no_reuse);
+  s.info("polish_reference_move_seconds", pj.move_seconds, "s");
+  s.info("polish_increments_on_the_reference_tangent",
+         static_cast<double>(pj.reuses) / static_cast<double>(std::max(pj.solves, 1L)));
   s.info("newton_evaluations_per_second", rate_n, "1/s");
   s.info("linear_evaluations_per_second", rate_l, "1/s");
   s.info("stored_over_newton_rate", rate_s / rate_n);
