@@ -52,6 +52,14 @@ namespace {
 // Poisson ratios of the linearised increment's basis (fem/tangent_basis.hpp): spread over the
 // physical range so that the 4 x 4 solve per entry is well conditioned.
 constexpr double kBasisPoisson[fem::TangentBasis::kPoissonModels] = {0.1, 0.3, 0.4, 0.49};
+
+// Every element's Young's modulus at time t: what the stored and linear routes weigh their
+// element matrices with.
+std::vector<double> element_moduli_at(const fem::Model& model, double t) {
+  std::vector<double> moduli(model.elements().size());
+  for (size_t e = 0; e < moduli.size(); ++e) moduli[e] = model.element_youngs_modulus(static_cast<int>(e), t);
+  return moduli;
+}
 }  // namespace
 
 QuasiStaticObjective::QuasiStaticObjective(std::shared_ptr<const ModelFactory> factory, TargetMotion target,
@@ -184,8 +192,7 @@ void QuasiStaticObjective::set_up_stored_tangents(const TargetMotion& target) {
 std::unique_ptr<fem::StoredTangentIncrement> QuasiStaticObjective::stored_at(
     size_t j, const fem::Model& model, double nu, const fem::StoredTangentIncrement* from) const {
   const double t = instants_[j];
-  std::vector<double> moduli(model.elements().size());
-  for (size_t e = 0; e < moduli.size(); ++e) moduli[e] = model.element_youngs_modulus(static_cast<int>(e), t + dt_);
+  std::vector<double> moduli = element_moduli_at(model, t + dt_);
   fem::QuasiStaticIncrement newton(model, options_.static_options);
   fem::NodalState reference;
   bool solved = false;
@@ -214,11 +221,7 @@ void QuasiStaticObjective::expect_near(const Eigen::VectorXd& p) const {
   bool near = true;
   for (size_t j = 0; j < instants_.size(); ++j) {
     models.push_back((rebased_.empty() ? *factory_ : *rebased_[j]).build(p));
-    const fem::Model& m = *models.back();
-    std::vector<double> moduli(m.elements().size());
-    for (size_t e = 0; e < moduli.size(); ++e)
-      moduli[e] = m.element_youngs_modulus(static_cast<int>(e), instants_[j] + dt_);
-    near = near && stored_[j]->near_reference(moduli, poisson_of(p));
+    near = near && stored_[j]->near_reference(element_moduli_at(*models.back(), instants_[j] + dt_), poisson_of(p));
   }
   if (near) return;
   std::vector<std::unique_ptr<fem::StoredTangentIncrement>> moved;
@@ -325,15 +328,11 @@ std::vector<std::vector<fem::Vec3>> QuasiStaticObjective::increments(const Eigen
   std::unique_ptr<Workspace> w = acquire(p);
   std::vector<std::vector<fem::Vec3>> dx;
   // On an exception the workspace is dropped (its solver may hold a failed factorisation).
-  std::vector<double> moduli;
   for (size_t j = 0; j < instants_.size(); ++j) {
     const double t = instants_[j];
     if (w->linear) {
-      const fem::Model& m = *w->moduli_model;
-      moduli.resize(m.elements().size());
-      for (size_t e = 0; e < moduli.size(); ++e) moduli[e] = m.element_youngs_modulus(static_cast<int>(e), t + dt_);
-      const int nu_index = factory_->poisson_index();
-      dx.push_back(linear_[j]->displacement_increment(moduli, nu_index < 0 ? 0.0 : p(nu_index), *w->linear));
+      dx.push_back(
+          linear_[j]->displacement_increment(element_moduli_at(*w->moduli_model, t + dt_), poisson_of(p), *w->linear));
     } else if (!stored_.empty()) {
       dx.push_back(
           stored_increment(j, w->instant_increments.empty() ? *w->increment : *w->instant_increments[j], p, *w));
@@ -356,8 +355,7 @@ std::vector<fem::Vec3> QuasiStaticObjective::stored_increment(size_t j, fem::Qua
                                                               const Eigen::VectorXd& p, Workspace& w) const {
   const double t = instants_[j], t_next = t + dt_;
   const fem::Model& m = increment.solver().model();
-  std::vector<double> moduli(m.elements().size());
-  for (size_t e = 0; e < moduli.size(); ++e) moduli[e] = m.element_youngs_modulus(static_cast<int>(e), t_next);
+  const std::vector<double> moduli = element_moduli_at(m, t_next);
   const Eigen::VectorXd f_target = m.external_load(t_next) - increment.base_offset(base_[j], t, load_change(j));
   fem::NodalState x;
   fem::StoredTangentInfo info;
