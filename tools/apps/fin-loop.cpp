@@ -77,6 +77,9 @@ int main(int argc, char** argv) {
   tr->add_option("--root-motion", root_motion, "motion.h5 whose root nodes drive the model (default: --motion)");
   tr->add_option("--substeps", to.substeps, "dynamic: time steps per frame interval")->capture_default_str();
   tr->add_option("--spectral-radius", to.spectral_radius, "dynamic: generalized-alpha rho_inf")->capture_default_str();
+  tr->add_flag("--full-newton", to.full_newton,
+               "dynamic: each step's Newton starts where the last ended and refactorises every iteration (the "
+               "thin fin needs it, with --spectral-radius 0.5; docs/studies/fin_dynamic_run.md)");
   tr->add_option("--ramp", to.ramp, "s of ramp from rest before the first frame (0: ten frame intervals)")
       ->capture_default_str();
   tr->add_option("--root-rotation", root_rotation, "root rotations: fit, per_ray or zero")->capture_default_str();

@@ -48,6 +48,9 @@ struct FileTraceOptions {
   fem::Analysis analysis = fem::Analysis::quasi_static;  // of the model runs (fin-fem run's default)
   int substeps = 4;                                       // dynamic
   double spectral_radius = 0.8;                           // dynamic
+  // dynamic: each step's Newton starts where the last ended and refactorises every iteration,
+  // what the thin fin needs (docs/studies/fin_dynamic_run.md).
+  bool full_newton = false;
   double ramp = 0;
   fem::RootRotation root_rotation = fem::RootRotation::fit;
   int max_effects = 3;
