@@ -1,12 +1,14 @@
 // Dynamics and modal analysis: generalized-alpha parameters and energy behaviour, eigen
 // frequencies against Euler-Bernoulli (dense and subspace paths), spectral peak picking.
+#include <gtest/gtest.h>
+
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include <gtest/gtest.h>
-
 #include "fem/errors.hpp"
 #include "fem/generalized_alpha.hpp"
+#include "fem/load_history.hpp"
 #include "fem/modal.hpp"
 #include "fem/spectral_peaks.hpp"
 #include "fem/validation/cases.hpp"
@@ -96,6 +98,68 @@ TEST(GeneralizedAlpha, RayleighDampingDecaysAtTheExpectedRate) {
   for (int k = 0; k < 1000; ++k) ga.step(s);  // 5 periods
   const double e1 = ga.kinetic_energy(s) + ga.strain_energy(s);
   EXPECT_NEAR(std::log(e1 / e0) / (-o.rayleigh_mass * s.time), 1.0, 0.02);
+}
+
+namespace {
+// Tip positions, one per frame, of a soft tapered ray (10 mm, 0.4 -> 0.03 mm, E 50 MPa: the loop
+// fin's middle ray) whose root pitches 0.38 rad at 4.4 Hz about z under a dead lateral load of
+// 1 mN lagging the pitch, both ramped over the first period; 96 frames of T/32, the load sampled
+// per frame as loads.h5 is; `substeps` steps per frame with the thin fin's iteration and
+// stiffness-proportional damping a_K (docs/studies/fin_dynamic_run.md, session 44).
+std::vector<Vec3> pitching_ray_tip(int substeps, double a_K) {
+  constexpr int ne = 12;
+  const double w = 2 * std::numbers::pi * 4.4, T = 2 * std::numbers::pi / w, frame = T / 32;
+  Model m = cantilever(ne, 0.01, 5e7, 4e-4, 4e-4, 3e-5, 3e-5, 1100);
+  auto ramp = [T](double t) {
+    const double r = std::clamp(t / T, 0.0, 1.0);
+    return r * r * (3 - 2 * r);
+  };
+  m.prescribe(0, 5, [=](double t) { return 0.38 * ramp(t) * std::sin(w * t); });
+  std::vector<double> times;
+  std::vector<Eigen::VectorXd> values;
+  for (int k = 0; k <= 96; ++k) {
+    const double t = k * frame;
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(kDofsPerNode * (ne + 1));
+    for (int i = 1; i <= ne; ++i) v(kDofsPerNode * i + 1) = 1e-3 / ne * ramp(t) * std::sin(w * t - 1.2);
+    times.push_back(t);
+    values.push_back(v);
+  }
+  m.set_load_history(LoadHistory(times, values));
+  DynamicOptions o;
+  o.time_step = frame / substeps;
+  o.spectral_radius = 0.5;
+  o.rayleigh_stiffness = a_K;
+  o.predict_with_acceleration = false;
+  o.modified_newton = false;
+  GeneralizedAlpha ga(m, o);
+  DynamicState s = ga.reference_state(0);
+  ga.initialize(s);
+  std::vector<Vec3> tip;
+  for (int k = 1; k <= 96; ++k) {
+    for (int j = 0; j < substeps; ++j) ga.step(s);
+    tip.push_back(s.configuration.position[ne]);
+  }
+  return tip;
+}
+
+double rms_after_ramp(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double sum = 0;
+  for (size_t k = 32; k < a.size(); ++k) sum += (a[k] - b[k]).squaredNorm();
+  return std::sqrt(sum / static_cast<double>(a.size() - 32));
+}
+}  // namespace
+
+// Issue 45, goal 4 and deliverable 2 (known to fail; run with --gtest_also_run_disabled_tests).
+// Undamped, this loaded ray does not converge in time: its high modes, rung where the load and
+// drive are not smooth, survive as the step shrinks (16 vs 32 steps per frame 11 um, 32 vs 64
+// 16 um). With the fin's material damping, 8 % of critical at the beat (a_K = 2 zeta / omega),
+// they would die out, but today's a_K K(x) v stalls Newton (t = 0.15 s at 16 steps per frame).
+// The 5-second check for a damping whose Newton converges: then the step error must shrink at
+// second order.
+TEST(GeneralizedAlpha, DISABLED_DampedLoadedPitchingRayConvergesInTime) {
+  const double a_K = 2 * 0.08 / (2 * std::numbers::pi * 4.4);
+  const auto t16 = pitching_ray_tip(16, a_K), t32 = pitching_ray_tip(32, a_K), t64 = pitching_ray_tip(64, a_K);
+  EXPECT_LT(rms_after_ramp(t32, t64), rms_after_ramp(t16, t32) / 3);
 }
 
 TEST(Modal, CantileverFrequenciesMatchEulerBernoulliAndBothSolversAgree) {
