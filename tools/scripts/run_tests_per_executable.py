@@ -35,6 +35,8 @@ def selected_tests(build, ctest_args):
             print(f"run_tests_per_executable.py: error: test {t['name']} is not a GoogleTest test", file=sys.stderr)
             sys.exit(2)
         props = {p["name"]: p["value"] for p in t.get("properties", [])}
+        if props.get("DISABLED"):  # a DISABLED_ GoogleTest test: ctest does not run it either
+            continue
         env = tuple(props.get("ENVIRONMENT", []))
         key = (cmd[0], env, props.get("WORKING_DIRECTORY", build))
         groups.setdefault(key, []).append(names[0])
