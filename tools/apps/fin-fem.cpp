@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <utility>
 
 #include "core/cli.hpp"
 #include "core/summary.hpp"
@@ -60,26 +61,13 @@ int finish(finverse::Summary summary, const std::string& name, const std::filesy
   return summary.pass() ? 0 : 1;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"fin-fem: structural FEM validation cases (corotational beams, Newton, generalized-alpha)"};
-  finverse::cli::Standard standard(app, "fin-fem");
-  app.require_subcommand(1);
-  std::string out_dir = "results/validation";
-  std::string solver = "cholmod";
-  app.add_option("--out-dir", out_dir, "directory that receives <case>/summary.json")
-      ->capture_default_str();
-  app.add_option("--solver", solver, "sparse solver: cholmod or simplicial_ldlt")
-      ->capture_default_str();
-
-  fv::ElasticaOptions elastica;
-  std::string reference;
+// The beam cases' subcommands: the elastica (static, large deflection) and the cantilever's
+// vibration (frequencies and energy drift).
+std::pair<CLI::App*, CLI::App*> add_beam_cases(CLI::App& app, fv::ElasticaOptions& elastica,
+                                               fv::VibrationOptions& vibration, std::string& reference) {
   auto* el = app.add_subcommand("elastica_beam", "cantilever under a dead tip load, PL^2/EI = 1..20");
   el->add_option("--reference", reference, "structures.json with elastica_tip_load")->required();
   el->add_option("--elements", elastica.elements, "beam elements")->capture_default_str();
-
-  fv::VibrationOptions vibration;
   auto* vib = app.add_subcommand("cantilever_vibration",
                                  "first three bending frequencies and energy drift of a cantilever");
   vib->add_option("--elements", vibration.elements, "beam elements")->capture_default_str();
@@ -95,6 +83,25 @@ int main(int argc, char** argv) {
   vib->add_option("--periods-energy", vibration.periods_energy,
                   "first-mode periods simulated for the energy drift")
       ->capture_default_str();
+  return {el, vib};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fin-fem: structural FEM validation cases (corotational beams, Newton, generalized-alpha)"};
+  finverse::cli::Standard standard(app, "fin-fem");
+  app.require_subcommand(1);
+  std::string out_dir = "results/validation";
+  std::string solver = "cholmod";
+  app.add_option("--out-dir", out_dir, "directory that receives <case>/summary.json")->capture_default_str();
+  app.add_option("--solver", solver, "sparse solver: cholmod or simplicial_ldlt")->capture_default_str();
+
+  fv::ElasticaOptions elastica;
+  fv::VibrationOptions vibration;
+  std::string reference;
+  // cantilever_vibration is the case run when no other subcommand was given.
+  auto* el = add_beam_cases(app, elastica, vibration, reference).first;
 
   // Shell cases (corotational triangle) and the Turek-Hron CSM flag (plane-strain Q9 solid).
   fv::SzeEndShearOptions shear;
