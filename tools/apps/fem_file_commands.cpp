@@ -35,11 +35,7 @@ void FemRunCommand::add(CLI::App& app) {
   rn->add_option("--rho-inf", file_run.run.dynamic_options.spectral_radius, "dynamic: generalized-alpha rho_inf")
       ->capture_default_str();
   rn->add_flag_callback(
-      "--full-newton",
-      [this] {
-        file_run.run.dynamic_options.predict_with_acceleration = false;
-        file_run.run.dynamic_options.modified_newton = false;
-      },
+      "--full-newton", [this] { file_run.run.dynamic_options = fem::with_full_newton(file_run.run.dynamic_options); },
       "dynamic: each step's Newton starts where the last ended and refactorises every iteration: the thin "
       "fin's run at 8 sub-steps per frame needs it, with --rho-inf 0.5 (docs/studies/fin_dynamic_run.md)");
   rn->add_option("--max-iterations", file_run.run.static_options.max_iterations, "Newton iterations per step")

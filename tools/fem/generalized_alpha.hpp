@@ -55,6 +55,14 @@ struct DynamicOptions {
   bool modified_newton = true;  // keep the factorisation once the residual is below 1e-6
 };
 
+// The thin fin's iteration (docs/studies/fin_dynamic_run.md): no acceleration predictor and a
+// new factorisation at every iteration; what `--full-newton` selects in fin-fem and fin-loop.
+inline DynamicOptions with_full_newton(DynamicOptions options) {
+  options.predict_with_acceleration = false;
+  options.modified_newton = false;
+  return options;
+}
+
 // options with the model's own Rayleigh damping (Model::set_rayleigh_damping) added to a_M, a_K:
 // what every dynamic solver integrates with.
 DynamicOptions with_model_damping(const Model& model, DynamicOptions options);

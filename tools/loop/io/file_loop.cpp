@@ -199,8 +199,7 @@ TraceRecord run_trace_from_files(const FileTraceOptions& o, const nlohmann::json
   setup.run.substeps = o.substeps;
   setup.run.start_time = base->start_time();
   setup.run.dynamic_options.spectral_radius = o.spectral_radius;
-  setup.run.dynamic_options.predict_with_acceleration = !o.full_newton;
-  setup.run.dynamic_options.modified_newton = !o.full_newton;
+  if (o.full_newton) setup.run.dynamic_options = fem::with_full_newton(setup.run.dynamic_options);
   setup.run.dynamic_options.rayleigh_mass = base->damping().mass;
   setup.run.dynamic_options.rayleigh_stiffness = base->damping().stiffness;
   setup.trailing_edge_nodes = ray_tip_nodes(mesh);
