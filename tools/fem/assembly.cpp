@@ -140,6 +140,9 @@ void Assembler::assemble(const NodalState& state, const AssemblyRequest& req) {
   if (need_m) me_.resize(mat_offset_[ne]);
   if (req.mass_times) fm_.resize(vec_offset_[ne]);
   if (req.stiffness_times) fk_.resize(vec_offset_[ne]);
+  const bool need_c = req.matrix && req.viscous_velocity && req.damping_coefficient != 0;
+  if (req.viscous_velocity) fd_.resize(vec_offset_[ne]);
+  if (need_c) ce_.resize(mat_offset_[ne]);
 
   const StiffnessField& field = model_.stiffness_field();
   for_each_element(ne, [&](int e) {
@@ -165,6 +168,20 @@ void Assembler::assemble(const NodalState& state, const AssemblyRequest& req) {
       el.mass_matrix(state, M);
       if (const double mf = model_.element_mass_factor(e); mf != 1.0) M *= mf;
     }
+    if (req.viscous_velocity) {
+      Eigen::VectorXd ve(n);
+      for (int i = 0; i < n; ++i) ve(i) = (*req.viscous_velocity)(global_dof(el, i));
+      Eigen::Map<Eigen::VectorXd> fd(fd_.data() + vec_offset_[e], n);
+      if (need_c) {
+        Eigen::Map<Eigen::MatrixXd> C(ce_.data() + mat_offset_[e], n, n);
+        Element::MatrixRef Cr(C);
+        el.viscous_force(state, ve, req.viscosity, fd, &Cr);
+        if (scale != 1.0) C *= scale;
+      } else {
+        el.viscous_force(state, ve, req.viscosity, fd, nullptr);
+      }
+      if (scale != 1.0) fd *= scale;
+    }
     if (req.mass_times || req.stiffness_times) {
       Eigen::VectorXd xe(n);
       if (req.mass_times) {
@@ -183,6 +200,7 @@ void Assembler::assemble(const NodalState& state, const AssemblyRequest& req) {
   gather_vector(fe_, f_int_);
   if (req.mass_times) gather_vector(fm_, f_mass_);
   if (req.stiffness_times) gather_vector(fk_, f_stiff_);
+  if (req.viscous_velocity) gather_vector(fd_, f_visc_);
 
   if (req.matrix) {
     const double ck = req.stiffness_coefficient;
@@ -191,12 +209,14 @@ void Assembler::assemble(const NodalState& state, const AssemblyRequest& req) {
     double* values = matrix_.valuePtr();
     const double* K = ke_.data();
     const double* M = need_m ? me_.data() : nullptr;
+    const double cc = need_c ? req.damping_coefficient : 0.0;
+    const double* C = need_c ? ce_.data() : nullptr;
 #pragma omp parallel for schedule(static) if (nnz > 16384)
     for (int k = 0; k < nnz; ++k) {
       double s = 0;
       for (int c = mat_ptr_[k]; c < mat_ptr_[k + 1]; ++c) {
         const int o = mat_src_[c];
-        s += ck * K[o] + (M ? cm * M[o] : 0.0);
+        s += ck * K[o] + (M ? cm * M[o] : 0.0) + (C ? cc * C[o] : 0.0);
       }
       values[k] = s;
     }

@@ -38,6 +38,12 @@ struct AssemblyRequest {
   const Eigen::VectorXd* mass_times = nullptr;       // full-length vector a: also compute M a
   const Eigen::VectorXd* stiffness_times = nullptr;  // full-length vector v: also compute K v
   double time = 0;  // evaluates the model's stiffness field (per-element E, E(t)) at this time
+  // Kelvin-Voigt damping (Element::viscous_force) with coefficient viscosity at this full-length
+  // velocity: also compute the damping force f_d = C v, and add damping_coefficient * C to the
+  // matrix (C scaled by the stiffness field, like K).
+  const Eigen::VectorXd* viscous_velocity = nullptr;
+  double viscosity = 0;
+  double damping_coefficient = 0;
 };
 
 class Assembler {
@@ -52,6 +58,7 @@ class Assembler {
   const Eigen::VectorXd& internal_force() const { return f_int_; }        // full length
   const Eigen::VectorXd& mass_product() const { return f_mass_; }         // full length
   const Eigen::VectorXd& stiffness_product() const { return f_stiff_; }   // full length
+  const Eigen::VectorXd& damping_force() const { return f_visc_; }        // full length
   const SparseMatrix& matrix() const { return matrix_; }  // upper (or full), free DOFs
   bool full_matrix() const { return full_; }
 
@@ -85,13 +92,13 @@ class Assembler {
   const DofMap& dofs_;
   bool full_ = false;
   std::vector<int> vec_offset_, mat_offset_;  // per element
-  std::vector<double> fe_, fm_, fk_, ke_, me_;
+  std::vector<double> fe_, fm_, fk_, fd_, ke_, me_, ce_;
   // Vector gather: contributions of global dof g are vec_src_[vec_ptr_[g] .. vec_ptr_[g+1]).
   std::vector<int> vec_ptr_, vec_src_;
   // Matrix gather: contributions of nonzero k are mat_src_[mat_ptr_[k] .. mat_ptr_[k+1]).
   std::vector<int> mat_ptr_, mat_src_;
   SparseMatrix matrix_;
-  Eigen::VectorXd f_int_, f_mass_, f_stiff_;
+  Eigen::VectorXd f_int_, f_mass_, f_stiff_, f_visc_;
 };
 
 // Smallest force residual that can be resolved: a translation is only known to round-off of the

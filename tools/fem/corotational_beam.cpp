@@ -170,6 +170,64 @@ double CorotationalBeam::strain_energy(const NodalState& s) const {
   return 0.5 * k.da.dot(kl_ * k.da);
 }
 
+// The variations of the local freedoms in terms of the global ones (Battini & Pacoste eqs.
+// (37)-(48)): the frame spin G^T, the projector P, B = [r; P E^T] (local spins) and Ba = dtheta_bar
+// / d(local spin) = blockdiag(1, Ts^-1, Ts^-1). What internal_force and viscous_force share.
+struct CorotationalBeam::Projection {
+  Eigen::Matrix<double, 3, 12> GT;
+  Eigen::Matrix<double, 6, 12> P;
+  Eigen::Matrix<double, 7, 12> B;
+  Eigen::Matrix<double, 7, 7> Ba;
+  Mat3 Ti1, Ti2;
+  Vec12 r;
+  double eta, eta11, eta12, eta21, eta22;
+};
+
+CorotationalBeam::Projection CorotationalBeam::projection(const Kinematics& k) const {
+  Projection p;
+  const double ln = k.ln;
+  const Vec3 r1 = k.Rr.col(0);
+  p.Ti1 = tangent_inverse(k.da.segment<3>(1));
+  p.Ti2 = tangent_inverse(k.da.segment<3>(4));
+  p.Ba.setZero();
+  p.Ba(0, 0) = 1;
+  p.Ba.block<3, 3>(1, 1) = p.Ti1;
+  p.Ba.block<3, 3>(4, 4) = p.Ti2;
+
+  // G^T (3x12): spin of the corotated frame in terms of the local-frame global dofs.
+  p.eta = k.ql(0) / k.ql(1);
+  p.eta11 = k.q1l(0) / k.ql(1), p.eta12 = k.q1l(1) / k.ql(1);
+  p.eta21 = k.q2l(0) / k.ql(1), p.eta22 = k.q2l(1) / k.ql(1);
+  auto& GT = p.GT;
+  GT.setZero();
+  GT(0, 2) = p.eta / ln, GT(0, 3) = p.eta12 / 2, GT(0, 4) = -p.eta11 / 2;
+  GT(0, 8) = -p.eta / ln, GT(0, 9) = p.eta22 / 2, GT(0, 10) = -p.eta21 / 2;
+  GT(1, 2) = 1 / ln, GT(1, 8) = -1 / ln;
+  GT(2, 1) = -1 / ln, GT(2, 7) = 1 / ln;
+  p.P.setZero();
+  p.P.block<3, 3>(0, 3).setIdentity();
+  p.P.block<3, 3>(3, 9).setIdentity();
+  p.P.block<3, 12>(0, 0) -= GT;
+  p.P.block<3, 12>(3, 0) -= GT;
+
+  // B = [r; P E^T]; applying E^T = blockdiag(Rr^T) column-block by column-block.
+  p.r.setZero();
+  p.r.segment<3>(0) = -r1;
+  p.r.segment<3>(6) = r1;
+  p.B.row(0) = p.r.transpose();
+  for (int b = 0; b < 4; ++b) p.B.block<6, 3>(1, 3 * b) = p.P.block<6, 3>(0, 3 * b) * k.Rr.transpose();
+  return p;
+}
+
+void CorotationalBeam::viscous_force(const NodalState& s, const Eigen::Ref<const Eigen::VectorXd>& v, double eta,
+                                     VectorRef f, MatrixRef* C) const {
+  // theta_bar_dot = Ba B v: the rate of the local deformation, zero for a rigid motion.
+  const Projection p = projection(kinematics(s));
+  const Eigen::Matrix<double, 7, 12> D = p.Ba * p.B;
+  f = D.transpose() * (eta * (kl_ * (D * v)));
+  if (C) *C = D.transpose() * (eta * kl_) * D;
+}
+
 void CorotationalBeam::internal_force(const NodalState& s, VectorRef f_out,
                                       MatrixRef* K_out) const {
   const Kinematics k = kinematics(s);
@@ -177,40 +235,13 @@ void CorotationalBeam::internal_force(const NodalState& s, VectorRef f_out,
   using Vec7 = Eigen::Matrix<double, 7, 1>;
   const double ln = k.ln;
   const Vec3 r1 = k.Rr.col(0);
+  const Projection p = projection(k);
+  const auto& [GT, P, B, Ba, Ti1, Ti2, r, eta, eta11, eta12, eta21, eta22] = p;
 
   // Local forces conjugate to theta_bar (fa) and to the local spins (fl = Ba^T fa).
   const Vec7 fa = kl_ * k.da;
   const Vec3 th1 = k.da.segment<3>(1), th2 = k.da.segment<3>(4);
-  const Mat3 Ti1 = tangent_inverse(th1), Ti2 = tangent_inverse(th2);
-  Mat7 Ba = Mat7::Zero();
-  Ba(0, 0) = 1;
-  Ba.block<3, 3>(1, 1) = Ti1;
-  Ba.block<3, 3>(4, 4) = Ti2;
   const Vec7 fl = Ba.transpose() * fa;
-
-  // G^T (3x12): spin of the corotated frame in terms of the local-frame global dofs.
-  const double eta = k.ql(0) / k.ql(1);
-  const double eta11 = k.q1l(0) / k.ql(1), eta12 = k.q1l(1) / k.ql(1);
-  const double eta21 = k.q2l(0) / k.ql(1), eta22 = k.q2l(1) / k.ql(1);
-  Eigen::Matrix<double, 3, 12> GT = Eigen::Matrix<double, 3, 12>::Zero();
-  GT(0, 2) = eta / ln, GT(0, 3) = eta12 / 2, GT(0, 4) = -eta11 / 2;
-  GT(0, 8) = -eta / ln, GT(0, 9) = eta22 / 2, GT(0, 10) = -eta21 / 2;
-  GT(1, 2) = 1 / ln, GT(1, 8) = -1 / ln;
-  GT(2, 1) = -1 / ln, GT(2, 7) = 1 / ln;
-  Eigen::Matrix<double, 6, 12> P = Eigen::Matrix<double, 6, 12>::Zero();
-  P.block<3, 3>(0, 3).setIdentity();
-  P.block<3, 3>(3, 9).setIdentity();
-  P.block<3, 12>(0, 0) -= GT;
-  P.block<3, 12>(3, 0) -= GT;
-
-  // B = [r; P E^T]; applying E^T = blockdiag(Rr^T) column-block by column-block.
-  Eigen::Matrix<double, 7, 12> B;
-  Vec12 r = Vec12::Zero();
-  r.segment<3>(0) = -r1;
-  r.segment<3>(6) = r1;
-  B.row(0) = r.transpose();
-  for (int b = 0; b < 4; ++b)
-    B.block<6, 3>(1, 3 * b) = P.block<6, 3>(0, 3 * b) * k.Rr.transpose();
 
   f_out = B.transpose() * fl;
   if (!K_out) return;

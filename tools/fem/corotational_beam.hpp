@@ -58,6 +58,9 @@ class CorotationalBeam final : public Element {
   std::span<const int> nodes() const override { return nodes_; }
   std::span<const int> active_dofs() const override;
   void internal_force(const NodalState& state, VectorRef f, MatrixRef* K) const override;
+  // Damps the rate of [u_bar, theta_bar_1, theta_bar_2] with eta k_l (Kelvin-Voigt).
+  void viscous_force(const NodalState& state, const Eigen::Ref<const Eigen::VectorXd>& v, double eta, VectorRef f,
+                     MatrixRef* C) const override;
   void mass_matrix(const NodalState& state, MatrixRef M) const override;
   void gravity_force(const NodalState& state, const Vec3& g, VectorRef f) const override;
   double strain_energy(const NodalState& state) const override;
@@ -84,7 +87,9 @@ class CorotationalBeam final : public Element {
 
  private:
   struct Kinematics;
+  struct Projection;
   Kinematics kinematics(const NodalState& state) const;
+  Projection projection(const Kinematics& k) const;
 
   std::array<int, 2> nodes_;
   Material material_;

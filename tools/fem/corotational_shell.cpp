@@ -91,39 +91,63 @@ double CorotationalShell::strain_energy(const NodalState& s) const {
   return 0.5 * k.dl.dot(kl_ * k.dl);
 }
 
+// The variations of the local freedoms in terms of the global ones: the frame spin w_r = G dd_bar
+// and the projector P = I - T_c - S G (see the header), and H = blockdiag(I, Ts^-1(theta_bar_a)).
+// What internal_force and viscous_force share.
+struct CorotationalShell::Projection {
+  std::array<Mat3, 3> Ti;  // Ts^-1(theta_bar_a)
+  Eigen::Matrix<double, 3, 18> G;
+  Eigen::Matrix<double, 18, 3> S;
+  Mat18 P;
+  double x21, x31, y31, x32, A2;
+};
+
+CorotationalShell::Projection CorotationalShell::projection(const Kinematics& k) const {
+  Projection p;
+  for (int a = 0; a < 3; ++a) p.Ti[a] = tangent_inverse(k.dl.segment<3>(6 * a + 3));
+  // In Rr, y21 = 0 and all z = 0, so
+  //   w_1 = (x32 w1 - x31 w2 + x21 w3) / (x21 y31), w_2 = (w1 - w2) / x21, w_3 = (v2 - v1) / x21.
+  p.x21 = k.xbar[1].x() - k.xbar[0].x();
+  p.x31 = k.xbar[2].x() - k.xbar[0].x();
+  p.y31 = k.xbar[2].y() - k.xbar[0].y();
+  p.x32 = p.x31 - p.x21, p.A2 = p.x21 * p.y31;
+  auto& G = p.G;
+  G.setZero();
+  G(0, 2) = p.x32 / p.A2, G(0, 8) = -p.x31 / p.A2, G(0, 14) = p.x21 / p.A2;
+  G(1, 2) = 1.0 / p.x21, G(1, 8) = -1.0 / p.x21;
+  G(2, 1) = -1.0 / p.x21, G(2, 7) = 1.0 / p.x21;
+  p.P.setIdentity();
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) p.P.block<3, 3>(6 * a, 6 * b) -= Mat3::Identity() / 3.0;
+    p.S.block<3, 3>(6 * a, 0) = -skew(k.xbar[a]);
+    p.S.block<3, 3>(6 * a + 3, 0) = Mat3::Identity();
+  }
+  p.P -= p.S * G;
+  return p;
+}
+
+void CorotationalShell::viscous_force(const NodalState& s, const Eigen::Ref<const Eigen::VectorXd>& v, double eta,
+                                      VectorRef f, MatrixRef* C) const {
+  // d_l_dot = H P E^T v: the rate of the local deformation, zero for a rigid motion.
+  const Kinematics k = kinematics(s);
+  const Projection p = projection(k);
+  Mat18 D = p.P;
+  for (int a = 0; a < 3; ++a) D.middleRows<3>(6 * a + 3) = (p.Ti[a] * D.middleRows<3>(6 * a + 3)).eval();
+  for (int b = 0; b < 6; ++b) D.middleCols<3>(3 * b) = (D.middleCols<3>(3 * b) * k.Rr.transpose()).eval();
+  f = D.transpose() * (eta * (kl_ * (D * v)));
+  if (C) *C = D.transpose() * (eta * kl_) * D;
+}
+
 void CorotationalShell::internal_force(const NodalState& s, VectorRef f_out,
                                        MatrixRef* K_out) const {
   const Kinematics k = kinematics(s);
   const Vec18 fl = kl_ * k.dl;
+  const Projection p = projection(k);
+  const auto& [Ti, G, S, P, x21, x31, y31, x32, A2] = p;
 
   // h = H^T f_l: moments conjugate to the local spins.
   Vec18 h = fl;
-  std::array<Mat3, 3> Ti;
-  for (int a = 0; a < 3; ++a) {
-    Ti[a] = tangent_inverse(k.dl.segment<3>(6 * a + 3));
-    h.segment<3>(6 * a + 3) = Ti[a].transpose() * fl.segment<3>(6 * a + 3);
-  }
-
-  // Frame spin (local components) w_r = G dd_bar. In Rr, y21 = 0 and all z = 0, so
-  //   w_1 = (x32 w1 - x31 w2 + x21 w3) / (x21 y31), w_2 = (w1 - w2) / x21, w_3 = (v2 - v1) / x21.
-  const double x21 = k.xbar[1].x() - k.xbar[0].x();
-  const double x31 = k.xbar[2].x() - k.xbar[0].x();
-  const double y31 = k.xbar[2].y() - k.xbar[0].y();
-  const double x32 = x31 - x21, A2 = x21 * y31;
-  Eigen::Matrix<double, 3, 18> G = Eigen::Matrix<double, 3, 18>::Zero();
-  G(0, 2) = x32 / A2, G(0, 8) = -x31 / A2, G(0, 14) = x21 / A2;
-  G(1, 2) = 1.0 / x21, G(1, 8) = -1.0 / x21;
-  G(2, 1) = -1.0 / x21, G(2, 7) = 1.0 / x21;
-
-  // P = I - T_c - S G
-  Mat18 P = Mat18::Identity();
-  Eigen::Matrix<double, 18, 3> S;
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) P.block<3, 3>(6 * a, 6 * b) -= Mat3::Identity() / 3.0;
-    S.block<3, 3>(6 * a, 0) = -skew(k.xbar[a]);
-    S.block<3, 3>(6 * a + 3, 0) = Mat3::Identity();
-  }
-  P -= S * G;
+  for (int a = 0; a < 3; ++a) h.segment<3>(6 * a + 3) = Ti[a].transpose() * fl.segment<3>(6 * a + 3);
 
   const Vec18 ft = P.transpose() * h;  // projected (self-equilibrated) local force
   for (int a = 0; a < 6; ++a) f_out.segment<3>(3 * a) = k.Rr * ft.segment<3>(3 * a);

@@ -54,6 +54,9 @@ class CorotationalShell final : public Element {
   std::span<const int> nodes() const override { return nodes_; }
   std::span<const int> active_dofs() const override;
   void internal_force(const NodalState& state, VectorRef f, MatrixRef* K) const override;
+  // Damps the rate of the local freedoms d_l with eta K_l (Kelvin-Voigt).
+  void viscous_force(const NodalState& state, const Eigen::Ref<const Eigen::VectorXd>& v, double eta, VectorRef f,
+                     MatrixRef* C) const override;
   void mass_matrix(const NodalState& state, MatrixRef M) const override;
   void gravity_force(const NodalState& state, const Vec3& g, VectorRef f) const override;
   double strain_energy(const NodalState& state) const override;
@@ -72,7 +75,9 @@ class CorotationalShell final : public Element {
 
  private:
   struct Kinematics;
+  struct Projection;
   Kinematics kinematics(const NodalState& state) const;
+  Projection projection(const Kinematics& k) const;
 
   std::array<int, 3> nodes_;
   Material material_;

@@ -44,11 +44,11 @@ CoupledStructure::CoupledStructure(const Model& model, const CoupledStructureOpt
 Eigen::VectorXd CoupledStructure::damping_force(const DynamicState& s) {
   AssemblyRequest req;
   req.mass_times = &s.velocity;
-  req.stiffness_times = &s.velocity;
+  req.viscous_velocity = &s.velocity;
+  req.viscosity = opt_.dynamics.rayleigh_stiffness;
   req.time = s.time;
   damping_assembler_->assemble(s.configuration, req);
-  return opt_.dynamics.rayleigh_mass * damping_assembler_->mass_product() +
-         opt_.dynamics.rayleigh_stiffness * damping_assembler_->stiffness_product();
+  return opt_.dynamics.rayleigh_mass * damping_assembler_->mass_product() + damping_assembler_->damping_force();
 }
 
 void CoupledStructure::check_load(const Eigen::VectorXd& f, const char* what) const {

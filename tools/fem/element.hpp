@@ -33,6 +33,22 @@ class Element {
   // tangent dF/d(increment) for the multiplicative update. The tangent of a corotational element
   // is not exactly symmetric away from equilibrium; callers may symmetrise it.
   virtual void internal_force(const NodalState& state, VectorRef f, MatrixRef* K) const = 0;
+  // Kelvin-Voigt (stiffness-proportional) damping force f_d = C v for the element velocity v
+  // (size(), spatial spins for rotations) and, when C is non-null, the damping matrix
+  // C = df_d/dv at this configuration. A corotational element takes C = eta B^T K_l B (B: the
+  // map from global variations to its local deformational freedoms, K_l: its local stiffness),
+  // so only the rate of deformation is damped and a rigid motion, however fast, is not; the
+  // default, for elements without a corotated frame, is Rayleigh's K v with the current tangent.
+  virtual void viscous_force(const NodalState& state, const Eigen::Ref<const Eigen::VectorXd>& v, double eta,
+                             VectorRef f, MatrixRef* C) const {
+    Eigen::MatrixXd K(size(), size());
+    Eigen::VectorXd fi(size());
+    MatrixRef Kr(K);
+    internal_force(state, fi, &Kr);
+    K = (0.5 * (K + K.transpose())).eval();
+    f = eta * (K * v);
+    if (C) *C = eta * K;
+  }
   // Consistent mass matrix (size() x size()) at the given configuration.
   virtual void mass_matrix(const NodalState& state, MatrixRef M) const = 0;
   // Equivalent nodal force of the element's own weight under acceleration g (dead load).

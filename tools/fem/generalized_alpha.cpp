@@ -85,7 +85,10 @@ void GeneralizedAlpha::store_old_terms(const DynamicState& s, const Eigen::Vecto
   const bool stiff_damping = opt_.rayleigh_stiffness != 0;
   Eigen::VectorXd w = s.acceleration * am_ + s.velocity * (af_ * opt_.rayleigh_mass);
   req.mass_times = &w;
-  if (stiff_damping) req.stiffness_times = &s.velocity;
+  if (stiff_damping) {
+    req.viscous_velocity = &s.velocity;
+    req.viscosity = opt_.rayleigh_stiffness;
+  }
   req.time = s.time;
   assembler_.assemble(s.configuration, req);
   if (added.size() == 0)
@@ -94,7 +97,7 @@ void GeneralizedAlpha::store_old_terms(const DynamicState& s, const Eigen::Vecto
   else
     old_terms_ = assembler_.mass_product() + af_ * (assembler_.internal_force() -
                                                     (model_.external_load(s.time) + added));
-  if (stiff_damping) old_terms_ += af_ * opt_.rayleigh_stiffness * assembler_.stiffness_product();
+  if (stiff_damping) old_terms_ += af_ * assembler_.damping_force();
 }
 
 void GeneralizedAlpha::initialize(DynamicState& s) { initialize(s, Eigen::VectorXd()); }
@@ -117,13 +120,16 @@ void GeneralizedAlpha::initialize(DynamicState& s, const Eigen::VectorXd& added)
   req.mass_coefficient = 1;
   Eigen::VectorXd w = s.acceleration + opt_.rayleigh_mass * s.velocity;
   req.mass_times = &w;
-  if (opt_.rayleigh_stiffness != 0) req.stiffness_times = &s.velocity;
+  if (opt_.rayleigh_stiffness != 0) {
+    req.viscous_velocity = &s.velocity;
+    req.viscosity = opt_.rayleigh_stiffness;
+  }
   req.time = s.time;
   assembler_.assemble(s.configuration, req);
   Eigen::VectorXd rhs = model_.external_load(s.time) - assembler_.internal_force() -
                         assembler_.mass_product();
   if (added.size() != 0) rhs += added;
-  if (opt_.rayleigh_stiffness != 0) rhs -= opt_.rayleigh_stiffness * assembler_.stiffness_product();
+  if (opt_.rayleigh_stiffness != 0) rhs -= assembler_.damping_force();
   SparseSolver mass_solver(opt_.backend);
   mass_solver.set_equation_names([this](int eq) { return describe_equation(dofs_, eq); });
   mass_solver.factorize(assembler_.matrix(), "mass matrix");
@@ -163,8 +169,12 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s, const Eigen::VectorXd& a
   const double c_v = gamma_ / (beta_ * h);   // dv/d(increment)
   AssemblyRequest req;
   req.matrix = true;
-  req.stiffness_coefficient = (1 - af_) * (1 + aK * c_v);
+  // The damping force's tangent keeps C's dependence on the velocity only (c_v C); C's change with
+  // the configuration is of relative size |v_def| h / l and is left to the iteration.
+  req.stiffness_coefficient = 1 - af_;
   req.mass_coefficient = (1 - am_) * c_a + (1 - af_) * aM * c_v;
+  req.viscosity = aK;
+  req.damping_coefficient = (1 - af_) * c_v;
   req.time = t1;
 
   // Newton on the step's balance. Not the static iteration of newton_iteration.hpp: the residual
@@ -188,10 +198,10 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s, const Eigen::VectorXd& a
     v1 = s.velocity + h * ((1 - gamma_) * s.acceleration + gamma_ * a1);
     w = (1 - am_) * a1 + ((1 - af_) * aM) * v1;
     req.mass_times = &w;
-    req.stiffness_times = aK != 0 ? &v1 : nullptr;
+    req.viscous_velocity = aK != 0 ? &v1 : nullptr;
     assembler_.assemble(x, req);
     Eigen::VectorXd lhs = assembler_.mass_product() + (1 - af_) * assembler_.internal_force();
-    if (aK != 0) lhs += ((1 - af_) * aK) * assembler_.stiffness_product();
+    if (aK != 0) lhs += (1 - af_) * assembler_.damping_force();
     const Eigen::VectorXd r_full = f_ext - lhs - old_terms_;
     const Eigen::VectorXd r = dofs_.gather_free(r_full);
     // The force level of a free vibration passes through zero twice a period; measure the

@@ -15,7 +15,12 @@
 // gyroscopic terms (corotational_beam.hpp), this is exact in the linear range and first-order
 // consistent for large rotations; a fully consistent corotational inertia (Le, Battini & Hjiaj
 // 2014) is not implemented.
-// Damping: Rayleigh, C = a_M M + a_K K (K: current tangent); the options' plus the model's.
+// Damping: C = a_M M + a_K K_d, the options' plus the model's. K_d is each element's local
+// stiffness acting on the rate of its deformation in the corotated frame (Kelvin-Voigt,
+// Element::viscous_force): Rayleigh's a_K K in the linear range, but a rigid rotation is not damped
+// and Newton keeps its rate, which a_K K(x) v with the current tangent lost (it damps the spin of
+// a loaded element and its configuration derivative is not in the tangent;
+// docs/studies/fin_dynamic_run.md, session 45).
 // Prescribed DOFs move as prescribed; their velocities/accelerations follow from the same Newmark
 // relations, so prescribed root motion enters consistently.
 #pragma once
@@ -33,7 +38,7 @@ struct DynamicOptions {
   double time_step = 0;
   double spectral_radius = 1.0;  // rho_inf in [0, 1]
   double rayleigh_mass = 0;      // a_M [1/s]
-  double rayleigh_stiffness = 0; // a_K [s]
+  double rayleigh_stiffness = 0;  // a_K [s], on the corotated deformation rate
   int max_iterations = 20;
   double residual_tolerance = 1e-9;
   double increment_tolerance = 1e-9;  // relative to the step's increment

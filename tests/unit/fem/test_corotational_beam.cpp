@@ -112,3 +112,66 @@ TEST(CorotationalBeam, RejectsDegenerateGeometry) {
   TaperedRectangle bad{{0.01, 0.01}, {0.0, 0.01}};
   EXPECT_THROW(CorotationalBeam(0, 1, fx.X1, fx.X2, Vec3(0, 0, 1), fx.mat, bad), InvalidInput);
 }
+
+namespace {
+Eigen::Matrix<double, 7, 1> local_deformation(const CorotationalBeam& b, const NodalState& s) {
+  const CorotationalBeam::Local l = b.local_state(s);
+  Eigen::Matrix<double, 7, 1> d;
+  d << l.elongation, l.theta1, l.theta2;
+  return d;
+}
+
+// The element's velocity v (12) as a full 8-node increment of size h.
+NodalState moved(const NodalState& s, const Eigen::VectorXd& v, double h) {
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(6 * 8);
+  d.segment<6>(6 * 3) = h * v.head<6>();
+  d.segment<6>(6 * 7) = h * v.tail<6>();
+  NodalState p = s;
+  p.apply_increment(d);
+  return p;
+}
+}  // namespace
+
+TEST(CorotationalBeam, ViscousForceDampsTheDeformationRateOnly) {
+  // Kelvin-Voigt damping f_d = eta B^T k_l B v: its power is eta d_dot^T k_l d_dot with d_dot the
+  // rate of the local deformation (checked by central differences of the deformation along v at
+  // a large deformation), and a rigid motion of the bent, loaded element is not damped at all.
+  Fixture fx;
+  std::mt19937 rng(4501);
+  std::uniform_real_distribution<double> U(-1, 1);
+  NodalState s = fx.state();
+  for (int n : {3, 7}) {
+    s.position[n] += 0.03 * Vec3(U(rng), U(rng), U(rng));
+    s.rotation[n] = exp_so3(0.9 * Vec3(U(rng), U(rng), U(rng)));
+  }
+  const double eta = 0.01;
+  Eigen::VectorXd v(12), f(12);
+  for (int i = 0; i < 12; ++i) v(i) = U(rng);
+  Eigen::MatrixXd C(12, 12);
+  Element::MatrixRef Cr(C);
+  fx.beam.viscous_force(s, v, eta, f, &Cr);
+  const double h = 1e-6;
+  const Eigen::Matrix<double, 7, 1> rate =
+      (local_deformation(fx.beam, moved(s, v, h)) - local_deformation(fx.beam, moved(s, v, -h))) / (2 * h);
+  const double power = eta * rate.dot(fx.beam.local_stiffness() * rate);
+  EXPECT_NEAR(v.dot(f), power, 1e-7 * power);
+  EXPECT_LT((C * v - f).norm(), 1e-12 * f.norm());
+  EXPECT_LT((C - C.transpose()).norm(), 1e-14 * C.norm());
+
+  // Rigid spin w about the origin and translation c: v_a = w x x_a + c, spins w.
+  const Vec3 w(3.0, -1.0, 2.0), c(0.4, 0.1, -0.2);
+  Eigen::VectorXd rigid(12);
+  for (int a = 0; a < 2; ++a) {
+    rigid.segment<3>(6 * a) = w.cross(s.position[a == 0 ? 3 : 7]) + c;
+    rigid.segment<3>(6 * a + 3) = w;
+  }
+  Eigen::VectorXd fr(12);
+  fx.beam.viscous_force(s, rigid, eta, fr, nullptr);
+  EXPECT_LT(fr.norm(), 1e-12 * f.norm() * rigid.norm() / v.norm());
+  // Rayleigh's eta K v with the current tangent does damp that rigid motion of the loaded element.
+  Eigen::MatrixXd K(12, 12);
+  Element::MatrixRef Kr(K);
+  Eigen::VectorXd fi(12);
+  fx.beam.internal_force(s, fi, &Kr);
+  EXPECT_GT((eta * K * rigid).norm(), 1e-3 * f.norm() * rigid.norm() / v.norm());
+}

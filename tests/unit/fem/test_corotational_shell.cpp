@@ -242,5 +242,39 @@ TEST(CorotationalShell, StripRollsIntoHalfCircleUnderEndMoment) {
   EXPECT_NEAR(tip.y() / b, 0.5, 2e-3);
 }
 
+TEST(CorotationalShell, ViscousForceDampsTheDeformationRateOnly) {
+  // Kelvin-Voigt damping f_d = eta D^T K_l D v (D = H P E^T): its power is eta d_dot^T K_l d_dot
+  // with d_dot the rate of the local freedoms (central differences along v at a large
+  // deformation), and a rigid motion of the deformed, loaded triangle is not damped.
+  const ShellFixture s = skew_triangle();
+  const CorotationalShell e(0, 1, 2, s.X[0], s.X[1], s.X[2], kShellMaterial, 0.02);
+  std::mt19937 rng(4502);
+  const NodalState st = shell_deformed(s, rng, 1.0);
+  const double eta = 0.01;
+  Eigen::VectorXd v(18), f(18);
+  for (int i = 0; i < 18; ++i) v(i) = std::cos(0.3 + 2.9 * i);
+  Eigen::MatrixXd C(18, 18);
+  Element::MatrixRef Cr(C);
+  e.viscous_force(st, v, eta, f, &Cr);
+  const double h = 1e-6;
+  NodalState plus = st, minus = st;
+  plus.apply_increment(h * v);
+  minus.apply_increment(-h * v);
+  const Vec18 rate = (e.local_deformation(plus) - e.local_deformation(minus)) / (2 * h);
+  const double power = eta * rate.dot(e.local_stiffness() * rate);
+  EXPECT_NEAR(v.dot(f), power, 1e-7 * power);
+  EXPECT_LT((C * v - f).norm(), 1e-12 * f.norm());
+
+  const Vec3 w(-2.0, 0.5, 1.5), c(0.3, -0.1, 0.2);
+  Eigen::VectorXd rigid(18);
+  for (int a = 0; a < 3; ++a) {
+    rigid.segment<3>(6 * a) = w.cross(st.position[a]) + c;
+    rigid.segment<3>(6 * a + 3) = w;
+  }
+  Eigen::VectorXd fr(18);
+  e.viscous_force(st, rigid, eta, fr, nullptr);
+  EXPECT_LT(fr.norm(), 1e-12 * f.norm() * rigid.norm() / v.norm());
+}
+
 }  // namespace
 }  // namespace finverse::fem
