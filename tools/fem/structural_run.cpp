@@ -103,13 +103,25 @@ std::vector<RunFrame> run_structural_analysis(const Model& model, const RunOptio
   GeneralizedAlpha integrator(model, dyn);
   DynamicState s = integrator.reference_state(times[0] - ramp_steps * dyn.time_step);
   integrator.initialize(s);
-  int its = 0;
-  for (long j = 0; j < ramp_steps; ++j) its += integrator.step(s).iterations;
+  // A step that fails names the frame it was heading for and the sub-steps it ran at.
+  auto advance = [&](long steps, size_t frame) {
+    int its = 0;
+    try {
+      for (long j = 0; j < steps; ++j) its += integrator.step(s).iterations;
+    } catch (const NotConverged& e) {
+      std::ostringstream os;
+      os << (frame == 0 ? "in the ramp before frame 0"
+                        : "between frames " + std::to_string(frame - 1) + " and " + std::to_string(frame))
+         << " at " << o.substeps << " sub-steps per frame: " << e.what();
+      throw NotConverged(os.str());
+    }
+    return its;
+  };
+  int its = advance(ramp_steps, 0);
   s.time = times[0];  // remove the round-off of the summed steps
   emit({times[0], s.configuration, s.velocity, its});
   for (size_t k = 1; k < times.size(); ++k) {
-    its = 0;
-    for (int j = 0; j < o.substeps; ++j) its += integrator.step(s).iterations;
+    its = advance(o.substeps, k);
     s.time = times[k];
     emit({times[k], s.configuration, s.velocity, its});
   }

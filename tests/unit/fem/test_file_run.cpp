@@ -199,6 +199,13 @@ TEST_F(FileRun, NewtonThatDoesNotConvergeIsReported) {
   expect_failure<NotConverged>("did not converge");
 }
 
+TEST_F(FileRun, DynamicStepThatDoesNotConvergeNamesItsFrame) {
+  o_.run.analysis = Analysis::dynamic;
+  o_.run.substeps = 3;
+  o_.run.dynamic_options.max_iterations = 1;
+  expect_failure<NotConverged>("in the ramp before frame 0 at 3 sub-steps per frame: generalized-alpha Newton");
+}
+
 TEST_F(FileRun, ForceOnARootNodeIsReportedNotDroppedSilently) {
   // ramp_loads pushes every node, the clamped root ones included: apply_loads measures what goes
   // into the support, and the file run says so once.

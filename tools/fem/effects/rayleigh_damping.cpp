@@ -1,6 +1,7 @@
-// Structural (Rayleigh) damping (issue 34, effect 3): C = a_M M + a_K K added to the model
-// (Model::set_rayleigh_damping; every dynamic solver, the FSI structure included, adds it to its
-// own). A damping ratio zeta at circular frequency w follows zeta = a_M / (2 w) + a_K w / 2.
+// Structural (Rayleigh) damping (issue 34, effect 3): a_M M plus a_K times each element's local
+// stiffness on its corotated deformation rate (Kelvin-Voigt, Element::viscous_force) added to the
+// model (Model::set_rayleigh_damping; every dynamic solver, the FSI structure included, adds it to
+// its own). A damping ratio zeta at circular frequency w follows zeta = a_M / (2 w) + a_K w / 2.
 // Static and quasi-static analyses carry no velocity, so it changes only dynamic runs.
 #include "fem/effects/catalogue.hpp"
 

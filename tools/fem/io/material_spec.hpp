@@ -10,7 +10,7 @@
 //     "shell_region": {"2": {"E": 1e7, "nu": 0.4, "density": 1000}},  // shell regions other than 0
 //     "distal":   {"s_from": 0.7, "E_factor": 0.5},  // ray elements with mid arc length >= s_from
 //     "modulation": [{"target": "rays", "amplitude": 0.2, "frequency": 5.0, "phase": 0.0}],
-//     "rayleigh": {"mass": 0.0, "stiffness": 1e-4}   // C = mass M + stiffness K
+//     "rayleigh": {"mass": 0.0, "stiffness": 1e-4}   // C = mass M + stiffness K (K on the corotated rate)
 //   }
 // A ray entry inherits the fields it omits from "rays"; a top-level "description" string is
 // allowed for the file's provenance and otherwise ignored. Modulation targets: "membrane", "rays",
