@@ -107,12 +107,15 @@ void GeneralizedAlpha::initialize(DynamicState& s, const Eigen::VectorXd& added)
   const int nt = dofs_.total();
   if (s.velocity.size() != nt) s.velocity = Eigen::VectorXd::Zero(nt);
   s.acceleration = Eigen::VectorXd::Zero(nt);
-  // Prescribed accelerations: second difference of the prescribed functions.
+  // Prescribed accelerations: the forward second difference of the prescribed functions, the
+  // acceleration the run meets after its start. A central one straddles the kink where a linear
+  // ramp from rest begins (fin-loop's tracked root motion, load_history.hpp) and turns it into an
+  // acceleration of slope / h, which the first predictor sends the free nodes flying with.
   const double h = 1e-3 * opt_.time_step;
   for (const auto& p : model_.prescribed())
     if (p.value)
       s.acceleration(kDofsPerNode * p.node + p.dof) =
-          (p.at(s.time + h) - 2 * p.at(s.time) + p.at(s.time - h)) / (h * h);
+          (p.at(s.time + 2 * h) - 2 * p.at(s.time + h) + p.at(s.time)) / (h * h);
   // Free accelerations from M_ff a_f = f_ext - f_int - C v - M_fp a_p.
   AssemblyRequest req;
   req.matrix = true;
@@ -184,7 +187,7 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s, const Eigen::VectorXd& a
   // small (modified Newton), and a failure ends the run instead of cutting a load step.
   DynamicStepInfo info;
   Eigen::VectorXd a1, v1, w;
-  double r0 = 0, floor = 0, last_inc = INFINITY, step_norm = 0;
+  double r0 = 0, floor = 0, last_inc = INFINITY, step_norm = 0, last_rn = INFINITY;
   const SparseSolver* current = &solver_;
   // Scaled norm (translations / lchar) of increments resolved only to position round-off.
   const double inc_floor =
@@ -241,11 +244,14 @@ DynamicStepInfo GeneralizedAlpha::step(DynamicState& s, const Eigen::VectorXd& a
         predictor_values_.assign(v, v + A.nonZeros());
       }
       current = &predictor_solver_;
-    } else if (it == 0 || rn > 1e-6 || !opt_.modified_newton) {
+    } else if (it == 0 || rn > 1e-6 || !opt_.modified_newton || rn > 0.25 * last_rn) {
+      // A kept factorisation that contracts the residual less than 4x per iteration (an impulsive
+      // start, a root that jumps) is renewed rather than iterated on to the iteration cap.
       solver_.factorize(assembler_.matrix(), "effective stiffness");
       ++info.factorizations;
       current = &solver_;
     }
+    last_rn = rn;
     const Eigen::VectorXd du = current->solve(r);
     const double inc = scaled_increment_norm(dofs_, du, lchar_);
     if (it == 0) {
