@@ -4,13 +4,18 @@
 #
 #   snakemake -c2 results/validation/loop_<name>/summary.json
 #
-# truth (structure only, not the 25-min FSI): fin-fem run quasi-static on the case's fin under the
-# analytic root drive and the quasi-steady loads of fin-fem loads (resistive + added mass,
+# truth (structure only, not the 25-min FSI): fin-fem run quasi-static (truth.analysis: dynamic,
+# a dynamic run: see below) on the case's fin under the analytic root drive and the quasi-steady loads of fin-fem loads (resistive + added mass,
 # tools/fem/io/quasi_steady_loads.hpp), with the planted effects, over 2 periods after a one-period
 # ramp -> fin-synth --motion-source fem renders 2 periods at 20 frames per period with the tracking
 # validation's sensor (noise sigma 2, 3 blur sub-frames over the same 0.3 ms shutter) -> fin-track
 # -> fin-mesh -> fin-loop trace on the reconstruction, given the same load model on its own mesh
 # as its "measured loads". The grader (tools/scripts/loop_scores.py) alone reads truth.h5.
+# A dynamic dataset's truth and trace both run fin-fem's dynamic analysis at 8 sub-steps per frame
+# (generalized-alpha, rho_inf 0.5), and both carry the fin tissue's Kelvin-Voigt damping that
+# data/cases/loop_start_materials.json declares ("rayleigh"): the trace's model runs are dynamic
+# where the data are (issue 45, deliverable 2). Below about 4 % of critical at the beat the
+# undamped fin's generalized-alpha run blows up at 8 sub-steps (docs/studies/fin_dynamic_run.md).
 # Study: docs/studies/loop_virtual_fish.md. Hours of CPU in all: not in the coarse (tiny) set.
 
 import glob
@@ -48,6 +53,9 @@ _L_PARAMETERS = "E_membrane,E_ray1,E_ray20"
 # the drive itself soaked up the planted root curvature (docs/studies/loop_virtual_fish.md, session 40).
 _L_TRACE = (f"--parameters {_L_PARAMETERS} --frequency {_L_FREQ:.9g} --period {1 / _L_FREQ:.9g} --lm-evaluations 12"
             " --root-rotation per_ray --drive-harmonics 2")
+_L_DYNAMIC = "--substeps 8 --rho-inf 0.5"  # fin-fem run's flags of a dynamic truth; the trace's below
+_L_TRACE_DYNAMIC = "--analysis dynamic --substeps 8 --spectral-radius 0.5"
+_L_START_MATERIALS = os.path.join(REPO, "data", "cases", "loop_start_materials.json")
 
 if not COARSE:
     for _name in _LOOP_CASES:
@@ -55,14 +63,39 @@ if not COARSE:
                             "ranked first and added, TE residual cut >= 5x, refitted moduli within 5 %; control: none added")
 
 
-def _loop_case(name):
+def _loop_truth(name):
     path = os.path.join(_LOOP_DIR, name + ".yaml")
     with open(path) as f:
         case = yaml.safe_load(f) or {}
-    effects = (case.get("truth") or {}).get("effects") or []
+    return path, case.get("truth") or {}
+
+
+def _loop_case(name):
+    path, truth = _loop_truth(name)
+    effects = truth.get("effects") or []
     if not isinstance(effects, list):
         raise ValueError(f"{path}: truth.effects: expected a list of effect specs")
     return effects
+
+
+def _loop_dynamic(name):
+    """True for a dataset whose truth.analysis is dynamic (default quasi_static)."""
+    path, truth = _loop_truth(name)
+    analysis = truth.get("analysis", "quasi_static")
+    if analysis not in ("quasi_static", "dynamic"):
+        raise ValueError(f"{path}: truth.analysis: expected quasi_static or dynamic, got {analysis!r}")
+    return analysis == "dynamic"
+
+
+def _loop_truth_materials(name):
+    """The truth's materials: the case's, plus for a dynamic dataset the tissue damping that the
+    trace's start materials declare (the fit knows it; a planted damping comes on top of it)."""
+    with open(os.path.join(REPO, config["truth"]["materials"])) as f:
+        materials = json.load(f)
+    if _loop_dynamic(name):
+        with open(_L_START_MATERIALS) as f:
+            materials["rayleigh"] = json.load(f)["rayleigh"]
+    return materials
 
 
 # Only the datasets of config/loop/ (results/validation/loop_hessenthaler is rules/flap.smk's).
@@ -75,20 +108,26 @@ rule loop_truth_inputs:
     input:
         exe=EXE("fin-fem"),
         case=os.path.join(_LOOP_DIR, "{loop}.yaml"),
+        materials=os.path.join(REPO, config["truth"]["materials"]),
+        start=_L_START_MATERIALS,
     output:
         drive="results/validation/{loop}/truth/drive.json",
         effects="results/validation/{loop}/truth/effects.json",
+        materials="results/validation/{loop}/truth/materials.json",
     log:
         "results/logs/validation/{loop}/truth_inputs.log",
     run:
         drive = dict(config["truth"]["root_drive"], frequency_hz=_L_FREQ, ramp_periods=1)
-        for path, data in ((output.drive, drive), (output.effects, _loop_case(wildcards.loop))):
+        materials = _loop_truth_materials(wildcards.loop)
+        for path, data in ((output.drive, drive), (output.effects, _loop_case(wildcards.loop)),
+                           (output.materials, materials)):
             with open(path + ".tmp", "w") as f:
                 json.dump(data, f, indent=2, sort_keys=True)
                 f.write("\n")
         shell("{input.exe} effects --check {output.effects}.tmp > /dev/null 2> {log}")
         os.replace(output.drive + ".tmp", output.drive)
         os.replace(output.effects + ".tmp", output.effects)
+        os.replace(output.materials + ".tmp", output.materials)
 
 
 rule loop_truth:
@@ -97,7 +136,7 @@ rule loop_truth:
         fem=EXE("fin-fem"),
         drive="results/validation/{loop}/truth/drive.json",
         effects="results/validation/{loop}/truth/effects.json",
-        materials=os.path.join(REPO, config["truth"]["materials"]),
+        materials="results/validation/{loop}/truth/materials.json",
     output:
         mesh="results/validation/{loop}/truth/mesh.h5",
         loads="results/validation/{loop}/truth/loads.h5",
@@ -110,11 +149,12 @@ rule loop_truth:
     params:
         template=f"{_L_TEMPLATE} {_L_MESH}",
         times=_L_LOADS,
+        analysis=lambda w: f"dynamic {_L_DYNAMIC}" if _loop_dynamic(w.loop) else "quasi_static",
     shell:
         "({input.mesher} {params.template} --mesh {output.mesh} --threads 1"
         " && {input.fem} loads --mesh {output.mesh} --root-drive {input.drive} --start-periods 1 {params.times}"
         "  --out {output.loads}"
-        " && {input.fem} --threads {threads} run --analysis quasi_static --mesh {output.mesh} --materials {input.materials}"
+        " && {input.fem} --threads {threads} run --analysis {params.analysis} --mesh {output.mesh} --materials {input.materials}"
         "  --root-drive {input.drive} --loads {output.loads} --effects {input.effects} --out {output.motion}) 2> {log}"
 
 
@@ -124,7 +164,7 @@ rule loop_synth:
         mesh="results/validation/{loop}/truth/mesh.h5",
         motion="results/validation/{loop}/truth/motion.h5",
         drive="results/validation/{loop}/truth/drive.json",
-        materials=os.path.join(REPO, config["truth"]["materials"]),
+        materials="results/validation/{loop}/truth/materials.json",
     output:
         truth="results/validation/{loop}/synth/truth.h5",
         cameras="results/validation/{loop}/synth/cameras.yml",
@@ -183,7 +223,7 @@ rule loop_trace:
         mesh="results/validation/{loop}/mesh.h5",
         motion="results/validation/{loop}/motion.h5",
         loads="results/validation/{loop}/loads.h5",
-        materials=os.path.join(REPO, "data", "cases", "loop_start_materials.json"),
+        materials=_L_START_MATERIALS,
         candidates=os.path.join(_LOOP_DIR, "candidates.json"),
     output:
         base="results/validation/{loop}/base.json",
@@ -195,7 +235,7 @@ rule loop_trace:
     resources:
         mem_mb=2000,
     params:
-        flags=_L_TRACE,
+        flags=lambda w: f"{_L_TRACE} {_L_TRACE_DYNAMIC}" if _loop_dynamic(w.loop) else _L_TRACE,
         base_h5="results/validation/{loop}/base.h5",
     shell:
         "({input.exe} --threads {threads} trace --mesh {input.mesh} --motion {input.motion} --loads {input.loads}"
