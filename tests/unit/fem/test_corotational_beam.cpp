@@ -32,14 +32,18 @@ Eigen::VectorXd force(const CorotationalBeam& b, const NodalState& s) {
   return f;
 }
 
-// Increment of the two element nodes inside an 8-node state vector.
-NodalState perturbed(const NodalState& s, int j, double h) {
+// The element's increment v (12) times h, applied to its two nodes inside an 8-node state.
+NodalState moved(const NodalState& s, const Eigen::VectorXd& v, double h) {
   Eigen::VectorXd d = Eigen::VectorXd::Zero(6 * 8);
-  d((j < 6 ? 6 * 3 : 6 * 7) + j % 6) = h;
+  d.segment<6>(6 * 3) = h * v.head<6>();
+  d.segment<6>(6 * 7) = h * v.tail<6>();
   NodalState p = s;
   p.apply_increment(d);
   return p;
 }
+
+// Increment h of the element's freedom j.
+NodalState perturbed(const NodalState& s, int j, double h) { return moved(s, Eigen::VectorXd::Unit(12, j), h); }
 }  // namespace
 
 TEST(CorotationalBeam, TangentMatchesFiniteDifferenceForLargeRandomDeformation) {
@@ -119,16 +123,6 @@ Eigen::Matrix<double, 7, 1> local_deformation(const CorotationalBeam& b, const N
   Eigen::Matrix<double, 7, 1> d;
   d << l.elongation, l.theta1, l.theta2;
   return d;
-}
-
-// The element's velocity v (12) as a full 8-node increment of size h.
-NodalState moved(const NodalState& s, const Eigen::VectorXd& v, double h) {
-  Eigen::VectorXd d = Eigen::VectorXd::Zero(6 * 8);
-  d.segment<6>(6 * 3) = h * v.head<6>();
-  d.segment<6>(6 * 7) = h * v.tail<6>();
-  NodalState p = s;
-  p.apply_increment(d);
-  return p;
 }
 }  // namespace
 
