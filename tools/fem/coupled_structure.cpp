@@ -43,12 +43,15 @@ CoupledStructure::CoupledStructure(const Model& model, const CoupledStructureOpt
 
 Eigen::VectorXd CoupledStructure::damping_force(const DynamicState& s) {
   AssemblyRequest req;
+  const bool viscous = opt_.dynamics.rayleigh_stiffness != 0;
   req.mass_times = &s.velocity;
-  req.viscous_velocity = &s.velocity;
+  req.viscous_velocity = viscous ? &s.velocity : nullptr;
   req.viscosity = opt_.dynamics.rayleigh_stiffness;
   req.time = s.time;
   damping_assembler_->assemble(s.configuration, req);
-  return opt_.dynamics.rayleigh_mass * damping_assembler_->mass_product() + damping_assembler_->damping_force();
+  Eigen::VectorXd f = opt_.dynamics.rayleigh_mass * damping_assembler_->mass_product();
+  if (viscous) f += damping_assembler_->damping_force();
+  return f;
 }
 
 void CoupledStructure::check_load(const Eigen::VectorXd& f, const char* what) const {
