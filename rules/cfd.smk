@@ -229,7 +229,10 @@ rule loads:
     params:
         flags=_LOADS_FLAGS,
     shell:
-        "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --motion {input.motion}"
-        " --out {output.loads} --summary {output.summary} {params.flags} 2> {log} " + METRIC_MISSED_IS_A_RESULT
+        stage_shell(
+            "loads",
+            "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --motion {input.motion}"
+            " --out {output.loads} --summary {output.summary} {params.flags} 2> {log} " + METRIC_MISSED_IS_A_RESULT,
+        )
 
 register_stage_output(f"{_CFD_CASE_OUT}/loads.h5")

@@ -96,10 +96,33 @@ PIPELINE_STAGES = ("synth", "track", "mesh", "loads", "fit", "fsi", "report")
 
 
 def stage_benchmark(stage):
-    """The benchmark file of pipeline stage <stage> on the case: results/<case>/benchmarks/<stage>.tsv."""
+    """The benchmark file of pipeline stage <stage> on the case: results/<case>/benchmarks/<stage>.tsv
+    (the truth's FSI, when the case has one: truth_fsi.tsv)."""
+    if stage == "truth":
+        return f"results/{config['case']}/benchmarks/truth_fsi.tsv"
     if stage not in PIPELINE_STAGES:
         raise ValueError(f"stage_benchmark({stage!r}): not one of PIPELINE_STAGES {PIPELINE_STAGES}")
     return f"results/{config['case']}/benchmarks/{stage}.tsv"
+
+
+# One progress line per finished stage of the main job, with the pipeline's ETA (issue 50, "Also";
+# tools/scripts/stage_progress.py): every stage rule's shell command is wrapped by stage_shell(). The
+# order is the run's (each stage needs the one before); the truth's FSI runs first when the case has
+# one. The ETA starts from config progress.expected_minutes, then from each stage's last measured time.
+def progress_order():
+    truth = ["truth"] if config["truth"]["source"] == "fsi" else []
+    return truth + list(PIPELINE_STAGES)
+
+
+def stage_shell(stage, command):
+    """command, then the stage's progress line (not printed when the command fails)."""
+    expected = ",".join(f"{k}={v}" for k, v in sorted(config["progress"]["expected_minutes"].items()))
+    times = f"results/{config['case']}/benchmarks/stage_times.json"
+    return (
+        "_stage_start=$(date +%s.%N); " + command + f"; /usr/bin/python3 {SCRIPTS}/stage_progress.py"
+        f" --times {times} --stage {stage} --order {','.join(progress_order())}"
+        + (f" --expected {expected}" if expected else "") + " --start $_stage_start"
+    )
 
 
 def validation_targets():

@@ -33,9 +33,12 @@ rule fit:
     params:
         flags=f"--seed {config['seed']} " + _FIT["flags"],
     shell:
-        "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} run --mesh {input.mesh} --motion {input.motion}"
-        " --loads {input.loads} --materials {input.materials} --out {output.materials}"
-        " --summary {output.summary} {params.flags} 2> {log}"
+        stage_shell(
+            "fit",
+            "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} run --mesh {input.mesh} --motion {input.motion}"
+            " --loads {input.loads} --materials {input.materials} --out {output.materials}"
+            " --summary {output.summary} {params.flags} 2> {log}",
+        )
 
 
 # The 22-parameter fin twin (issue 31, validation 4; seed paper sec. 4.3): truth = fin-fem's

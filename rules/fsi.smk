@@ -123,8 +123,11 @@ rule fsi:
     params:
         flags=_FSI_STAGE["flags"],
     shell:
-        "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --motion {input.motion}"
-        " --materials {input.materials} --base-materials {input.base} --out {output.fsi}"
-        " --summary {output.summary} --checkpoint-every 50 {params.flags} 2> {log}"
+        stage_shell(
+            "fsi",
+            "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --motion {input.motion}"
+            " --materials {input.materials} --base-materials {input.base} --out {output.fsi}"
+            " --summary {output.summary} --checkpoint-every 50 {params.flags} 2> {log}",
+        )
 
 register_stage_output(f"{_FSI_OUT}/fsi.h5")

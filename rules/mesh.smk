@@ -120,7 +120,7 @@ rule truth_fsi:
     log:
         f"results/logs/{_CASE}/truth_fsi.log",
     benchmark:
-        f"{_OUT}/benchmarks/truth_fsi.tsv"
+        stage_benchmark("truth"),
     threads: THREADS
     resources:
         mem_mb=2000,
@@ -130,9 +130,12 @@ rule truth_fsi:
         flags=f"--reynolds {_FIN['reynolds']} {_TRUTH['flags']}"
         + (f" --effects {_TRUTH_OUT}/effects.json" if _TRUTH_EFFECTS else ""),
     shell:
-        "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --materials {input.materials}"
-        " --root-drive {input.drive} --out {output.fsi} --summary {output.summary} --checkpoint-every 50"
-        " {params.flags} 2> {log}"
+        stage_shell(
+            "truth",
+            "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --materials {input.materials}"
+            " --root-drive {input.drive} --out {output.fsi} --summary {output.summary} --checkpoint-every 50"
+            " {params.flags} 2> {log}",
+        )
 
 
 def _synth_inputs(wildcards):
@@ -179,7 +182,10 @@ rule synth:
         ),
         out=_OUT,
     shell:
-        "{input.exe} --out-dir {params.out} {params.flags} " + _SYNTH_MOTION_FLAGS + " --threads {threads} 2> {log}"
+        stage_shell(
+            "synth",
+            "{input.exe} --out-dir {params.out} {params.flags} " + _SYNTH_MOTION_FLAGS + " --threads {threads} 2> {log}",
+        )
 
 
 rule mesh:
@@ -202,9 +208,12 @@ rule mesh:
     params:
         flags=_TEMPLATE_FLAGS,
     shell:
-        "{input.exe} {params.flags} --mesh {output.mesh} --vtu {output.vtu}"
-        " --motion-source {input.motion_source} --motion {output.motion} --motion-pvd {output.pvd}"
-        " --threads {threads} 2> {log}"
+        stage_shell(
+            "mesh",
+            "{input.exe} {params.flags} --mesh {output.mesh} --vtu {output.vtu}"
+            " --motion-source {input.motion_source} --motion {output.motion} --motion-pvd {output.pvd}"
+            " --threads {threads} 2> {log}",
+        )
 
 register_stage_output(f"{_OUT}/motion.h5")
 

@@ -39,10 +39,13 @@ rule report:
         out=f"{_REPORT_OUT}/report",
         fsi=lambda wildcards, input: f"--fsi {input.fsi}" if "fsi" in input.keys() else "",
     shell:
-        "{input.exe} --case {config[case]} --truth {input.truth} --kinematics {input.kinematics}"
-        " --mesh {input.mesh} --motion {input.motion} --loads {input.loads} --materials {input.materials}"
-        " --truth-materials {input.truth_materials} {params.fsi} --out-dir {params.out} 2> {log}"
-        " && /usr/bin/python3 {input.script} {params.out} 2>> {log}"
+        stage_shell(
+            "report",
+            "{input.exe} --case {config[case]} --truth {input.truth} --kinematics {input.kinematics}"
+            " --mesh {input.mesh} --motion {input.motion} --loads {input.loads} --materials {input.materials}"
+            " --truth-materials {input.truth_materials} {params.fsi} --out-dir {params.out} 2> {log}"
+            " && /usr/bin/python3 {input.script} {params.out} 2>> {log}",
+        )
 
 register_stage_output(f"{_REPORT_OUT}/report/index.html")
 

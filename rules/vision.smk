@@ -46,8 +46,11 @@ rule track:
     params:
         flags=f"{_VTEMPLATE} --fps {_VFIN['fps']} {_V_PERIOD}",
     shell:
-        "{input.exe} {params.flags} --frames {input.frames} --cameras {input.cameras} --out {output.kinematics}"
-        " --threads {threads} 2> {log}"
+        stage_shell(
+            "track",
+            "{input.exe} {params.flags} --frames {input.frames} --cameras {input.cameras} --out {output.kinematics}"
+            " --threads {threads} 2> {log}",
+        )
 
 register_stage_output(f"{_VOUT}/kinematics.h5")
 

@@ -54,6 +54,13 @@ grep -qE "^[^ ]*/bin/fin-cfd is missing: run cmake -S [^ ]+ -B [^ ]+ -G Ninja &&
 
 echo "== tiny case"
 "${sm[@]}" --configfile "$src/config/cases/tiny.yaml" > "$work/run1.log" 2>&1 || { cat "$work/run1.log"; exit 1; }
+# One progress line per finished stage, with the ETA (tools/scripts/stage_progress.py).
+for stage in synth track mesh loads fit fsi; do
+  grep -qE "^finverse: stage [0-9]/7 $stage done in .* so far, about .* left" "$work/run1.log" ||
+    { cat "$work/run1.log"; echo "no progress line for stage $stage"; exit 1; }
+done
+grep -qE "^finverse: stage 7/7 report done in .*; the pipeline is done" "$work/run1.log" ||
+  { cat "$work/run1.log"; echo "no progress line for the report"; exit 1; }
 for stage in kinematics mesh motion loads materials fsi; do
   "$build/bin/fin-contract" check "$work/results/tiny/$stage.h5" > /dev/null ||
     { echo "results/tiny/$stage.h5 does not meet its contract"; exit 1; }
