@@ -149,55 +149,74 @@ CoupledStepReport CoupledStructure::advance(double t_new, const Eigen::VectorXd&
   restore();
   CoupledStepReport rep;
   const int k = opt_.substeps;
-  const double af = integrator_.alpha_f();
+  const double h = dt / k;
   const Eigen::VectorXd f0 = saved_.load;
+  SubstepStart start{model_.external_load(state_.time), damping_assembler_ ? damping_force(state_) : Eigen::VectorXd()};
   Eigen::VectorXd f_prev = f0;
-  Eigen::VectorXd model_prev = model_.external_load(state_.time);
-  Eigen::VectorXd damping_prev = damping_assembler_ ? damping_force(state_) : Eigen::VectorXd();
   for (int j = 1; j <= k; ++j) {
     // Linear in time over the sub-steps; the last one is f_new exactly.
     const Eigen::VectorXd f_j = j == k ? f_new : Eigen::VectorXd(f0 + (double(j) / k) * (f_new - f0));
-    const NodalState x0 = state_.configuration;
-    const DynamicStepInfo info = integrator_.step(state_, scatter(f_j));
-    rep.newton_iterations += info.iterations;
-    rep.factorizations += info.factorizations;
-    rep.residual = info.residual;
-    // Work of the alpha_f-weighted loads the balance used, on the translation increments.
-    const Eigen::VectorXd fa = (1 - af) * f_j + af * f_prev;
-    for (std::size_t n = 0; n < wet_.size(); ++n) {
-      const Vec3 du = state_.configuration.position[wet_[n]] - x0.position[wet_[n]];
-      for (int c = 0; c < opt_.dim; ++c) {
-        const int i = opt_.dim * static_cast<int>(n) + c;
-        rep.interface_work += fa(i) * du(c);
-        rep.interface_work_trapezoidal += 0.5 * (f_j(i) + f_prev(i)) * du(c);
-      }
-    }
-    if (damping_assembler_) {
-      const Eigen::VectorXd damping_new = damping_force(state_);
-      const Eigen::VectorXd ca = (1 - af) * damping_new + af * damping_prev;
-      for (int node = 0; node < model_.node_count(); ++node) {
-        const Vec3 du = state_.configuration.position[node] - x0.position[node];
-        const Vec3 dw = log_so3(state_.configuration.rotation[node] * x0.rotation[node].transpose());
-        rep.damping_work += ca.segment<3>(kDofsPerNode * node).dot(du) +
-                            ca.segment<3>(kDofsPerNode * node + 3).dot(dw);
-      }
-      damping_prev = damping_new;
-    }
-    const Eigen::VectorXd model_new = model_.external_load(state_.time);
-    const Eigen::VectorXd ma = (1 - af) * model_new + af * model_prev;
-    const DofMap& dofs = integrator_.dofs();
-    for (int g = 0; g < dofs.total(); ++g) {
-      if (ma(g) == 0 || g % kDofsPerNode >= 3) continue;  // moments: no rotation work tracked
-      const int node = g / kDofsPerNode, c = g % kDofsPerNode;
-      rep.model_load_work += ma(g) * (state_.configuration.position[node](c) - x0.position[node](c));
-    }
+    substep(h, f_prev, f_j, opt_.max_halvings, start, rep);
     f_prev = f_j;
-    model_prev = model_new;
   }
   state_.time = t_new;  // no drift of the sub-steps' summed times against the coupling's clock
   load_ = f_new;
   advanced_ = true;
   return rep;
+}
+
+void CoupledStructure::substep(double h, const Eigen::VectorXd& f_from, const Eigen::VectorXd& f_to, int halvings,
+                               SubstepStart& start, CoupledStepReport& rep) {
+  const DynamicState before = state_;
+  const GeneralizedAlpha::Snapshot memory = integrator_.snapshot();
+  DynamicStepInfo info;
+  integrator_.set_time_step(h);
+  try {
+    info = integrator_.step(state_, scatter(f_to));
+  } catch (const NotConverged&) {
+    if (halvings <= 0) throw;
+    // The same sub-step as two of half the length, the load at its middle halfway.
+    state_ = before;
+    integrator_.restore(memory);
+    ++rep.halvings;
+    const Eigen::VectorXd f_mid = 0.5 * (f_from + f_to);
+    substep(0.5 * h, f_from, f_mid, halvings - 1, start, rep);
+    substep(0.5 * h, f_mid, f_to, halvings - 1, start, rep);
+    return;
+  }
+  rep.newton_iterations += info.iterations;
+  rep.factorizations += info.factorizations;
+  rep.residual = info.residual;
+  // Work of the alpha_f-weighted loads the balance used, on the translation increments.
+  const double af = integrator_.alpha_f();
+  const Eigen::VectorXd fa = (1 - af) * f_to + af * f_from;
+  for (std::size_t n = 0; n < wet_.size(); ++n) {
+    const Vec3 du = state_.configuration.position[wet_[n]] - before.configuration.position[wet_[n]];
+    for (int c = 0; c < opt_.dim; ++c) {
+      const int i = opt_.dim * static_cast<int>(n) + c;
+      rep.interface_work += fa(i) * du(c);
+      rep.interface_work_trapezoidal += 0.5 * (f_to(i) + f_from(i)) * du(c);
+    }
+  }
+  if (damping_assembler_) {
+    const Eigen::VectorXd damping_new = damping_force(state_);
+    const Eigen::VectorXd ca = (1 - af) * damping_new + af * start.damping;
+    for (int node = 0; node < model_.node_count(); ++node) {
+      const Vec3 du = state_.configuration.position[node] - before.configuration.position[node];
+      const Vec3 dw = log_so3(state_.configuration.rotation[node] * before.configuration.rotation[node].transpose());
+      rep.damping_work += ca.segment<3>(kDofsPerNode * node).dot(du) + ca.segment<3>(kDofsPerNode * node + 3).dot(dw);
+    }
+    start.damping = damping_new;
+  }
+  const Eigen::VectorXd model_new = model_.external_load(state_.time);
+  const Eigen::VectorXd ma = (1 - af) * model_new + af * start.model_load;
+  const DofMap& dofs = integrator_.dofs();
+  for (int g = 0; g < dofs.total(); ++g) {
+    if (ma(g) == 0 || g % kDofsPerNode >= 3) continue;  // moments: no rotation work tracked
+    const int node = g / kDofsPerNode, c = g % kDofsPerNode;
+    rep.model_load_work += ma(g) * (state_.configuration.position[node](c) - before.configuration.position[node](c));
+  }
+  start.model_load = model_new;
 }
 
 void CoupledStructure::accept() {

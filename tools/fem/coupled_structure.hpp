@@ -59,6 +59,9 @@ namespace finverse::fem {
 struct CoupledStructureOptions {
   DynamicOptions dynamics;  // time_step: the coupling step; the integrator runs at time_step / substeps
   int substeps = 1;
+  // A sub-step whose Newton solve fails is retried as two halves (the load still linear in time),
+  // up to this many times nested (2^k shorter steps); 0: a failure ends the advance().
+  int max_halvings = 0;
   int dim = 2;              // interface force / motion components per wet node (2: plane, 3: space)
   double start_time = 0;
 };
@@ -72,6 +75,7 @@ struct CoupledStepReport {
   double interface_work_trapezoidal = 0;  // W_I,trap (equal to W_I at rho_inf = 1)
   double model_load_work = 0;  // W_model over the step
   double damping_work = 0;     // D over the step (>= 0 for a_M, a_K >= 0)
+  int halvings = 0;            // failed sub-steps retried as two halves (max_halvings)
 };
 
 class CoupledStructure {
@@ -133,6 +137,13 @@ class CoupledStructure {
 
   // C v = a_M M v + a_K K v at the state (full length); the damping work's ingredient.
   Eigen::VectorXd damping_force(const DynamicState& s);
+  // One sub-step of length h under the interface load going linearly from f_from to f_to, its
+  // work added to `rep`; a failed Newton solve is retried as two halves while `halvings` > 0.
+  struct SubstepStart {
+    Eigen::VectorXd model_load, damping;  // Model::external_load and C v at the sub-step's start
+  };
+  void substep(double h, const Eigen::VectorXd& f_from, const Eigen::VectorXd& f_to, int halvings, SubstepStart& start,
+               CoupledStepReport& rep);
 
   const Model& model_;
   CoupledStructureOptions opt_;

@@ -142,6 +142,12 @@ void GeneralizedAlpha::initialize(DynamicState& s, const Eigen::VectorXd& added)
   initialized_ = true;
 }
 
+void GeneralizedAlpha::set_time_step(double h) {
+  if (!(h > 0) || !std::isfinite(h))
+    throw InvalidInput("generalized-alpha: time step must be > 0, got " + std::to_string(h));
+  opt_.time_step = h;
+}
+
 DynamicStepInfo GeneralizedAlpha::step(DynamicState& s) { return step(s, Eigen::VectorXd()); }
 
 DynamicStepInfo GeneralizedAlpha::step(DynamicState& s, const Eigen::VectorXd& added) {

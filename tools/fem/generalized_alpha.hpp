@@ -112,6 +112,11 @@ class GeneralizedAlpha {
   void initialize(DynamicState& state, const Eigen::VectorXd& added_load);
   DynamicStepInfo step(DynamicState& state, const Eigen::VectorXd& added_load);
 
+  // The step of the following step() calls (> 0). The old-step terms do not depend on it, so a
+  // step may be retried as shorter ones (fem::CoupledStructure's halving of a failed sub-step).
+  void set_time_step(double h);
+  double time_step() const { return opt_.time_step; }
+
   Snapshot snapshot() const { return {old_terms_, force_scale_, initialized_}; }
   void restore(const Snapshot& snapshot);
 

@@ -361,6 +361,47 @@ TEST(CoupledStructure, LoadRampFromZeroConverges) {
   EXPECT_THROW(plain.step(s, cs.scatter(ramped(0.001))), NotConverged);
 }
 
+TEST(CoupledStructure, AFailedSubStepIsRetriedAsTwoHalves) {
+  // The flag under a sudden, large pressure (a coupling iterate's load jump) with a tight Newton
+  // budget: the whole sub-step does not converge, its halves do (max_halvings), and the result
+  // lies nearer the step taken in 8 sub-steps than the whole step solved with Newton unbounded.
+  // Without halvings the failure ends the advance, as before.
+  const auto flag = fsi3_flag();
+  const Eigen::VectorXd jump = flapping_load(flag, 0.05, 8000);
+  CoupledStructureOptions o = options(0.02, 0.8);
+  o.dynamics.max_iterations = 5;
+  CoupledStructure plain(flag.model, o, flag.wet_nodes);
+  plain.save();
+  EXPECT_THROW(plain.advance(0.02, jump), NotConverged);
+  o.max_halvings = 3;
+  CoupledStructure halving(flag.model, o, flag.wet_nodes);
+  halving.save();
+  CoupledStepReport r;
+  ASSERT_NO_THROW(r = halving.advance(0.02, jump));
+  EXPECT_GT(r.halvings, 0);
+  std::printf("halvings %d, Newton iterations %d\n", r.halvings, r.newton_iterations);
+  // Against the step in 8 sub-steps with Newton unbounded: the same motion to a fraction of it.
+  CoupledStructureOptions fine = options(0.02, 0.8, 8);
+  fine.dynamics.max_iterations = 40;
+  CoupledStructure reference(flag.model, fine, flag.wet_nodes);
+  reference.save();
+  reference.advance(0.02, jump);
+  const Eigen::VectorXd X0 = plain.wet_positions();  // restored to the start by the failed advance
+  const double moved = (reference.wet_positions() - X0).cwiseAbs().maxCoeff();
+  const double apart = (halving.wet_positions() - reference.wet_positions()).cwiseAbs().maxCoeff();
+  // The whole step with Newton unbounded: a coarser time step, so farther from the fine one.
+  CoupledStructureOptions whole = options(0.02, 0.8);
+  whole.dynamics.max_iterations = 40;
+  CoupledStructure coarse(flag.model, whole, flag.wet_nodes);
+  coarse.save();
+  coarse.advance(0.02, jump);
+  const double coarse_apart = (coarse.wet_positions() - reference.wet_positions()).cwiseAbs().maxCoeff();
+  std::printf("moved %.3e m; against 8 sub-steps: halved %.3e m, whole step %.3e m\n", moved, apart, coarse_apart);
+  EXPECT_GT(moved, 1e-3);
+  EXPECT_LT(apart, 0.15 * moved);
+  EXPECT_LT(apart, coarse_apart);
+}
+
 TEST(CoupledStructure, PressureOnTheWetNodesGivesTheStaticDeflection) {
   // A uniform pressure on the flag's upper edge, as consistent nodal forces on the wet nodes,
   // stepped with rho_inf = 0 and steps far longer than the flag's periods (every mode is damped
