@@ -34,6 +34,12 @@ void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
       ->capture_default_str();
   command.add_option("--ramp-time", o.ramp_time, "--motion: the ramp in seconds instead (0: --ramp-periods)")
       ->capture_default_str();
+  command
+      .add_option("--motion-harmonics", o.motion_harmonics,
+                  "--motion, periodic: drive the root with every node's first K harmonics of the period (the "
+                  "tracking's frame-rate noise removed; 0: the frames as given)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
   command.add_option("--acceleration", o.acceleration, "iqn-ils, aitken or constant")->capture_default_str();
   command.add_option("--omega", o.omega, "omega0 (aitken, iqn-ils) or omega (constant)")->capture_default_str();
   command.add_option("--tolerance", o.tolerance, "relative interface displacement residual")->capture_default_str();
@@ -49,13 +55,22 @@ void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
       .add_option("--structure-max-iterations", o.structure_max_iterations, "structure Newton iterations per sub-step")
       ->capture_default_str();
   command.add_option("--substeps", o.substeps, "structure sub-steps per coupling step")->capture_default_str();
+  command
+      .add_option("--structure-halvings", o.structure_halvings,
+                  "a structure sub-step whose Newton solve fails is retried as two halves, up to this many times "
+                  "nested (0: the failure ends the run)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10));
   command.add_option(
       "--checkpoint", o.checkpoint,
       "checkpoint file, replaced atomically (default with --checkpoint-every: <out stem>.checkpoint.h5 beside --out)");
   command.add_option("--checkpoint-every", o.checkpoint_every, "steps between checkpoints (0: after the last only)")
       ->capture_default_str()
       ->check(finverse::cli::non_negative());
-  command.add_option("--restart", o.restart, "continue from a checkpoint written with the same options")
+  command
+      .add_option("--restart", o.restart,
+                  "continue from a checkpoint written with the same options (the coupling's and the structure's "
+                  "iteration settings and sub-steps may differ)")
       ->check(CLI::ExistingFile);
   command.add_option("--paraview", o.paraview_dir, "ParaView series of the fin and the flow into this folder");
   command.add_option("--paraview-every", o.paraview_every, "every k-th fsi.h5 frame in the ParaView series")

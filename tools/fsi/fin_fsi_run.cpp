@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "cfd/flow/flow_solver.hpp"
+#include "cfd/immersed/periodic_low_pass.hpp"
 #include "cfd/immersed/thin_body.hpp"
 #include "cfd/immersed/time_spline.hpp"
 #include "core/error.hpp"
@@ -65,6 +66,28 @@ stage::Motion tiled(const stage::Motion& m, const cfd::PeriodicLayout& layout, i
                   t.points.data.begin() + static_cast<std::ptrdiff_t>(q * per));
     }
   return t;
+}
+
+// The periodic motion with every node kept to its first `harmonics` harmonics of the period
+// (cfd::periodic_low_pass): the root drive of a tracked motion without its frame-rate noise. A
+// reconstruction's one-frame glitch (2 % c on a few nodes) jerks the prescribed root and fails the
+// structure's Newton whatever the materials (docs/studies/default_case.md).
+stage::Motion low_passed(const stage::Motion& m, const cfd::PeriodicLayout& layout, int harmonics,
+                         const std::string& name) {
+  if (!layout.wrap || !m.period)
+    throw Error(name + ": --motion-harmonics needs a periodic motion (" +
+                (layout.note.empty() ? std::string("no attribute T") : layout.note) + ")");
+  const std::size_t frames = layout.frames, per = 3 * m.points.dim(1);
+  const std::vector<double> knots(m.time.data.begin(), m.time.data.begin() + static_cast<std::ptrdiff_t>(frames));
+  const std::vector<double> values(m.points.data.begin(),
+                                   m.points.data.begin() + static_cast<std::ptrdiff_t>(frames * per));
+  const std::vector<double> kept = cfd::periodic_low_pass(knots, values, per, *m.period, harmonics, name);
+  stage::Motion out = m;
+  std::copy(kept.begin(), kept.end(), out.points.data.begin());
+  // A last frame one period after the first repeats it.
+  for (std::size_t k = frames; k < m.time.size(); ++k)
+    std::copy_n(kept.begin(), per, out.points.data.begin() + static_cast<std::ptrdiff_t>(k * per));
+  return out;
 }
 
 // Each ray's tip: the beam node farthest along the ray (largest beams/s).
@@ -211,18 +234,20 @@ void drive_structure(const FinFsiInputs& in, const FinFsiOptions& o, FinSetup& s
     drive_config = in.drive->to_json();
     drive_config["frequency_used_hz"] = f;
   } else {
-    const stage::Motion& m = *in.motion;
-    if (m.points.rank() != 3 || m.points.dim(1) != static_cast<std::size_t>(nv) || m.time.size() < 2 ||
-        m.time.size() != m.points.dim(0))
+    const stage::Motion& m_in = *in.motion;
+    if (m_in.points.rank() != 3 || m_in.points.dim(1) != static_cast<std::size_t>(nv) || m_in.time.size() < 2 ||
+        m_in.time.size() != m_in.points.dim(0))
       throw Error(in.motion_name + ": /points: expected [frames >= 2, " + std::to_string(nv) + ", 3] (the mesh's nodes)");
-    if (m.period && !(*m.period > 0)) throw Error(in.motion_name + ": attribute T: expected > 0");
+    if (m_in.period && !(*m_in.period > 0)) throw Error(in.motion_name + ": attribute T: expected > 0");
     // Without T (a motion shorter than a period, e.g. the tiny case's), the frames' span stands in
     // for the period of the ramp and of the last-period measures.
-    T = m.period.value_or(m.time.data.back() - m.time(0));
+    T = m_in.period.value_or(m_in.time.data.back() - m_in.time(0));
     double spacing = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 1; k < m.time.size(); ++k) spacing = std::min(spacing, m.time(k) - m.time(k - 1));
-    const cfd::PeriodicLayout layout = cfd::periodic_layout(m.time.data, m.period);
+    for (std::size_t k = 1; k < m_in.time.size(); ++k) spacing = std::min(spacing, m_in.time(k) - m_in.time(k - 1));
+    const cfd::PeriodicLayout layout = cfd::periodic_layout(m_in.time.data, m_in.period);
     periodic = layout.wrap.has_value();
+    const stage::Motion m =
+        o.motion_harmonics > 0 ? low_passed(m_in, layout, o.motion_harmonics, in.motion_name) : m_in;
     // A periodic motion: outputs at the frame spacing shortened to divide T; otherwise at the frames.
     if (!(interval > 0)) interval = periodic ? T / std::ceil(T / spacing - 1e-9) : spacing;
     // The ramp: a whole number of output intervals before the first frame.
@@ -274,6 +299,7 @@ void drive_structure(const FinFsiInputs& in, const FinFsiOptions& o, FinSetup& s
                     {"ramp_periods", o.ramp_periods},
                     {"ramp_time_s", o.ramp_time},
                     {"periodic", periodic}};
+    if (o.motion_harmonics > 0) drive_config["motion_harmonics"] = o.motion_harmonics;
   }
   if (!effects.empty()) {
     effect_layout.beat_frequency = 1 / T;
@@ -357,6 +383,7 @@ void grid_time_and_config(const FinFsiInputs& in, const FinFsiOptions& o, FinSet
                 {"structure_tolerance", o.structure_tolerance},
                 {"structure_max_iterations", o.structure_max_iterations},
                 {"substeps", o.substeps},
+                {"structure_halvings", o.structure_halvings},
                 {"rayleigh_mass", so_rayleigh_mass},
                 {"rayleigh_stiffness", so_rayleigh_stiffness},
                 {"drive", drive_config}};
@@ -488,6 +515,7 @@ fem::CoupledStructureOptions structure_options(const FinFsiInputs& in, const Fin
   so.dynamics.residual_tolerance = o.structure_tolerance;
   so.dynamics.max_iterations = o.structure_max_iterations;
   so.substeps = o.substeps;
+  so.max_halvings = o.structure_halvings;
   so.dynamics.increment_tolerance = 1e-3;  // the residual decides, as the pitching plate (driven root)
   so.dynamics.rayleigh_mass = o.rayleigh_mass >= 0 ? o.rayleigh_mass : in.materials.rayleigh_mass;
   so.dynamics.rayleigh_stiffness = o.rayleigh_stiffness >= 0 ? o.rayleigh_stiffness : in.materials.rayleigh_stiffness;
@@ -592,6 +620,11 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
   ro.checkpoint = o.checkpoint;
   ro.checkpoint_every = o.checkpoint_every;
   ro.restart = o.restart;
+  // A stopped or failed run may continue with other iteration settings (the state does not depend
+  // on them); the model, the grid and the step may not change.
+  ro.may_differ = {"acceleration",       "omega0",  "relative_tolerance",  "absolute_tolerance_c",
+                   "max_iterations",     "strict",  "structure_tolerance", "structure_max_iterations",
+                   "structure_halvings", "substeps"};
   ro.progress = o.progress;
   FinFsiResult& res = s.result;
   CoupledRun run(flow, structure, step, coupling, output, res.config, ro);

@@ -55,6 +55,7 @@ struct FinFsiOptions {
   bool band_correction = false;
   double ramp_periods = 1;        // tracked motion only (the drive has its own)
   double ramp_time = 0;           // [s]; > 0: the tracked motion's ramp instead of ramp_periods T
+  int motion_harmonics = 0;       // tracked periodic motion: > 0 keeps its first K harmonics (0: as given)
   std::string acceleration = "iqn-ils";
   double omega = 0.1;             // first iteration's relaxation
   double tolerance = 1e-3;        // relative interface displacement residual
@@ -67,6 +68,9 @@ struct FinFsiOptions {
   double structure_tolerance = 1e-7;
   int structure_max_iterations = 40;  // Newton iterations per (sub-)step
   int substeps = 2;                   // structure sub-steps per coupling step
+  // A structure sub-step whose Newton solve fails is retried as two halves, up to this many times
+  // nested (fem::CoupledStructureOptions::max_halvings; docs/studies/default_case.md).
+  int structure_halvings = 3;
   // Rayleigh damping C = a_M M + a_K K of the structure; < 0: the materials file's.
   double rayleigh_mass = -1, rayleigh_stiffness = -1;
   // Checkpoints (coupled_run.hpp): to `checkpoint` every checkpoint_every steps (0: only after the
