@@ -7,7 +7,7 @@
 # trout reads what fin-report graded (results/<case>/report/summary.json); the tiny case grades
 # its own coarse pipeline. default_case_grid reruns the loads and the fit of the case on a finer
 # near-fin grid (same mesh, motion, body thickness and fit settings) and grades the mean C_T, the
-# C_T peak and every fitted modulus within 5 % of that run: docs/studies/default_case_size.md.
+# C_T peak and every fitted modulus within 5 % of that run: docs/studies/default_case.md.
 # It costs about twice the case's own pipeline, so it is not in the coarse (CI) set of cases.
 
 import re
