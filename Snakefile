@@ -42,13 +42,13 @@ include: "rules/flap.smk"
 include: "rules/loop.smk"
 
 
-# The default target: the pipeline on the case, and its validation cases when the case asks for
-# them (config validation.in_default_target; the tiny case does).
 # A new run of the main job: its progress lines count from here (rules/common.smk, stage_shell).
 onstart:
     shell(f"/usr/bin/python3 {SCRIPTS}/stage_progress.py --begin --times results/{config['case']}/benchmarks/stage_times.json")
 
 
+# The default target: the pipeline on the case, and its validation cases when the case asks for
+# them (config validation.in_default_target; the tiny case does).
 rule all:
     input:
         STAGE_OUTPUTS,

@@ -2,7 +2,9 @@
 #include "fem/coupled_structure.hpp"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
+#include <utility>
 
 #include "fem/errors.hpp"
 
@@ -167,17 +169,19 @@ CoupledStepReport CoupledStructure::advance(double t_new, const Eigen::VectorXd&
 
 void CoupledStructure::substep(double h, const Eigen::VectorXd& f_from, const Eigen::VectorXd& f_to, int halvings,
                                SubstepStart& start, CoupledStepReport& rep) {
-  const DynamicState before = state_;
-  const GeneralizedAlpha::Snapshot memory = integrator_.snapshot();
+  const NodalState x0 = state_.configuration;
+  // What a retry restarts from; copied only when a retry may come.
+  std::optional<std::pair<DynamicState, GeneralizedAlpha::Snapshot>> retry;
+  if (halvings > 0) retry.emplace(state_, integrator_.snapshot());
   DynamicStepInfo info;
   integrator_.set_time_step(h);
   try {
     info = integrator_.step(state_, scatter(f_to));
   } catch (const NotConverged&) {
-    if (halvings <= 0) throw;
+    if (!retry) throw;
     // The same sub-step as two of half the length, the load at its middle halfway.
-    state_ = before;
-    integrator_.restore(memory);
+    state_ = retry->first;
+    integrator_.restore(retry->second);
     ++rep.halvings;
     const Eigen::VectorXd f_mid = 0.5 * (f_from + f_to);
     substep(0.5 * h, f_from, f_mid, halvings - 1, start, rep);
@@ -191,7 +195,7 @@ void CoupledStructure::substep(double h, const Eigen::VectorXd& f_from, const Ei
   const double af = integrator_.alpha_f();
   const Eigen::VectorXd fa = (1 - af) * f_to + af * f_from;
   for (std::size_t n = 0; n < wet_.size(); ++n) {
-    const Vec3 du = state_.configuration.position[wet_[n]] - before.configuration.position[wet_[n]];
+    const Vec3 du = state_.configuration.position[wet_[n]] - x0.position[wet_[n]];
     for (int c = 0; c < opt_.dim; ++c) {
       const int i = opt_.dim * static_cast<int>(n) + c;
       rep.interface_work += fa(i) * du(c);
@@ -202,8 +206,8 @@ void CoupledStructure::substep(double h, const Eigen::VectorXd& f_from, const Ei
     const Eigen::VectorXd damping_new = damping_force(state_);
     const Eigen::VectorXd ca = (1 - af) * damping_new + af * start.damping;
     for (int node = 0; node < model_.node_count(); ++node) {
-      const Vec3 du = state_.configuration.position[node] - before.configuration.position[node];
-      const Vec3 dw = log_so3(state_.configuration.rotation[node] * before.configuration.rotation[node].transpose());
+      const Vec3 du = state_.configuration.position[node] - x0.position[node];
+      const Vec3 dw = log_so3(state_.configuration.rotation[node] * x0.rotation[node].transpose());
       rep.damping_work += ca.segment<3>(kDofsPerNode * node).dot(du) + ca.segment<3>(kDofsPerNode * node + 3).dot(dw);
     }
     start.damping = damping_new;
@@ -214,7 +218,7 @@ void CoupledStructure::substep(double h, const Eigen::VectorXd& f_from, const Ei
   for (int g = 0; g < dofs.total(); ++g) {
     if (ma(g) == 0 || g % kDofsPerNode >= 3) continue;  // moments: no rotation work tracked
     const int node = g / kDofsPerNode, c = g % kDofsPerNode;
-    rep.model_load_work += ma(g) * (state_.configuration.position[node](c) - before.configuration.position[node](c));
+    rep.model_load_work += ma(g) * (state_.configuration.position[node](c) - x0.position[node](c));
   }
   start.model_load = model_new;
 }

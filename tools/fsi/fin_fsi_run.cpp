@@ -74,18 +74,12 @@ stage::Motion tiled(const stage::Motion& m, const cfd::PeriodicLayout& layout, i
 // structure's Newton whatever the materials (docs/studies/default_case.md).
 stage::Motion low_passed(const stage::Motion& m, const cfd::PeriodicLayout& layout, int harmonics,
                          const std::string& name) {
-  if (!layout.wrap || !m.period)
-    throw Error(name + ": --motion-harmonics needs a periodic motion (" +
-                (layout.note.empty() ? std::string("no attribute T") : layout.note) + ")");
-  const std::size_t frames = layout.frames, per = 3 * m.points.dim(1);
-  const std::vector<double> knots(m.time.data.begin(), m.time.data.begin() + static_cast<std::ptrdiff_t>(frames));
-  const std::vector<double> values(m.points.data.begin(),
-                                   m.points.data.begin() + static_cast<std::ptrdiff_t>(frames * per));
-  const std::vector<double> kept = cfd::periodic_low_pass(knots, values, per, *m.period, harmonics, name);
+  const std::vector<double> kept = cfd::periodic_low_pass(m, layout, harmonics, name);
   stage::Motion out = m;
   std::copy(kept.begin(), kept.end(), out.points.data.begin());
   // A last frame one period after the first repeats it.
-  for (std::size_t k = frames; k < m.time.size(); ++k)
+  const std::size_t per = 3 * m.points.dim(1);
+  for (std::size_t k = layout.frames; k < m.time.size(); ++k)
     std::copy_n(kept.begin(), per, out.points.data.begin() + static_cast<std::ptrdiff_t>(k * per));
   return out;
 }

@@ -44,4 +44,17 @@ std::vector<double> periodic_low_pass(const std::vector<double>& time, const std
   return out;
 }
 
+std::vector<double> periodic_low_pass(const stage::Motion& motion, const PeriodicLayout& layout, int harmonics,
+                                      const std::string& what) {
+  if (!layout.wrap || !motion.period)
+    throw Error(what + ": --motion-harmonics needs a periodic motion (" +
+                (layout.note.empty() ? std::string("no attribute T") : layout.note) + ")");
+  const std::size_t channels = 3 * motion.points.dim(1);
+  const auto frames = static_cast<std::ptrdiff_t>(layout.frames);
+  const std::vector<double> time(motion.time.data.begin(), motion.time.data.begin() + frames);
+  const std::vector<double> values(motion.points.data.begin(),
+                                   motion.points.data.begin() + frames * static_cast<std::ptrdiff_t>(channels));
+  return periodic_low_pass(time, values, channels, *motion.period, harmonics, what);
+}
+
 }  // namespace finverse::cfd

@@ -11,11 +11,20 @@
 #include <string>
 #include <vector>
 
+#include "cfd/immersed/time_spline.hpp"
+#include "core/stage_files.hpp"
+
 namespace finverse::cfd {
 
 // values: frames rows of `channels` values (row-major) at time[0..frames-1]; harmonics >= 1 with
 // at least 2 (2K + 1) frames. Throws finverse::Error naming `what` otherwise.
 std::vector<double> periodic_low_pass(const std::vector<double>& time, const std::vector<double>& values,
                                       std::size_t channels, double period, int harmonics, const std::string& what);
+
+// A motion.h5's points over the frames its periodic layout uses ([layout.frames, nodes, 3],
+// row-major), kept to their first K harmonics of attribute T: `--motion-harmonics` of fin-cfd fin
+// and fin-fsi fin. Throws finverse::Error naming `what` when the motion is not periodic.
+std::vector<double> periodic_low_pass(const stage::Motion& motion, const PeriodicLayout& layout, int harmonics,
+                                      const std::string& what);
 
 }  // namespace finverse::cfd

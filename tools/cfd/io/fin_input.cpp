@@ -136,16 +136,13 @@ FinInput make_fin_input(const stage::Mesh& mesh, const stage::Motion& motion, co
       throw Error(motion_name + ": /points: the last frame lies a whole number of periods T after the first but differs "
                   "from it by up to " + std::to_string(worst) + " m (periodic data expected)");
   }
-  std::vector<double> values(motion.points.data.begin(),
-                             motion.points.data.begin() + static_cast<std::ptrdiff_t>(in.layout.frames * 3 * nv));
+  const std::vector<double> values =
+      motion_harmonics > 0
+          ? periodic_low_pass(motion, in.layout, motion_harmonics, motion_name)
+          : std::vector<double>(motion.points.data.begin(),
+                                motion.points.data.begin() + static_cast<std::ptrdiff_t>(in.layout.frames * 3 * nv));
   const std::vector<double> knots(motion.time.data.begin(),
                                   motion.time.data.begin() + static_cast<std::ptrdiff_t>(in.layout.frames));
-  if (motion_harmonics > 0) {
-    if (!in.layout.wrap || !motion.period)
-      throw Error(motion_name + ": --motion-harmonics needs a periodic motion (" +
-                  (in.layout.note.empty() ? std::string("no attribute T") : in.layout.note) + ")");
-    values = periodic_low_pass(knots, values, 3 * nv, *motion.period, motion_harmonics, motion_name);
-  }
   TimeSpline spline(knots, values, 3 * nv, in.layout.wrap, motion_name);
   in.motion = std::make_shared<const FinSurfaceMotion>(std::move(body), in.mid_triangles, std::move(spline));
   return in;
