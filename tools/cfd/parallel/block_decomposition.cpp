@@ -1,0 +1,105 @@
+// Pencil decomposition of the flow grid over ranks; see block_decomposition.hpp.
+#include "cfd/parallel/block_decomposition.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+#include "core/error.hpp"
+
+namespace finverse::cfd {
+namespace {
+
+// Edges of p nearly equal parts of n: the first n mod p parts one longer.
+std::vector<int> split(int n, int p) {
+  std::vector<int> e(static_cast<std::size_t>(p) + 1, 0);
+  for (int b = 0; b < p; ++b) e[static_cast<std::size_t>(b) + 1] = e[static_cast<std::size_t>(b)] + n / p + (b < n % p ? 1 : 0);
+  return e;
+}
+
+// The best py for `ranks`, or 0 when no factorisation gives min_lines per block.
+int best_py(int ny, int nz, int dim, int ranks, int min_lines) {
+  int best = 0;
+  double best_perimeter = std::numeric_limits<double>::infinity();
+  for (int py = ranks; py >= 1; --py) {
+    if (ranks % py) continue;
+    const int pz = ranks / py;
+    if (dim == 2 && pz != 1) continue;
+    if (ny / py < min_lines && py > 1) continue;
+    if (nz / pz < min_lines && pz > 1) continue;
+    if (py > ny || pz > nz) continue;
+    // The largest block's halo: its two y faces span its z extent and vice versa.
+    const double by = (ny + py - 1) / py, bz = (nz + pz - 1) / pz;
+    const double perimeter = (py > 1 ? 2 * bz : 0) + (pz > 1 ? 2 * by : 0);
+    if (perimeter < best_perimeter) best_perimeter = perimeter, best = py;
+  }
+  return best;
+}
+
+}  // namespace
+
+int BlockDecomposition::largest_feasible(int ny, int nz, int dim, int ranks, int min_lines) {
+  for (int r = ranks; r > 1; --r)
+    if (best_py(ny, nz, dim, r, min_lines) > 0) return r;
+  return 1;
+}
+
+BlockDecomposition::BlockDecomposition(int nx, int ny, int nz, int dim, int ranks, int min_lines)
+    : nx_(nx), ny_(ny), nz_(nz), dim_(dim) {
+  if (nx < 1 || ny < 1 || nz < 1 || (dim != 2 && dim != 3) || (dim == 2 && nz != 1))
+    throw Error("block decomposition: bad grid " + std::to_string(nx) + " x " + std::to_string(ny) + " x " +
+                std::to_string(nz) + " in " + std::to_string(dim) + "-D");
+  if (ranks < 1) throw Error("block decomposition: expected at least one rank, got " + std::to_string(ranks));
+  py_ = best_py(ny, nz, dim, ranks, min_lines);
+  if (py_ == 0)
+    throw Error("the flow grid's " + std::to_string(ny) + " x " + std::to_string(nz) + " lines (y x z) cannot be split into " +
+                std::to_string(ranks) + " ranks with at least " + std::to_string(min_lines) +
+                " lines per rank in each cut direction: use at most " +
+                std::to_string(largest_feasible(ny, nz, dim, ranks, min_lines)) + " ranks, or a rank count with other factors");
+  pz_ = ranks / py_;
+  ys_ = split(ny, py_), zs_ = split(nz, pz_);
+  blocks_.resize(static_cast<std::size_t>(ranks));
+  for (int r = 0; r < ranks; ++r) {
+    const auto a = static_cast<std::size_t>(r % py_), b = static_cast<std::size_t>(r / py_);
+    blocks_[static_cast<std::size_t>(r)] = Block{ys_[a], ys_[a + 1], zs_[b], zs_[b + 1]};
+  }
+}
+
+int BlockDecomposition::neighbour(int rank, int axis, int side, const std::array<bool, 3>& periodic) const {
+  if (axis != 1 && axis != 2) throw Error("block decomposition: neighbours are across y (1) or z (2), not axis " + std::to_string(axis));
+  int a = rank % py_, b = rank / py_;
+  int& c = axis == 1 ? a : b;
+  const int p = axis == 1 ? py_ : pz_;
+  c += side;
+  if (c < 0 || c >= p) {
+    if (!periodic[static_cast<std::size_t>(axis)] || (axis == 2 && dim_ == 2)) return -1;
+    c = (c + p) % p;
+  }
+  return a + py_ * b;
+}
+
+int BlockDecomposition::owner(int j, int k) const {
+  const int a = static_cast<int>(std::upper_bound(ys_.begin(), ys_.end(), j) - ys_.begin()) - 1;
+  const int b = static_cast<int>(std::upper_bound(zs_.begin(), zs_.end(), k) - zs_.begin()) - 1;
+  return a + py_ * b;
+}
+
+std::size_t BlockDecomposition::max_halo_cells(int ghost, const std::array<bool, 3>& periodic) const {
+  std::size_t most = 0;
+  const int gz = dim_ == 3 ? ghost : 0;
+  for (int r = 0; r < ranks(); ++r) {
+    const Block& b = block(r);
+    const bool ylo = neighbour(r, 1, -1, periodic) >= 0, yhi = neighbour(r, 1, 1, periodic) >= 0;
+    const bool zlo = dim_ == 3 && neighbour(r, 2, -1, periodic) >= 0, zhi = dim_ == 3 && neighbour(r, 2, 1, periodic) >= 0;
+    // y faces over the block's z extent, then z faces over the y extent widened by the y ghosts
+    // that were received (the exchange's order: edges and corners ride along).
+    const std::size_t wy = static_cast<std::size_t>(b.ny() + ghost * (ylo + yhi));
+    std::size_t cells = static_cast<std::size_t>(ghost) * static_cast<std::size_t>(b.nz()) * (ylo + yhi) +
+                        static_cast<std::size_t>(gz) * wy * (zlo + zhi);
+    cells *= static_cast<std::size_t>(nx_ + 2 * ghost);
+    most = std::max(most, cells);
+  }
+  return most;
+}
+
+}  // namespace finverse::cfd

@@ -1,0 +1,65 @@
+// The flow grid spread over MPI ranks: each rank's block, its fields, the halo exchange, global
+// reductions and the gather/scatter of whole fields (issue 48, deliverable 2;
+// docs/studies/flow_mpi.md).
+//
+// Reductions are bitwise those of the serial field.hpp on the whole grid, for any rank count:
+// field.hpp sums each x line (lane_sum) and then the lines in the order l = j + ny k. Lines are
+// whole on one rank (pencils), so every rank computes its lines' sums exactly as the serial code
+// does, the sums are gathered onto every rank in rank order, and each rank adds them in the
+// global line order. The price is ny x nz doubles per reduction (a 2-D array of line sums, not
+// the 3-D field); the gain is that a run's iterates, residuals and outputs do not depend on the
+// rank count. Files are written from the gathered field, so they do not either.
+#pragma once
+
+#include <mpi.h>
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "cfd/grid/field.hpp"
+#include "cfd/parallel/block_decomposition.hpp"
+#include "cfd/parallel/halo_exchange.hpp"
+
+namespace finverse::cfd {
+
+class DistributedGrid {
+ public:
+  // Collective. Throws (block_decomposition.hpp) when the grid cannot be split into the
+  // communicator's ranks.
+  DistributedGrid(MPI_Comm comm, int nx, int ny, int nz, int dim, const std::array<bool, 3>& periodic, int min_lines = 2);
+
+  int rank() const { return rank_; }
+  int size() const { return d_.ranks(); }
+  const BlockDecomposition& decomposition() const { return d_; }
+  const Block& block() const { return d_.block(rank_); }
+  // This rank's part of a field: nx x block.ny x block.nz with `ghost` layers.
+  Field make_field(int ghost = 1) const;
+
+  // Collective: ghost layers facing other blocks (halo_exchange.hpp).
+  void exchange(Field& local) const { halo_.exchange(local); }
+  std::size_t halo_doubles_last() const { return halo_.received_last(); }
+
+  // Collective reductions over the whole grid's interior, bitwise field.hpp's on the whole field.
+  double dot(const Field& a, const Field& b) const;
+  double norm2(const Field& a) const;
+  double max_abs(const Field& a) const;
+
+  // Collective. gather: the whole grid's interior onto `root` (global must be shaped nx x ny x nz
+  // there; ignored elsewhere). scatter: the reverse, every rank's interior from root's field.
+  void gather(const Field& local, Field& global, int root = 0) const;
+  void scatter(const Field& global, Field& local, int root = 0) const;
+
+ private:
+  template <class LineSum>
+  double line_ordered_sum(const Field& shape, LineSum line) const;
+
+  MPI_Comm comm_;
+  int rank_ = 0;
+  BlockDecomposition d_;
+  HaloExchange halo_;
+  std::vector<int> counts_, displs_;         // each rank's lines, and where they sit in the gathered array
+  std::vector<std::size_t> line_position_;   // global line l -> its index in the gathered array
+};
+
+}  // namespace finverse::cfd
