@@ -2,6 +2,8 @@
 #include "cfd/grid/stretched_grid.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <vector>
 
 namespace finverse::cfd {
 
@@ -29,6 +31,17 @@ StretchedGrid StretchedGrid::coarsened(const std::array<bool, 3>& coarsen) const
   auto c = [&](int d) { return coarsen[static_cast<std::size_t>(d)] ? axis(d).coarsened() : axis(d); };
   if (dim_ == 2) return StretchedGrid(c(0), c(1));
   return StretchedGrid(c(0), c(1), c(2));
+}
+
+StretchedGrid StretchedGrid::block(int j0, int j1, int k0, int k1) const {
+  if (j0 < 0 || j1 > ny() || j0 >= j1 || k0 < 0 || k1 > nz() || k0 >= k1)
+    throw std::invalid_argument("StretchedGrid::block: the lines must lie inside the grid");
+  const auto slice = [&](int d, int a, int b) {
+    const auto& f = axis(d).faces();
+    return Axis(std::vector<double>(f.begin() + a, f.begin() + b + 1));
+  };
+  if (dim_ == 2) return StretchedGrid(axis(0), slice(1, j0, j1));
+  return StretchedGrid(axis(0), slice(1, j0, j1), slice(2, k0, k1));
 }
 
 }  // namespace finverse::cfd

@@ -51,6 +51,9 @@ class StretchedGrid {
 
   // The next multigrid level: axes with coarsen[d] set are halved (their cell count must be even).
   StretchedGrid coarsened(const std::array<bool, 3>& coarsen) const;
+  // Cells j in [j0, j1), k in [k0, k1) and all of x: one MPI rank's block (cfd/parallel). Its faces
+  // are the whole grid's, so widths, centres and areas are the same numbers bit for bit.
+  StretchedGrid block(int j0, int j1, int k0, int k1) const;
 
  private:
   int dim_ = 0;

@@ -20,7 +20,7 @@ int comm_size(MPI_Comm comm) {
 
 DistributedGrid::DistributedGrid(MPI_Comm comm, int nx, int ny, int nz, int dim, const std::array<bool, 3>& periodic,
                                  int min_lines)
-    : comm_(comm), d_(nx, ny, nz, dim, comm_size(comm), min_lines), halo_(comm, d_, periodic) {
+    : comm_(comm), periodic_(periodic), d_(nx, ny, nz, dim, comm_size(comm), min_lines), halo_(comm, d_, periodic) {
   MPI_Comm_rank(comm_, &rank_);
   const int p = d_.ranks();
   counts_.resize(static_cast<std::size_t>(p)), displs_.resize(static_cast<std::size_t>(p));

@@ -31,6 +31,8 @@ class DistributedGrid {
 
   int rank() const { return rank_; }
   int size() const { return d_.ranks(); }
+  MPI_Comm communicator() const { return comm_; }
+  const std::array<bool, 3>& periodic() const { return periodic_; }
   const BlockDecomposition& decomposition() const { return d_; }
   const Block& block() const { return d_.block(rank_); }
   // This rank's part of a field: nx x block.ny x block.nz with `ghost` layers.
@@ -56,6 +58,7 @@ class DistributedGrid {
 
   MPI_Comm comm_;
   int rank_ = 0;
+  std::array<bool, 3> periodic_;
   BlockDecomposition d_;
   HaloExchange halo_;
   std::vector<int> counts_, displs_;         // each rank's lines, and where they sit in the gathered array

@@ -29,6 +29,35 @@ void PoissonOperator::setup(const StretchedGrid& grid, const FaceCoefficients& b
   grid_ = grid;
   beta_ = beta;
   bc_ = bc;
+  build(grid, bc, {0, 0, 0});
+}
+
+void PoissonOperator::setup_block(const StretchedGrid& whole, const FaceCoefficients& beta, const BoundaryConditions& bc,
+                                  int j0, int j1, int k0, int k1) {
+  bc.validate();
+  grid_ = whole.block(j0, j1, k0, k1);
+  beta_ = beta;
+  // Locally, a side inside the domain or on a periodic y/z axis is none of the operator's own
+  // business: its ghosts come from the halo exchange. Neumann is the type that makes fill_ghosts
+  // and assemble_rhs leave it alone; its transmissibilities come from the whole grid below.
+  bc_ = bc;
+  const int lo[3] = {0, j0, k0}, hi[3] = {whole.nx(), j1, k1}, n[3] = {whole.nx(), whole.ny(), whole.nz()};
+  for (int d = 1; d < 3; ++d) {
+    if (bc.periodic(d)) bc_[static_cast<Side>(2 * d)] = bc_[static_cast<Side>(2 * d + 1)] = BcType::Neumann;
+    if (lo[d] > 0) bc_[static_cast<Side>(2 * d)] = BcType::Neumann;
+    if (hi[d] < n[d]) bc_[static_cast<Side>(2 * d + 1)] = BcType::Neumann;
+  }
+  build(whole, bc, {0, j0, k0});
+}
+
+// Transmissibilities of the faces of grid_ (a block of `whole` at `offset`, or whole itself),
+// each from whole's axes and bc exactly as for the whole grid, so that a block's coefficients are
+// the whole grid's bit for bit. The last face of a periodic axis takes face 0's beta: from face 0
+// itself where the block starts there, else from the block's own last face, which holds face 0's
+// value (DistributedPoisson sends it there).
+void PoissonOperator::build(const StretchedGrid& whole, const BoundaryConditions& bc, std::array<int, 3> offset) {
+  const StretchedGrid& grid = grid_;
+  const FaceCoefficients& beta = beta_;
   const int dim = grid.dim();
   const int n[3] = {grid.nx(), grid.ny(), grid.nz()};
   for (int d = 0; d < 3; ++d) {
@@ -53,26 +82,28 @@ void PoissonOperator::setup(const StretchedGrid& grid, const FaceCoefficients& b
     auto& t = t_[static_cast<std::size_t>(d)];
     t.assign(beta.faces(d), 0.0);
     if (d >= dim) continue;  // 2-D: no z faces
-    const Axis& ax = grid.axis(d);
+    const Axis& ax = whole.axis(d);
     const int nd = ax.size();
+    const int od = offset[static_cast<std::size_t>(d)];
     const BcType lo = bc[static_cast<Side>(2 * d)], hi = bc[static_cast<Side>(2 * d + 1)];
     const int e[3] = {n[0] + (d == 0), n[1] + (d == 1), n[2] + (d == 2)};
 #pragma omp parallel for schedule(static) if (parallel)
     for (int l = 0; l < e[1] * e[2]; ++l) {
       const int j = l % e[1], k = l / e[1];
       for (int i = 0; i < e[0]; ++i) {
-        const int f = d == 0 ? i : d == 1 ? j : k;  // face position along d
+        const int fl = d == 0 ? i : d == 1 ? j : k;  // face position along d, in the block
+        const int f = fl + od;                        // ... and in the whole grid
         double dist;
-        int bf = f;  // face whose beta applies (a periodic last face takes face 0's)
+        int bf = fl;  // face whose beta applies (a periodic last face takes face 0's)
         if (f > 0 && f < nd) dist = ax.centre_distance(f);
         else if (lo == BcType::Periodic) {
           dist = 0.5 * (ax.width(0) + ax.width(nd - 1));
-          bf = 0;
+          if (od == 0) bf = 0;  // the block holds face 0 itself; else its last face holds face 0's value
         } else if ((f == 0 ? lo : hi) == BcType::Dirichlet) dist = 0.5 * ax.width(f == 0 ? 0 : nd - 1);
         else continue;  // Neumann: the flux is data, it goes to the right-hand side
         int bi = i, bj = j, bk = k;
         (d == 0 ? bi : d == 1 ? bj : bk) = bf;
-        t[beta.index(d, i, j, k)] = beta(d, bi, bj, bk) * grid.face_area(d, i, j, k) / dist;
+        t[beta.index(d, i, j, k)] = beta(d, bi, bj, bk) * whole.face_area(d, i + offset[0], j + offset[1], k + offset[2]) / dist;
       }
     }
   }

@@ -34,6 +34,14 @@ class PoissonOperator {
 
   // Builds transmissibilities, diagonal and connectivity. beta must be >= 0 (checked).
   void setup(const StretchedGrid& grid, const FaceCoefficients& beta, const BoundaryConditions& bc);
+  // The operator of one MPI rank's block (cells j in [j0, j1), k in [k0, k1) of `whole`; beta on
+  // the block's faces, its last face on a periodic axis holding face 0's value): the whole grid's
+  // transmissibilities and diagonal bit for bit, so that apply, residual and the smoothers give the
+  // whole grid's numbers once the ghosts hold the neighbours' values (cfd/parallel). Block sides
+  // inside the domain and periodic y/z sides are Neumann in bc() (their ghosts are the exchange's).
+  // The connectivity (components, singular) is the block's own, not yet the whole grid's.
+  void setup_block(const StretchedGrid& whole, const FaceCoefficients& beta, const BoundaryConditions& bc, int j0, int j1,
+                   int k0, int k1);
 
   const StretchedGrid& grid() const { return grid_; }
   const FaceCoefficients& beta() const { return beta_; }
@@ -90,6 +98,7 @@ class PoissonOperator {
   void zero_inactive(Field& x) const;
 
  private:
+  void build(const StretchedGrid& whole, const BoundaryConditions& bc, std::array<int, 3> offset);
   void build_connectivity();
   bool single_open_component();
 

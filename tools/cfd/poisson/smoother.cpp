@@ -255,6 +255,11 @@ void red_black_sweep(const PoissonOperator& op, const Field& b, Field& x, bool f
   else rb<2>(op, b, x, forward, omega);
 }
 
+void red_black_colour(const PoissonOperator& op, const Field& b, Field& x, int colour, double omega) {
+  if (op.dim() == 3) colour_update<3>(op, b, x, colour & 1, omega);
+  else colour_update<2>(op, b, x, colour & 1, omega);
+}
+
 void zebra_line_sweep(const PoissonOperator& op, const Field& b, Field& x, bool forward) {
   if (op.dim() == 3) zebra<3>(op, b, x, forward);
   else zebra<2>(op, b, x, forward);

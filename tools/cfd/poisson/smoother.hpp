@@ -31,6 +31,10 @@ void red_black_sweep(const PoissonOperator& op, const Field& b, Field& x, bool f
 // pre-smoothing sweep: the fine levels are bound by memory bandwidth).
 void red_black_sweep_residual(const PoissonOperator& op, const Field& b, Field& x, double omega, Field& r);
 void zebra_line_sweep(const PoissonOperator& op, const Field& b, Field& x, bool forward);
+// One colour of a red-black sweep: the cells whose i + j + k has parity `colour`, ghosts as they
+// are. Two of them with the ghosts refreshed before each are red_black_sweep bit for bit; the
+// distributed sweep (cfd/parallel) refreshes them by halo exchange.
+void red_black_colour(const PoissonOperator& op, const Field& b, Field& x, int colour, double omega = 1.0);
 
 inline void smooth(SmootherKind kind, const PoissonOperator& op, const Field& b, Field& x, bool forward,
                    double omega = 1.0) {

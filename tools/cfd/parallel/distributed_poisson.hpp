@@ -1,0 +1,50 @@
+// The pressure Poisson operator and its red-black smoother over MPI ranks (issue 48, deliverable
+// 2; docs/studies/flow_mpi.md, step 1).
+//
+// Each rank holds its block's PoissonOperator (poisson_operator.hpp, setup_block): the whole
+// grid's transmissibilities and diagonal bit for bit. apply and residual exchange the halo and
+// run the serial stencil on the block; a red-black sweep exchanges before each colour and updates
+// the block's cells of that colour, the colour taken by the parity of the global i + j + k. The
+// results are the serial ones on the whole grid, bit for bit, for any rank count: the kernels
+// are the same code reading the same numbers.
+//
+// Not yet distributed: the connectivity (components and their singularity are the block's own,
+// so the null-space projections are not offered here), the right-hand side's boundary terms, the
+// zebra line smoothers along y and z, and the multigrid's transfers and coarse levels.
+#pragma once
+
+#include "cfd/grid/field.hpp"
+#include "cfd/grid/stretched_grid.hpp"
+#include "cfd/parallel/distributed_grid.hpp"
+#include "cfd/poisson/face_coefficients.hpp"
+#include "cfd/poisson/poisson_boundary.hpp"
+#include "cfd/poisson/poisson_operator.hpp"
+
+namespace finverse::cfd {
+
+class DistributedPoisson {
+ public:
+  // Collective. `whole`: the whole grid (its axes only are used); `beta`: this rank's block faces
+  // (block_faces() below gives the layout); `bc`: the whole domain's conditions, periodic axes as
+  // in `grid`'s exchange. A periodic axis's last face takes face 0's beta from its owner.
+  DistributedPoisson(const DistributedGrid& grid, const StretchedGrid& whole, FaceCoefficients beta,
+                     const BoundaryConditions& bc);
+
+  const PoissonOperator& block_operator() const { return op_; }
+  const StretchedGrid& block_grid() const { return op_.grid(); }
+
+  // Collective; out = A p, r = b - A x on the block (the ghosts of p, x refreshed first).
+  void apply(Field& p, Field& out) const;
+  void residual(const Field& b, Field& x, Field& r) const;
+  // Collective; red_black_sweep (smoother.hpp) on the whole grid, this rank's part.
+  void red_black_sweep(const Field& b, Field& x, bool forward, double omega = 1.0) const;
+
+ private:
+  void refresh(Field& x) const;
+
+  const DistributedGrid& grid_;
+  PoissonOperator op_;
+  int parity_ = 0;  // (j0 + k0) mod 2: local colour = global colour xor parity
+};
+
+}  // namespace finverse::cfd
