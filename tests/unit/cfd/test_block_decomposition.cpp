@@ -13,7 +13,7 @@ using finverse::cfd::BlockDecomposition;
 
 namespace {
 
-void expect_partition(const BlockDecomposition& d) {
+void expect_partition(const BlockDecomposition& d, int balance = 1) {
   std::vector<int> owned(static_cast<std::size_t>(d.ny() * d.nz()), -1);
   int ymin = 1 << 30, ymax = 0, zmin = 1 << 30, zmax = 0;
   for (int r = 0; r < d.ranks(); ++r) {
@@ -28,8 +28,8 @@ void expect_partition(const BlockDecomposition& d) {
       }
   }
   for (int o : owned) EXPECT_GE(o, 0);
-  EXPECT_LE(ymax - ymin, 1);
-  EXPECT_LE(zmax - zmin, 1);
+  EXPECT_LE(ymax - ymin, balance);
+  EXPECT_LE(zmax - zmin, balance);
 }
 
 }  // namespace
@@ -98,4 +98,24 @@ TEST(BlockDecomposition, ARankCountTheGridCannotTakeIsRefusedWithTheLargestThatW
   EXPECT_EQ(BlockDecomposition::largest_feasible(9, 1, 2, 7), 4);
   EXPECT_THROW(BlockDecomposition(16, 9, 1, 2, 0), finverse::Error);
   EXPECT_THROW(BlockDecomposition(16, 9, 3, 2, 1), finverse::Error);  // 2-D with nz > 1
+}
+
+TEST(BlockDecomposition, EdgesSnapToCoarseFacesAndCarryDownTheLevels) {
+  // 30 lines whose coarse level merges pairs: the allowed edges are the even faces.
+  std::vector<int> even, parent;
+  for (int f = 0; f <= 30; f += 2) even.push_back(f);
+  for (int i = 0; i < 30; ++i) parent.push_back(i / 2);
+  const BlockDecomposition even_split = BlockDecomposition(8, 30, 1, 2, 4).snapped(even, {0, 1});
+  for (int e : even_split.y_edges()) EXPECT_EQ(e % 2, 0) << e;
+  expect_partition(even_split, 2);  // within one coarse cell
+  const BlockDecomposition coarse = even_split.coarsened(4, parent, {0});
+  EXPECT_EQ(coarse.ny(), 15);
+  for (int r = 0; r < 4; ++r) {
+    EXPECT_EQ(coarse.block(r).j0 * 2, even_split.block(r).j0);
+    EXPECT_EQ(coarse.block(r).j1 * 2, even_split.block(r).j1);
+  }
+  // The unsnapped split of 30 into 4 (8, 8, 7, 7) cuts at 15, inside a coarse cell: refused.
+  EXPECT_THROW(BlockDecomposition(8, 30, 1, 2, 4).coarsened(4, parent, {0}), finverse::Error);
+  // Too few coarse faces for the blocks: refused with the advice.
+  EXPECT_THROW(BlockDecomposition(8, 30, 1, 2, 4).snapped({0, 30}, {0, 1}), finverse::Error);
 }

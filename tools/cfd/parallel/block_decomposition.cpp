@@ -2,6 +2,7 @@
 #include "cfd/parallel/block_decomposition.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -58,11 +59,70 @@ BlockDecomposition::BlockDecomposition(int nx, int ny, int nz, int dim, int rank
                 std::to_string(largest_feasible(ny, nz, dim, ranks, min_lines)) + " ranks, or a rank count with other factors");
   pz_ = ranks / py_;
   ys_ = split(ny, py_), zs_ = split(nz, pz_);
-  blocks_.resize(static_cast<std::size_t>(ranks));
-  for (int r = 0; r < ranks; ++r) {
+  make_blocks();
+}
+
+BlockDecomposition::BlockDecomposition(int nx, int ny, int nz, int dim, std::vector<int> y_edges, std::vector<int> z_edges)
+    : nx_(nx), ny_(ny), nz_(nz), dim_(dim), ys_(std::move(y_edges)), zs_(std::move(z_edges)) {
+  const auto valid = [](const std::vector<int>& e, int n) {
+    if (e.size() < 2 || e.front() != 0 || e.back() != n) return false;
+    for (std::size_t b = 1; b < e.size(); ++b)
+      if (e[b] <= e[b - 1]) return false;
+    return true;
+  };
+  if (!valid(ys_, ny) || !valid(zs_, nz) || (dim == 2 && zs_.size() != 2))
+    throw Error("block decomposition: block edges must rise strictly from 0 to the line count (" + std::to_string(ny) + " x " +
+                std::to_string(nz) + ")");
+  py_ = static_cast<int>(ys_.size()) - 1, pz_ = static_cast<int>(zs_.size()) - 1;
+  make_blocks();
+}
+
+void BlockDecomposition::make_blocks() {
+  blocks_.resize(static_cast<std::size_t>(py_ * pz_));
+  for (int r = 0; r < py_ * pz_; ++r) {
     const auto a = static_cast<std::size_t>(r % py_), b = static_cast<std::size_t>(r / py_);
     blocks_[static_cast<std::size_t>(r)] = Block{ys_[a], ys_[a + 1], zs_[b], zs_[b + 1]};
   }
+}
+
+BlockDecomposition BlockDecomposition::snapped(const std::vector<int>& y_allowed, const std::vector<int>& z_allowed,
+                                               int min_lines) const {
+  const auto snap = [&](const std::vector<int>& edges, const std::vector<int>& allowed, int n, const char* axis) {
+    std::vector<int> out{0};
+    for (std::size_t b = 1; b + 1 < edges.size(); ++b) {
+      int best = -1;
+      for (int a : allowed)
+        if (a >= out.back() + min_lines && a <= n - min_lines && (best < 0 || std::abs(a - edges[b]) < std::abs(best - edges[b])))
+          best = a;
+      if (best < 0)
+        throw Error(std::string("block decomposition: no coarse face along ") + axis + " leaves " + std::to_string(min_lines) +
+                    " lines per block for " + std::to_string(edges.size() - 1) + " blocks; use fewer ranks");
+      out.push_back(best);
+    }
+    out.push_back(n);
+    if (out.size() > 2 && out[out.size() - 1] - out[out.size() - 2] < min_lines)
+      throw Error(std::string("block decomposition: the last block along ") + axis + " gets fewer than " +
+                  std::to_string(min_lines) + " lines on the coarse faces; use fewer ranks");
+    return out;
+  };
+  return BlockDecomposition(nx_, ny_, nz_, dim_, snap(ys_, y_allowed, ny_, "y"), pz_ > 1 ? snap(zs_, z_allowed, nz_, "z") : zs_);
+}
+
+BlockDecomposition BlockDecomposition::coarsened(int coarse_nx, const std::vector<int>& y_parent,
+                                                 const std::vector<int>& z_parent) const {
+  const auto map = [](const std::vector<int>& edges, const std::vector<int>& parent, const char* axis) {
+    std::vector<int> out;
+    const int nc = parent.empty() ? 0 : parent.back() + 1;
+    for (int e : edges) {
+      const auto ue = static_cast<std::size_t>(e);
+      if (e > 0 && ue < parent.size() && parent[ue - 1] == parent[ue])
+        throw Error(std::string("block decomposition: a block edge along ") + axis + " splits a coarse cell");
+      out.push_back(ue < parent.size() ? parent[ue] : nc);
+    }
+    return out;
+  };
+  return BlockDecomposition(coarse_nx, y_parent.back() + 1, z_parent.back() + 1, dim_, map(ys_, y_parent, "y"),
+                            map(zs_, z_parent, "z"));
 }
 
 int BlockDecomposition::neighbour(int rank, int axis, int side, const std::array<bool, 3>& periodic) const {

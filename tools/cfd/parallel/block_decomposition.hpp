@@ -31,6 +31,18 @@ class BlockDecomposition {
   // Throws finverse::Error naming the largest rank count that works when `ranks` cannot be split
   // with at least min_lines lines per block in each cut direction.
   BlockDecomposition(int nx, int ny, int nz, int dim, int ranks, int min_lines = 2);
+  // Explicit block edges along y (py + 1 of them, 0 ... ny) and z (pz + 1, 0 ... nz).
+  BlockDecomposition(int nx, int ny, int nz, int dim, std::vector<int> y_edges, std::vector<int> z_edges);
+
+  // The same split with each edge moved to the nearest allowed position (sorted face indices;
+  // a multigrid level's coarse faces, so that every level's blocks are whole coarse cells).
+  // Throws when a block would get fewer than min_lines lines.
+  BlockDecomposition snapped(const std::vector<int>& y_allowed, const std::vector<int>& z_allowed, int min_lines = 2) const;
+  // The next multigrid level's split: each coarse cell to the block of its children. `parent`:
+  // the coarse cell of each fine cell along y and z; every edge must fall between two coarse cells.
+  BlockDecomposition coarsened(int coarse_nx, const std::vector<int>& y_parent, const std::vector<int>& z_parent) const;
+  const std::vector<int>& y_edges() const { return ys_; }
+  const std::vector<int>& z_edges() const { return zs_; }
 
   int nx() const { return nx_; }
   int ny() const { return ny_; }
@@ -54,6 +66,8 @@ class BlockDecomposition {
   static int largest_feasible(int ny, int nz, int dim, int ranks, int min_lines = 2);
 
  private:
+  void make_blocks();
+
   int nx_ = 0, ny_ = 0, nz_ = 0, dim_ = 0, py_ = 1, pz_ = 1;
   std::vector<int> ys_, zs_;  // block edges: ys_[0] = 0 ... ys_[py] = ny
   std::vector<Block> blocks_;

@@ -21,6 +21,16 @@ int comm_size(MPI_Comm comm) {
 DistributedGrid::DistributedGrid(MPI_Comm comm, int nx, int ny, int nz, int dim, const std::array<bool, 3>& periodic,
                                  int min_lines)
     : comm_(comm), periodic_(periodic), d_(nx, ny, nz, dim, comm_size(comm), min_lines), halo_(comm, d_, periodic) {
+  index_lines();
+}
+
+DistributedGrid::DistributedGrid(MPI_Comm comm, const BlockDecomposition& decomposition, const std::array<bool, 3>& periodic)
+    : comm_(comm), periodic_(periodic), d_(decomposition), halo_(comm, d_, periodic) {
+  index_lines();
+}
+
+void DistributedGrid::index_lines() {
+  const int ny = d_.ny(), nz = d_.nz();
   MPI_Comm_rank(comm_, &rank_);
   const int p = d_.ranks();
   counts_.resize(static_cast<std::size_t>(p)), displs_.resize(static_cast<std::size_t>(p));

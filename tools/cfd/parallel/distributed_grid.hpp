@@ -28,6 +28,8 @@ class DistributedGrid {
   // Collective. Throws (block_decomposition.hpp) when the grid cannot be split into the
   // communicator's ranks.
   DistributedGrid(MPI_Comm comm, int nx, int ny, int nz, int dim, const std::array<bool, 3>& periodic, int min_lines = 2);
+  // Collective; a given split (one block per rank of comm).
+  DistributedGrid(MPI_Comm comm, const BlockDecomposition& decomposition, const std::array<bool, 3>& periodic);
 
   int rank() const { return rank_; }
   int size() const { return d_.ranks(); }
@@ -55,6 +57,7 @@ class DistributedGrid {
  private:
   template <class LineSum>
   double line_ordered_sum(const Field& shape, LineSum line) const;
+  void index_lines();
 
   MPI_Comm comm_;
   int rank_ = 0;

@@ -66,8 +66,9 @@ std::vector<bool> pair_runs(const Axis& ax, double limit) {
 }
 }  // namespace
 
-Coarsening choose_coarsening(const PoissonOperator& op, double ratio) {
-  const StretchedGrid& g = op.grid();
+Coarsening choose_coarsening(const PoissonOperator& op, double ratio) { return choose_coarsening(op.grid(), op.bc(), ratio); }
+
+Coarsening choose_coarsening(const StretchedGrid& g, const BoundaryConditions& bc, double ratio) {
   double hmin = std::numeric_limits<double>::infinity();
   for (int d = 0; d < g.dim(); ++d) hmin = std::min(hmin, g.axis(d).min_width());
   const double limit = ratio > 0 ? ratio * hmin * (1 + 1e-12) : std::numeric_limits<double>::infinity();
@@ -78,7 +79,7 @@ Coarsening choose_coarsening(const PoissonOperator& op, double ratio) {
     auto& cd = c[static_cast<std::size_t>(d)];
     cd = AxisCoarsening::identity(n);
     if (d >= g.dim() || n < 3) continue;
-    if (op.bc().periodic(d)) {
+    if (bc.periodic(d)) {
       if (n % 4 == 0 && ax.max_width() <= limit)
         cd = AxisCoarsening::pairs(std::vector<bool>(static_cast<std::size_t>(n), true));
       continue;
@@ -101,10 +102,8 @@ StretchedGrid coarsen_grid(const StretchedGrid& fine, const Coarsening& c) {
   return StretchedGrid(axis(0), axis(1), axis(2));
 }
 
-PoissonOperator coarsen_operator(const PoissonOperator& fine, const Coarsening& c) {
-  const StretchedGrid cg = coarsen_grid(fine.grid(), c);
-  const StretchedGrid& g = fine.grid();
-  const FaceCoefficients& beta = fine.beta();
+FaceCoefficients coarsen_beta(const StretchedGrid& g, const FaceCoefficients& beta, const Coarsening& c,
+                              const StretchedGrid& cg) {
   FaceCoefficients cb(cg, 0.0);
   for (int d = 0; d < g.dim(); ++d) {
     const int e[3] = {cg.nx() + (d == 0), cg.ny() + (d == 1), cg.nz() + (d == 2)};
@@ -137,8 +136,13 @@ PoissonOperator coarsen_operator(const PoissonOperator& fine, const Coarsening& 
       }
     }
   }
+  return cb;
+}
+
+PoissonOperator coarsen_operator(const PoissonOperator& fine, const Coarsening& c) {
+  const StretchedGrid cg = coarsen_grid(fine.grid(), c);
   PoissonOperator coarse;
-  coarse.setup(cg, cb, fine.bc());
+  coarse.setup(cg, coarsen_beta(fine.grid(), fine.beta(), c, cg), fine.bc());
   return coarse;
 }
 

@@ -45,6 +45,9 @@ using Coarsening = std::array<AxisCoarsening, 3>;
 // The merge pattern of the next level (see above); `ratio` <= 0 halves every axis that can be.
 // No axis merging anything means coarsening has to stop.
 Coarsening choose_coarsening(const PoissonOperator& op, double ratio);
+// The same from the grid and the conditions alone (the whole grid's hierarchy, known to every MPI
+// rank without the whole grid's operator).
+Coarsening choose_coarsening(const StretchedGrid& grid, const BoundaryConditions& bc, double ratio);
 bool coarsens(const Coarsening& c);
 
 // The coarse grid (faces of the fine grid at the coarse cell boundaries) and the rediscretised
@@ -52,5 +55,9 @@ bool coarsens(const Coarsening& c);
 // face area (stretching, variable coefficients and immersed-boundary masks carry down).
 StretchedGrid coarsen_grid(const StretchedGrid& fine, const Coarsening& c);
 PoissonOperator coarsen_operator(const PoissonOperator& fine, const Coarsening& c);
+// The coarse beta alone (coarse grid cg = coarsen_grid(g, c)); on an MPI rank's block with the
+// block's part of the coarsening it is the whole grid's coarse beta on the block's faces.
+FaceCoefficients coarsen_beta(const StretchedGrid& g, const FaceCoefficients& beta, const Coarsening& c,
+                              const StretchedGrid& cg);
 
 }  // namespace finverse::cfd
