@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "cfd/parallel/distributed_grid.hpp"
+#include "cfd/parallel/distributed_multigrid.hpp"
 #include "cfd/parallel/distributed_poisson.hpp"
 #include "cfd/poisson/coarsening.hpp"
 #include "cfd/poisson/grid_transfer.hpp"
@@ -25,15 +26,6 @@ FaceCoefficients slice_beta(const FaceCoefficients& whole, const StretchedGrid& 
       for (int j = 0; j < block_grid.ny() + (d == 1); ++j)
         for (int i = 0; i < block_grid.nx() + (d == 0); ++i) local(d, i, j, k) = whole(d, i, j + b.j0, k + b.k0);
   return local;
-}
-
-// The whole coarsening's pattern on a block's lines [lo, hi) whose coarse cells are [LO, HI).
-AxisCoarsening block_pattern(const AxisCoarsening& m, int lo, int hi) {
-  AxisCoarsening b;
-  const int LO = m.parent[static_cast<std::size_t>(lo)], HI = m.parent[static_cast<std::size_t>(hi - 1)] + 1;
-  for (int C = LO; C <= HI; ++C) b.first.push_back(m.first[static_cast<std::size_t>(C)] - lo);
-  for (int i = lo; i < hi; ++i) b.parent.push_back(m.parent[static_cast<std::size_t>(i)] - LO);
-  return b;
 }
 
 std::vector<int> coarse_faces(const AxisCoarsening& m) { return m.first; }
@@ -89,7 +81,7 @@ void expect_serial_transfers(const StretchedGrid& whole, const BoundaryCondition
   const Block &fb = gf.block(), &cbk = gc.block();
   const StretchedGrid fine_block = whole.block(fb.j0, fb.j1, fb.k0, fb.k1);
   const DistributedPoisson fine_op(gf, whole, slice_beta(beta, fine_block, fb), bc);
-  const Coarsening local{c[0], block_pattern(c[1], fb.j0, fb.j1), dim == 3 ? block_pattern(c[2], fb.k0, fb.k1) : c[2]};
+  const Coarsening local = block_coarsening(c, fb.j0, fb.j1, fb.k0, fb.k1, dim);
   const StretchedGrid coarse_block = cw.block(cbk.j0, cbk.j1, cbk.k0, cbk.k1);
   const DistributedPoisson coarse_op(gc, cw, coarsen_beta(fine_block, fine_op.block_operator().beta(), local, coarse_block), bc);
 

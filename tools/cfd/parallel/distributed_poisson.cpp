@@ -43,7 +43,7 @@ void wrap_periodic_beta(const DistributedGrid& g, FaceCoefficients& beta, int ax
 
 DistributedPoisson::DistributedPoisson(const DistributedGrid& grid, const StretchedGrid& whole, FaceCoefficients beta,
                                        const BoundaryConditions& bc)
-    : grid_(grid) {
+    : grid_(grid), bc_(bc) {
   const auto& d = grid.decomposition();
   if (whole.nx() != d.nx() || whole.ny() != d.ny() || whole.nz() != d.nz())
     throw Error("distributed Poisson: the grid is " + std::to_string(whole.nx()) + " x " + std::to_string(whole.ny()) + " x " +

@@ -30,7 +30,10 @@ class DistributedPoisson {
   DistributedPoisson(const DistributedGrid& grid, const StretchedGrid& whole, FaceCoefficients beta,
                      const BoundaryConditions& bc);
 
+  const DistributedGrid& grid() const { return grid_; }
   const PoissonOperator& block_operator() const { return op_; }
+  // The whole domain's conditions (block_operator().bc() has the block's own sides Neumann).
+  const BoundaryConditions& bc_whole() const { return bc_; }
   const StretchedGrid& block_grid() const { return op_.grid(); }
 
   // Collective; out = A p, r = b - A x on the block (the ghosts of p, x refreshed first).
@@ -43,6 +46,7 @@ class DistributedPoisson {
   void refresh(Field& x) const;
 
   const DistributedGrid& grid_;
+  BoundaryConditions bc_;
   PoissonOperator op_;
   int parity_ = 0;  // (j0 + k0) mod 2: local colour = global colour xor parity
 };

@@ -52,6 +52,9 @@ class Multigrid {
 
   // One cycle for A x = b on the finest level; x is the initial guess on entry.
   void cycle(const Field& b, Field& x);
+  // The same with the cycle's type given: the coarse part of a cycle whose finer levels run
+  // elsewhere (the distributed multigrid's levels below its gathered one).
+  void cycle(const Field& b, Field& x, CycleType type) { cycle_level(0, b, x, type); }
 
   int levels() const { return static_cast<int>(ops_.size()); }
   const PoissonOperator& level_operator(int l) const { return *ops_[static_cast<std::size_t>(l)]; }

@@ -1,0 +1,110 @@
+// The pressure multigrid over MPI ranks (tools/cfd/parallel/distributed_multigrid.hpp), run by
+// run_cfd_ranks.sh on 1-4 ranks: cycles on the ranks' blocks with the coarse levels gathered onto
+// rank 0 are the serial Multigrid's cycles on the whole grid bit for bit (V and W cycles, a
+// stretched 3-D grid with inactive cells, a periodic axis, 2-D).
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cmath>
+
+#include "cfd/parallel/distributed_multigrid.hpp"
+
+using namespace finverse::cfd;
+
+namespace {
+
+FaceCoefficients multigrid_slice(const FaceCoefficients& whole, const StretchedGrid& block_grid, const Block& b) {
+  FaceCoefficients local(block_grid, 0.0);
+  for (int d = 0; d < block_grid.dim(); ++d)
+    for (int k = 0; k < block_grid.nz() + (d == 2); ++k)
+      for (int j = 0; j < block_grid.ny() + (d == 1); ++j)
+        for (int i = 0; i < block_grid.nx() + (d == 0); ++i) local(d, i, j, k) = whole(d, i, j + b.j0, k + b.k0);
+  return local;
+}
+
+void expect_serial_cycles(const StretchedGrid& whole, const BoundaryConditions& bc, bool solid, CycleType type) {
+  const int dim = whole.dim();
+  FaceCoefficients beta(whole, [](double x, double y, double z) { return 1 + 0.5 * std::sin(2 * x - y) + 0.2 * z; });
+  if (solid)
+    beta.mask_cells([](int i, int j, int k) { return i >= 8 && i <= 13 && j >= 7 && j <= 12 && k >= 3 && k <= 8; });
+  MultigridOptions options;
+  options.cycle = type;
+  options.coarsest_max_cells = 200;
+  PoissonOperator op;
+  op.setup(whole, beta, bc);
+  Multigrid mg;
+  mg.setup(op, options);
+  Field b(whole, 1), x(whole, 1);
+  for (int k = 0; k < whole.nz(); ++k)
+    for (int j = 0; j < whole.ny(); ++j)
+      for (int i = 0; i < whole.nx(); ++i) b(i, j, k) = std::sin(0.3 * i + 0.5 * j) * std::cos(0.4 * k) + 0.1;
+  op.zero_inactive(b);
+  const Field b0(b);
+
+  const WholeHierarchy h = whole_hierarchy(whole, bc, options);
+  ASSERT_EQ(static_cast<int>(h.grids.size()), mg.levels());
+  int ranks = 0;
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  const MultigridSplit split = plan_multigrid_split(h, ranks);
+  const std::array<bool, 3> periodic{false, bc.periodic(1), dim == 3 && bc.periodic(2)};
+  const DistributedGrid g(MPI_COMM_WORLD, split.fine, periodic);
+  const Block& blk = g.block();
+  const DistributedPoisson dp(g, whole, multigrid_slice(beta, whole.block(blk.j0, blk.j1, blk.k0, blk.k1), blk), bc);
+  DistributedMultigrid dmg(dp, h, split.gathered_level, options);
+  if (ranks > 1) {
+    EXPECT_GT(dmg.gathered_level(), 0) << "every level gathered: nothing distributed";
+  }
+  Field bl = g.make_field(1), xl = g.make_field(1);
+  g.scatter(b0, bl);
+  for (int c = 0; c < 3; ++c) {
+    mg.cycle(b, x);
+    dmg.cycle(bl, xl);
+  }
+  Field gathered(whole.nx(), whole.ny(), whole.nz(), dim, 0);
+  g.gather(xl, gathered);
+  if (g.rank() != 0) return;
+  int wrong = 0;
+  for (int k = 0; k < whole.nz(); ++k)
+    for (int j = 0; j < whole.ny(); ++j)
+      for (int i = 0; i < whole.nx(); ++i)
+        if (gathered(i, j, k) != x(i, j, k) && ++wrong <= 3)
+          ADD_FAILURE() << "after 3 cycles at (" << i << "," << j << "," << k << "): " << gathered(i, j, k) << " on " << ranks
+                        << " ranks, " << x(i, j, k) << " serial (gathered level " << split.gathered_level << " of " << mg.levels()
+                        << ")";
+  EXPECT_EQ(wrong, 0);
+}
+
+StretchedGrid multigrid_grid3() {
+  return StretchedGrid(Axis::stretched_count(0, 1.6, 0.5, 1.1, 24, 1.2), Axis::stretched_count(-0.6, 0.6, -0.2, 0.2, 20, 1.15),
+                       Axis::stretched_count(0, 0.9, 0.3, 0.6, 12, 1.15));
+}
+
+}  // namespace
+
+TEST(DistributedMultigrid, VCyclesAreTheSerialOnes) {
+  BoundaryConditions bc;
+  bc[Side::XHi] = BcType::Dirichlet;
+  expect_serial_cycles(multigrid_grid3(), bc, false, CycleType::V);
+}
+
+TEST(DistributedMultigrid, WCyclesAroundInactiveCellsAreTheSerialOnes) {
+  BoundaryConditions bc;
+  bc[Side::XHi] = BcType::Dirichlet;
+  expect_serial_cycles(multigrid_grid3(), bc, true, CycleType::W);
+}
+
+TEST(DistributedMultigrid, VCyclesWithAPeriodicYAreTheSerialOnes) {
+  BoundaryConditions bc;
+  bc[Side::XLo] = BcType::Dirichlet;
+  bc[Side::YLo] = bc[Side::YHi] = BcType::Periodic;
+  expect_serial_cycles(StretchedGrid(Axis::stretched_count(0, 1.6, 0.5, 1.1, 24, 1.2), Axis::uniform(-0.6, 0.6, 24),
+                                     Axis::stretched_count(0, 0.9, 0.3, 0.6, 12, 1.15)),
+                       bc, true, CycleType::V);
+}
+
+TEST(DistributedMultigrid, FCyclesIn2DAreTheSerialOnes) {
+  BoundaryConditions bc;
+  bc[Side::XLo] = bc[Side::YHi] = BcType::Dirichlet;
+  expect_serial_cycles(StretchedGrid(Axis::stretched_count(0, 2, 0.5, 1.2, 48, 1.15), Axis::stretched_count(-1, 1, -0.3, 0.3, 40, 1.15)),
+                       bc, true, CycleType::F);
+}

@@ -1,0 +1,78 @@
+// The pressure multigrid over MPI ranks (issue 48, deliverable 2; docs/studies/flow_mpi.md).
+//
+// The hierarchy is the serial Multigrid's (multigrid.hpp), chosen from the whole grid's axes and
+// conditions. Levels 0 .. D-1 are smoothed, their residuals restricted and corrections
+// prolongated on the ranks' blocks (DistributedPoisson, GridTransfer::setup_block); level D's
+// right-hand side and iterate are gathered onto rank 0, which runs the serial cycle of levels
+// D .. coarsest on the whole level-D operator (the established pattern of gathering coarse levels
+// onto fewer ranks, as AMReX's MLMG and IBAMR do, here onto one) and scatters the result back.
+// D is the deepest level on which every rank still gets at least two lines in each cut direction;
+// the finer levels' block edges are refined from level D's, so every block of every level is whole
+// coarse cells. A cycle is the serial cycle bit for bit, for any rank count.
+//
+// Red-black smoothing only (the zebra line smoothers along y and z would need distributed
+// tridiagonal solves).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "cfd/grid/stretched_grid.hpp"
+#include "cfd/parallel/block_decomposition.hpp"
+#include "cfd/parallel/distributed_grid.hpp"
+#include "cfd/parallel/distributed_poisson.hpp"
+#include "cfd/poisson/coarsening.hpp"
+#include "cfd/poisson/grid_transfer.hpp"
+#include "cfd/poisson/multigrid.hpp"
+
+namespace finverse::cfd {
+
+// The serial hierarchy's grids and coarsenings (grids[l + 1] = coarsen_grid(grids[l], c[l])).
+struct WholeHierarchy {
+  std::vector<StretchedGrid> grids;
+  std::vector<Coarsening> coarsenings;
+};
+WholeHierarchy whole_hierarchy(const StretchedGrid& whole, const BoundaryConditions& bc, const MultigridOptions& options);
+
+// The fine level's split for `ranks` ranks (its edges on level D's faces) and D. Throws (one line,
+// naming the largest rank count that works) when not even the fine level can be split.
+struct MultigridSplit {
+  BlockDecomposition fine;
+  int gathered_level = 0;  // D
+};
+MultigridSplit plan_multigrid_split(const WholeHierarchy& h, int ranks, int min_lines = 2);
+
+// The whole coarsening restricted to a block's lines [j0, j1) x [k0, k1) (whole coarse cells).
+Coarsening block_coarsening(const Coarsening& whole, int j0, int j1, int k0, int k1, int dim);
+
+class DistributedMultigrid {
+ public:
+  // Collective. `fine`: the fine level's operator on the split plan_multigrid_split gave (its
+  // DistributedGrid's decomposition must be MultigridSplit::fine); `hierarchy` from
+  // whole_hierarchy with the same options. Both must outlive this object.
+  DistributedMultigrid(const DistributedPoisson& fine, const WholeHierarchy& hierarchy, int gathered_level,
+                       const MultigridOptions& options);
+  ~DistributedMultigrid();
+
+  // Collective: one cycle for A x = b on the fine level (x the initial guess), the serial cycle.
+  void cycle(const Field& b, Field& x);
+  int levels() const { return static_cast<int>(hierarchy_.grids.size()); }
+  int gathered_level() const { return gathered_; }
+
+ private:
+  struct Level;
+  void cycle_level(int l, const Field& b, Field& x, CycleType type);
+  void gathered_cycle(const Field& b, Field& x, CycleType type);
+
+  const WholeHierarchy& hierarchy_;
+  MultigridOptions options_;
+  double omega_ = 1;
+  int gathered_ = 0;
+  std::vector<std::unique_ptr<Level>> levels_;  // 0 .. D (level D: grid and block operator only)
+  // Rank 0: level D's whole operator and the serial cycle of levels D and below.
+  std::unique_ptr<PoissonOperator> whole_gathered_;
+  std::unique_ptr<Multigrid> coarse_mg_;
+  std::unique_ptr<Field> gb_, gx_;
+};
+
+}  // namespace finverse::cfd
