@@ -52,22 +52,8 @@ void DistributedGrid::index_lines() {
 
 Field DistributedGrid::make_field(int ghost) const { return Field(d_.nx(), block().ny(), block().nz(), d_.dim(), ghost); }
 
-template <class LineSum>
-double DistributedGrid::line_ordered_sum(const Field& shape, LineSum line) const {
-  // This rank's line sums, local line order (j fastest), as ordered_line_sum computes them.
-  const int lines = shape.ny() * shape.nz();
-  std::vector<double> mine(static_cast<std::size_t>(lines));
-#pragma omp parallel for schedule(static) if (static_cast<long>(shape.nx()) * lines >= parallel_min_cells)
-  for (int l = 0; l < lines; ++l) mine[static_cast<std::size_t>(l)] = line(l % shape.ny(), l / shape.ny());
-  std::vector<double> all(line_position_.size());
-  MPI_Allgatherv(mine.data(), lines, MPI_DOUBLE, all.data(), counts_.data(), displs_.data(), MPI_DOUBLE, comm_);
-  double s = 0;
-  for (std::size_t pos : line_position_) s += all[pos];
-  return s;
-}
-
 double DistributedGrid::dot(const Field& a, const Field& b) const {
-  return line_ordered_sum(a, [&](int j, int k) {
+  return line_sum(a, [&](int j, int k) {
     const double* pa = &a(0, j, k);
     const double* pb = &b(0, j, k);
     return lane_sum(a.nx(), [&](int i) { return pa[i] * pb[i]; });

@@ -48,6 +48,10 @@ class DistributedGrid {
   double dot(const Field& a, const Field& b) const;
   double norm2(const Field& a) const;
   double max_abs(const Field& a) const;
+  // Collective: sum over the whole grid's lines of line(j, k) (this rank's lines, local indices),
+  // added in the global line order l = j + ny k, as field.hpp's ordered_line_sum does.
+  template <class LineSum>
+  double line_sum(const Field& shape, LineSum line) const;
 
   // Collective. gather: the whole grid's interior onto `root` (global must be shaped nx x ny x nz
   // there; ignored elsewhere). scatter: the reverse, every rank's interior from root's field.
@@ -55,8 +59,6 @@ class DistributedGrid {
   void scatter(const Field& global, Field& local, int root = 0) const;
 
  private:
-  template <class LineSum>
-  double line_ordered_sum(const Field& shape, LineSum line) const;
   void index_lines();
 
   MPI_Comm comm_;
@@ -67,5 +69,19 @@ class DistributedGrid {
   std::vector<int> counts_, displs_;         // each rank's lines, and where they sit in the gathered array
   std::vector<std::size_t> line_position_;   // global line l -> its index in the gathered array
 };
+
+template <class LineSum>
+inline double DistributedGrid::line_sum(const Field& shape, LineSum line) const {
+  // This rank's line sums, local line order (j fastest), as ordered_line_sum computes them.
+  const int lines = shape.ny() * shape.nz();
+  std::vector<double> mine(static_cast<std::size_t>(lines));
+#pragma omp parallel for schedule(static) if (static_cast<long>(shape.nx()) * lines >= parallel_min_cells)
+  for (int l = 0; l < lines; ++l) mine[static_cast<std::size_t>(l)] = line(l % shape.ny(), l / shape.ny());
+  std::vector<double> all(line_position_.size());
+  MPI_Allgatherv(mine.data(), lines, MPI_DOUBLE, all.data(), counts_.data(), displs_.data(), MPI_DOUBLE, comm_);
+  double s = 0;
+  for (std::size_t pos : line_position_) s += all[pos];
+  return s;
+}
 
 }  // namespace finverse::cfd

@@ -1,0 +1,193 @@
+// The pressure Poisson solve over MPI ranks; see distributed_poisson_solver.hpp. The steps
+// follow PoissonSolver's (poisson_solver.cpp) one for one.
+#include "cfd/parallel/distributed_poisson_solver.hpp"
+
+#include <mpi.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace finverse::cfd {
+
+DistributedPoissonSolver::DistributedPoissonSolver(MPI_Comm comm, const StretchedGrid& whole, const BlockBeta& beta,
+                                                   const BoundaryConditions& bc, const PoissonSolverOptions& options)
+    : options_(options), whole_(whole) {
+  if (!(options.rtol > 0) || options.max_iterations < 1) throw Error("distributed Poisson solver: need rtol > 0 and max_iterations >= 1");
+  bc.validate();
+  int ranks = 0;
+  MPI_Comm_size(comm, &ranks);
+  hierarchy_ = whole_hierarchy(whole_, bc, options.multigrid);
+  const MultigridSplit split = plan_multigrid_split(hierarchy_, ranks);
+  const int dim = whole_.dim();
+  grid_ = std::make_unique<DistributedGrid>(comm, split.fine, std::array<bool, 3>{false, bc.periodic(1), dim == 3 && bc.periodic(2)});
+  const Block& b = grid_->block();
+  const StretchedGrid block_grid = whole_.block(b.j0, b.j1, b.k0, b.k1);
+  op_ = std::make_unique<DistributedPoisson>(*grid_, whole_, beta(block_grid, b), bc);
+  mg_ = std::make_unique<DistributedMultigrid>(*op_, hierarchy_, split.gathered_level, options.multigrid);
+  components_ = std::make_unique<DistributedComponents>(*op_);
+  int singular = 0;
+  for (int c = 0; c < components_->components(); ++c) singular += components_->singular(c);
+  if (singular > 1)
+    throw Error("distributed Poisson solver: " + std::to_string(singular) +
+                " singular (all-Neumann) components; across MPI ranks one is supported (give the domain a Dirichlet side)");
+  long long counts[2] = {static_cast<long long>(op_->block_operator().active_cells()),
+                         static_cast<long long>(op_->block_operator().grid().cells())};
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_LONG_LONG, MPI_SUM, comm);
+  active_cells_ = counts[0], cells_ = counts[1];
+  r_ = grid_->make_field(1), z_ = grid_->make_field(1), q_ = grid_->make_field(1), d_ = grid_->make_field(1);
+}
+
+DistributedPoissonSolver::~DistributedPoissonSolver() = default;
+
+std::pair<double, double> DistributedPoissonSolver::singular_sums(const Field& x, bool volume_weight) const {
+  const StretchedGrid& g = op_->block_grid();
+  const auto& comp = *components_;
+  const auto line = [&](const Field& f, bool weights, int j, int k) {
+    double s = 0;
+    for (int i = 0; i < g.nx(); ++i) {
+      const int c = comp.component(i, j, k);
+      if (c < 0 || !comp.singular(c)) continue;
+      const double w = volume_weight ? g.volume(i, j, k) : 1.0;
+      s += weights ? w : w * f(i, j, k);
+    }
+    return s;
+  };
+  return {grid_->line_sum(x, [&](int j, int k) { return line(x, false, j, k); }),
+          grid_->line_sum(x, [&](int j, int k) { return line(x, true, j, k); })};
+}
+
+// PoissonOperator::remove_mean: with one component the lane sums of field.hpp, line-ordered (the
+// serial bits); with more, the singular component's line-ordered sum.
+void DistributedPoissonSolver::remove_mean(Field& r) const {
+  if (!components_->any_singular()) return;
+  const StretchedGrid& g = op_->block_grid();
+  const int nx = g.nx();
+  const auto& comp = *components_;
+  double mean = 0;
+  if (comp.components() == 1) {
+    const bool all = active_cells_ == cells_;
+    mean = grid_->line_sum(r, [&](int j, int k) {
+             const double* p = &r(0, j, k);
+             if (all) return lane_sum(nx, [&](int i) { return p[i]; });
+             return lane_sum(nx, [&](int i) { return comp.component(i, j, k) == 0 ? p[i] : 0.0; });
+           }) /
+           static_cast<double>(active_cells_);
+  } else {
+    const auto sums = singular_sums(r, false);
+    mean = sums.second > 0 ? sums.first / sums.second : 0;
+  }
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < nx; ++i) {
+        const int c = comp.component(i, j, k);
+        r(i, j, k) -= c >= 0 && comp.singular(c) ? mean : 0.0;
+      }
+}
+
+void DistributedPoissonSolver::make_compatible(Field& b) const {
+  if (!components_->any_singular()) return;
+  const StretchedGrid& g = op_->block_grid();
+  const double s = singular_sums(b, false).first, v = singular_sums(b, true).second;
+  const double shift = v > 0 ? s / v : 0;
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i) {
+        const int c = components_->component(i, j, k);
+        if (c >= 0 && components_->singular(c)) b(i, j, k) -= shift * g.volume(i, j, k);
+      }
+}
+
+void DistributedPoissonSolver::remove_volume_mean(Field& p) const {
+  if (!components_->any_singular()) return;
+  const StretchedGrid& g = op_->block_grid();
+  const auto [s, v] = singular_sums(p, true);
+  const double shift = v > 0 ? s / v : 0;
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i) {
+        const int c = components_->component(i, j, k);
+        if (c >= 0 && components_->singular(c)) p(i, j, k) -= shift;
+      }
+}
+
+PoissonSolveStats DistributedPoissonSolver::solve_system(Field& b, Field& x) {
+  zero_inactive(b);
+  make_compatible(b);
+  zero_inactive(x);
+  const double bnorm = grid_->norm2(b);
+  PoissonSolveStats st;
+  st.rhs_norm = bnorm;
+  if (bnorm == 0) {
+    x.fill(0.0);
+    st.converged = true;
+    st.history.push_back(0);
+    return st;
+  }
+  st = options_.method == PoissonMethod::MultigridPCG ? pcg(b, x, bnorm) : cycles(b, x, bnorm);
+  remove_volume_mean(x);
+  st.rhs_norm = bnorm;
+  st.relative_residual = st.history.back() / bnorm;
+  st.initial_residual = st.history.front();
+  st.convergence_factor = st.iterations > 0 && st.history.front() > 0
+                              ? std::pow(st.history.back() / st.history.front(), 1.0 / st.iterations)
+                              : 0.0;
+  return st;
+}
+
+PoissonSolveStats DistributedPoissonSolver::cycles(const Field& b, Field& x, double bnorm) {
+  PoissonSolveStats st;
+  op_->residual(b, x, r_);
+  double rn = grid_->norm2(r_);
+  st.history.push_back(rn);
+  while (rn > options_.rtol * bnorm && st.iterations < options_.max_iterations) {
+    mg_->cycle(b, x);
+    op_->residual(b, x, r_);
+    rn = grid_->norm2(r_);
+    st.history.push_back(rn);
+    ++st.iterations;
+  }
+  st.converged = rn <= options_.rtol * bnorm;
+  return st;
+}
+
+PoissonSolveStats DistributedPoissonSolver::pcg(const Field& b, Field& x, double bnorm) {
+  PoissonSolveStats st;
+  op_->residual(b, x, r_);
+  remove_mean(r_);
+  double rn = grid_->norm2(r_);
+  st.history.push_back(rn);
+  if (rn <= options_.rtol * bnorm) {
+    st.converged = true;
+    return st;
+  }
+  double rz_old = 0;
+  while (st.iterations < options_.max_iterations) {
+    z_.fill(0.0);
+    mg_->cycle(r_, z_);
+    remove_mean(z_);
+    const double rz = grid_->dot(r_, z_);
+    if (st.iterations == 0) copy_interior(z_, d_);
+    else xpby(z_, rz / rz_old, d_);
+    rz_old = rz;
+    op_->apply(d_, q_);
+    const double dq = grid_->dot(d_, q_);
+    if (!(dq > 0)) break;
+    const double alpha = rz / dq;
+    axpy(alpha, d_, x);
+    ++st.iterations;
+    if (st.iterations % 50 == 0) op_->residual(b, x, r_);
+    else axpy(-alpha, q_, r_);
+    remove_mean(r_);
+    rn = grid_->norm2(r_);
+    st.history.push_back(rn);
+    if (rn <= options_.rtol * bnorm) break;
+  }
+  op_->residual(b, x, r_);
+  remove_mean(r_);
+  st.history.back() = grid_->norm2(r_);
+  st.converged = st.history.back() <= options_.rtol * bnorm;
+  return st;
+}
+
+}  // namespace finverse::cfd
