@@ -28,6 +28,32 @@ rule bench_poisson:
         " OMP_WAIT_POLICY=PASSIVE {input.ours} {params.sizes} --threads {threads} --peer {output.peer} --json {output.json}"
         " " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
 
+register_bench("scaling", "the pressure solve on MPI ranks against the threaded solver on the same cores; "
+               "a strong/weak scaling model for 8-512 ranks (issue 48)")
+
+# Issue 48's scaling benchmark, the distributed part so far (docs/studies/flow_mpi.md): 1 and 2
+# ranks of fin-poisson-ranks, each against the threaded solver with as many threads, then the
+# file and the model (tools/scripts/scaling_bench.py).
+rule bench_scaling:
+    input:
+        exe=EXE("fin-poisson-ranks"),
+    output:
+        json="results/bench/scaling.json",
+        ranks1="results/bench/scaling/ranks1.json",
+        ranks2="results/bench/scaling/ranks2.json",
+    params:
+        n=48 if COARSE else 96,
+    log:
+        "results/logs/bench/scaling.log",
+    threads: 2
+    resources:
+        mem_mb=3000,
+    shell:
+        "(OMP_WAIT_POLICY=PASSIVE {MPIRUN} -np 1 {input.exe} -n {params.n} --json {output.ranks1} && "
+        " OMP_WAIT_POLICY=PASSIVE {MPIRUN} -np 2 {input.exe} -n {params.n} --json {output.ranks2} && "
+        " /usr/bin/python3 {SCRIPTS}/scaling_bench.py --record {output.ranks1} --record {output.ranks2} --out {output.json}"
+        " " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
+
 # DFG 2D-2 (Re 100) wall time against OpenFOAM (pimpleFoam on an O-grid) on the same cores: each
 # code on a sequence of meshes; fin-cfd-bench compares the cheapest run of each within 1 % of the
 # bound midpoints. Every job takes all THREADS cores, so with -c THREADS they run one at a time.

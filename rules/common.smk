@@ -28,6 +28,8 @@ EXECUTABLES = {
 }
 # Built only where hypre and MPI are installed (tools/apps/cfd.cmake).
 EXECUTABLES["fin-poisson-hypre"] = "{src}/tools/scripts/install-deps.sh --peers (hypre), then " + _CMAKE_BUILD
+# Built where Open MPI is (tools/apps/cfd.cmake; install-deps.sh installs it).
+EXECUTABLES["fin-poisson-ranks"] = _CMAKE_BUILD
 
 
 def EXE(name):

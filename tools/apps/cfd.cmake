@@ -2,6 +2,13 @@
 add_executable(fin-poisson-bench ${CMAKE_CURRENT_LIST_DIR}/fin-poisson-bench.cpp)
 target_link_libraries(fin-poisson-bench PRIVATE finverse_cfd_validation finverse_cfd finverse_core finverse_warnings)
 
+# The pressure solve on MPI ranks against the threaded solver (issue 48; results/bench/scaling.json).
+if(TARGET finverse_cfd_mpi)
+  add_executable(fin-poisson-ranks ${CMAKE_CURRENT_LIST_DIR}/fin-poisson-ranks.cpp)
+  target_link_libraries(fin-poisson-ranks PRIVATE finverse_cfd_mpi finverse_core CLI11::CLI11 nlohmann_json::nlohmann_json
+                        finverse_warnings)
+endif()
+
 # The hypre peer of the Poisson benchmark: only where the peers are installed
 # (tools/scripts/install-deps.sh --peers); tests never need it.
 find_package(MPI COMPONENTS C)

@@ -43,6 +43,11 @@ class DistributedGrid {
   // Collective: ghost layers facing other blocks (halo_exchange.hpp).
   void exchange(Field& local) const { halo_.exchange(local); }
   std::size_t halo_doubles_last() const { return halo_.received_last(); }
+  // Since construction: doubles this rank received in halo exchanges, exchanges, and reductions
+  // (each gathers the whole grid's ny x nz line sums).
+  std::size_t halo_doubles_total() const { return halo_.received_total(); }
+  long exchanges() const { return halo_.exchanges(); }
+  long reductions() const { return reductions_; }
 
   // Collective reductions over the whole grid's interior, bitwise field.hpp's on the whole field.
   double dot(const Field& a, const Field& b) const;
@@ -68,6 +73,7 @@ class DistributedGrid {
   HaloExchange halo_;
   std::vector<int> counts_, displs_;         // each rank's lines, and where they sit in the gathered array
   std::vector<std::size_t> line_position_;   // global line l -> its index in the gathered array
+  mutable long reductions_ = 0;
 };
 
 template <class LineSum>
@@ -78,6 +84,7 @@ inline double DistributedGrid::line_sum(const Field& shape, LineSum line) const 
 #pragma omp parallel for schedule(static) if (static_cast<long>(shape.nx()) * lines >= parallel_min_cells)
   for (int l = 0; l < lines; ++l) mine[static_cast<std::size_t>(l)] = line(l % shape.ny(), l / shape.ny());
   std::vector<double> all(line_position_.size());
+  ++reductions_;
   MPI_Allgatherv(mine.data(), lines, MPI_DOUBLE, all.data(), counts_.data(), displs_.data(), MPI_DOUBLE, comm_);
   double s = 0;
   for (std::size_t pos : line_position_) s += all[pos];

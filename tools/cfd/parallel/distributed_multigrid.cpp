@@ -185,8 +185,10 @@ void DistributedMultigrid::cycle_level(int l, const Field& b, Field& x, CycleTyp
   }
   Level& lv = *levels_[static_cast<std::size_t>(l)];
   Level& next = *levels_[static_cast<std::size_t>(l) + 1];
-  for (int s = 0; s < options_.pre_sweeps; ++s) lv.op->red_black_sweep(b, x, true, omega_);
-  lv.op->residual(b, x, lv.r);  // the serial fused sweep-and-residual gives these same bits
+  const bool fuse = options_.pre_sweeps > 0;
+  for (int s = 0; s < options_.pre_sweeps - (fuse ? 1 : 0); ++s) lv.op->red_black_sweep(b, x, true, omega_);
+  if (fuse) lv.op->red_black_sweep_residual(b, x, omega_, lv.r);
+  else lv.op->residual(b, x, lv.r);
   lv.grid->exchange(lv.r);
   lv.transfer.restrict_residual(lv.r, next.b);
   next.x.fill(0.0);

@@ -58,6 +58,7 @@ DistributedPoisson::DistributedPoisson(const DistributedGrid& grid, const Stretc
     if (bc.periodic(axis)) wrap_periodic_beta(grid, beta, axis, grid.periodic());
   op_.setup_block(whole, beta, bc, b.j0, b.j1, b.k0, b.k1);
   parity_ = (b.j0 + b.k0) & 1;
+  alone_ = grid.size() == 1 && !grid.periodic()[1] && !grid.periodic()[2];
 }
 
 void DistributedPoisson::refresh(Field& x) const {
@@ -76,10 +77,23 @@ void DistributedPoisson::residual(const Field& b, Field& x, Field& r) const {
 }
 
 void DistributedPoisson::red_black_sweep(const Field& b, Field& x, bool forward, double omega) const {
+  if (alone_) {
+    cfd::red_black_sweep(op_, b, x, forward, omega);
+    return;
+  }
   for (int c : {0, 1}) {
     refresh(x);
     red_black_colour(op_, b, x, (forward ? c : 1 - c) ^ parity_, omega);
   }
+}
+
+void DistributedPoisson::red_black_sweep_residual(const Field& b, Field& x, double omega, Field& r) const {
+  if (alone_) {
+    cfd::red_black_sweep_residual(op_, b, x, omega, r);
+    return;
+  }
+  red_black_sweep(b, x, true, omega);
+  residual(b, x, r);
 }
 
 }  // namespace finverse::cfd

@@ -41,6 +41,8 @@ class DistributedPoisson {
   void residual(const Field& b, Field& x, Field& r) const;
   // Collective; red_black_sweep (smoother.hpp) on the whole grid, this rank's part.
   void red_black_sweep(const Field& b, Field& x, bool forward, double omega = 1.0) const;
+  // Collective; a forward sweep and then r = b - A x (red_black_sweep_residual's bits).
+  void red_black_sweep_residual(const Field& b, Field& x, double omega, Field& r) const;
 
  private:
   void refresh(Field& x) const;
@@ -49,6 +51,9 @@ class DistributedPoisson {
   BoundaryConditions bc_;
   PoissonOperator op_;
   int parity_ = 0;  // (j0 + k0) mod 2: local colour = global colour xor parity
+  // One rank and no periodic y or z: the exchange does nothing, and the serial smoother's fused
+  // passes (the same bits, one pass over memory per sweep) serve.
+  bool alone_ = false;
 };
 
 }  // namespace finverse::cfd

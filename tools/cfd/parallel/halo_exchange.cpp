@@ -24,12 +24,14 @@ void HaloExchange::exchange(Field& f) const {
                 std::to_string(f.ny()) + " x " + std::to_string(f.nz()) + ", its block " + std::to_string(d_.nx()) + " x " +
                 std::to_string(b.ny()) + " x " + std::to_string(b.nz()));
   received_ = 0;
+  ++exchanges_;
   if (f.ghost() == 0) return;
   if (f.ghost() > b.ny() || (d_.dim() == 3 && f.ghost() > b.nz()))
     throw Error("halo exchange: " + std::to_string(f.ghost()) + " ghost layers are deeper than rank " + std::to_string(rank_) +
                 "'s block of " + std::to_string(b.ny()) + " x " + std::to_string(b.nz()) + " lines");
   pass(f, 1);
   if (d_.dim() == 3) pass(f, 2);
+  total_ += received_;
 }
 
 // One axis: the layers next to each face go to the neighbour on that side, and its layers come

@@ -28,8 +28,10 @@ class HaloExchange {
   // Fills `local`'s ghost layers that face other blocks. `local` must be shaped nx x block.ny x
   // block.nz (any ghost width); every rank of the communicator calls it.
   void exchange(Field& local) const;
-  // Doubles this rank received in its last exchange.
+  // Doubles this rank received in its last exchange, and in all since construction.
   std::size_t received_last() const { return received_; }
+  std::size_t received_total() const { return total_; }
+  long exchanges() const { return exchanges_; }
 
  private:
   void pass(Field& f, int axis) const;
@@ -39,7 +41,8 @@ class HaloExchange {
   BlockDecomposition d_;
   std::array<bool, 3> periodic_{};
   mutable std::vector<double> send_, recv_;
-  mutable std::size_t received_ = 0;
+  mutable std::size_t received_ = 0, total_ = 0;
+  mutable long exchanges_ = 0;
 };
 
 }  // namespace finverse::cfd

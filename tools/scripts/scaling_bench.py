@@ -1,0 +1,165 @@
+#!/usr/bin/env python3
+"""results/bench/scaling.json from fin-poisson-ranks records (issue 48's scaling benchmark, the
+part distributed today: the pressure solve; docs/studies/flow_mpi.md).
+
+    scaling_bench.py --record ranks1.json --record ranks2.json --out results/bench/scaling.json
+
+Graded: the pressure solve on one rank against the threaded solver on one thread (goal <= 1.1:
+the decomposition must not slow the single-rank path). Reported: two ranks against two threads,
+halo and reduction bytes per iteration per rank, and a strong- and weak-scaling model for 8-512
+ranks from the measured cost per cell-iteration and traffic, with its assumptions. The flow
+step's own ratio stays unmeasured until the momentum solves and the immersed surface run on
+ranks (graded null, with why).
+"""
+import argparse
+import json
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from summary import write_summary  # noqa: E402
+
+# Model assumptions (written into the file): one network, per message latency and bandwidth.
+LATENCY_S = 2e-6
+BANDWIDTH_BPS = 10e9
+
+
+def fail(msg):
+    print(f"scaling_bench.py: error: {msg}", file=sys.stderr)
+    sys.exit(2)
+
+
+def metric(name, value, units, kind, reference, source, tolerance=None, passed=None, error=None):
+    return {"name": name, "value": value, "units": units, "kind": kind, "reference": reference, "source": source,
+            "error": error, "tolerance": tolerance, "pass": passed}
+
+
+def pencil_split(ny, nz, p):
+    """The split BlockDecomposition picks: py x pz = p with the smallest largest-block perimeter."""
+    best = None
+    for py in range(p, 0, -1):
+        if p % py:
+            continue
+        pz = p // py
+        if ny // py < 2 or nz // pz < 2:
+            continue
+        by, bz = math.ceil(ny / py), math.ceil(nz / pz)
+        per = (2 * bz if py > 1 else 0) + (2 * by if pz > 1 else 0)
+        if best is None or per < best[0]:
+            best = (per, py, pz, by, bz)
+    return best
+
+
+def model(t_cell_iter, nx, ny, nz, p, exchanges_per_iter, reductions_per_iter):
+    """Seconds per MG-PCG iteration on p ranks: compute, halo, reductions, the gathered level."""
+    split = pencil_split(ny, nz, p)
+    if split is None:
+        return None
+    _, py, pz, by, bz = split
+    cells = nx * ny * nz
+    compute = t_cell_iter * cells / p
+    # Halo: the fine level's faces (nx + 2) x block side, every level down adding about 1/4 more
+    # (3-D coarsening halves both face directions), one layer per exchange.
+    face_cells = (nx + 2) * ((2 * bz if py > 1 else 0) + (2 * (by + 2) if pz > 1 else 0)) * 4 / 3
+    messages = (2 if py > 1 else 0) + (2 if pz > 1 else 0)
+    halo = exchanges_per_iter * (messages * LATENCY_S + 8 * face_cells / exchanges_per_iter * 2 / BANDWIDTH_BPS)
+    # Reductions: an allgather of ny x nz line sums (recursive doubling).
+    reductions = reductions_per_iter * (math.log2(p) * LATENCY_S + 8 * ny * nz / BANDWIDTH_BPS)
+    # The gathered level: every level halved until a rank would hold fewer than 2 lines; its cells
+    # solved on rank 0 (serial cycle below), plus its gather and scatter.
+    level_cells, ly, lz = cells, ny, nz
+    while ly // 2 // py >= 2 and lz // 2 // pz >= 2:
+        level_cells //= 8
+        ly //= 2
+        lz //= 2
+    gathered = t_cell_iter * level_cells * 8 / 7 + 2 * 8 * level_cells / BANDWIDTH_BPS + 2 * math.log2(p) * LATENCY_S
+    return {"ranks": p, "split": [py, pz], "compute_s": compute, "halo_s": halo, "reductions_s": reductions,
+            "gathered_s": gathered, "total_s": compute + halo + reductions + gathered}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--record", action="append", required=True, help="a fin-poisson-ranks JSON (one per rank count)")
+    ap.add_argument("--model-grid", default="320,160,164", help="nx,ny,nz of the modelled grid (paper.yaml's c/40: 8.4 M cells)")
+    ap.add_argument("--out", required=True)
+    a = ap.parse_args()
+    recs = {}
+    for path in a.record:
+        try:
+            with open(path) as f:
+                r = json.load(f)
+            recs[int(r["ranks"])] = r
+        except (OSError, ValueError, KeyError) as e:
+            fail(f"--record {path}: {e}; expected fin-poisson-ranks' JSON")
+    if 1 not in recs:
+        fail("--record: expected the 1-rank record")
+    one = recs[1]
+    ratio = one["ranks_run"]["solve_s"] / one["threaded"]["solve_s"]
+    iters = max(1, one["ranks_run"]["iterations"])
+    t_cell_iter = one["ranks_run"]["solve_s"] / (one["cells"] * iters)
+    metrics = [
+        metric("pressure_solve_one_rank_over_threaded", ratio, "", "max", None,
+               f"MG-PCG solve, {one['cells']} cells: {one['ranks_run']['solve_s']:.4g} s on 1 rank vs "
+               f"{one['threaded']['solve_s']:.4g} s threaded on 1 thread (goal <= 1.1)", 1.1, ratio <= 1.1, ratio),
+        metric("flow_step_one_rank_over_threaded", None, "", "max", None,
+               "not measured: the momentum solves and the immersed surface do not run on ranks yet (flow_mpi.md)",
+               1.1, None),
+        metric("pressure_solution_difference_relative", one["solution_max_difference_relative"], "", "info", None,
+               "1 rank vs threaded, max |dp| / max |p| (all-Neumann: the singular projections sum by lines)"),
+    ]
+    # Traffic counts from the most ranks measured (one rank skips its exchanges: nothing to send).
+    most = recs[max(recs)]
+    most_iters = max(1, most["ranks_run"]["iterations"])
+    exchanges_per_iter = most["ranks_run"]["exchanges_per_solve"] / most_iters
+    reductions_per_iter = most["ranks_run"]["reductions_per_solve"] / most_iters
+    if 2 in recs:
+        two = recs[2]
+        it2 = max(1, two["ranks_run"]["iterations"])
+        metrics += [
+            metric("pressure_solve_two_ranks_over_two_threads", two["ranks_run"]["solve_s"] / two["threaded"]["solve_s"], "",
+                   "info", None, f"{two['ranks_run']['solve_s']:.4g} s on 2 ranks vs {two['threaded']['solve_s']:.4g} s on 2 "
+                   "threads, the same cores"),
+            metric("pressure_solve_two_ranks_speedup", one["ranks_run"]["solve_s"] / two["ranks_run"]["solve_s"], "", "info",
+                   None, "1 rank over 2 ranks"),
+            metric("halo_bytes_per_iteration_per_rank", 8 * two["ranks_run"]["halo_doubles_per_solve_max_rank"] / it2, "B",
+                   "info", None, f"2 ranks, split {two['split']['py']} x {two['split']['pz']}, every level, largest rank"),
+            metric("reduction_bytes_per_iteration", 8 * two["lines"] * two["ranks_run"]["reductions_per_solve"] / it2, "B",
+                   "info", None, "line sums gathered per reduction (ny x nz doubles), every reduction of an iteration"),
+        ]
+    nx, ny, nz = (int(v) for v in a.model_grid.split(","))
+    strong = [m for m in (model(t_cell_iter, nx, ny, nz, p, exchanges_per_iter, reductions_per_iter)
+                          for p in (1, 8, 16, 32, 64, 128, 256, 512)) if m]
+    base = strong[0]["total_s"]
+    for m in strong:
+        m["speedup"] = base / m["total_s"]
+        m["efficiency"] = m["speedup"] / m["ranks"]
+    per_rank = one["cells"]
+    weak = []
+    for p in (1, 8, 64, 512):
+        s = round((per_rank * p) ** (1 / 3))
+        m = model(t_cell_iter, s, s, s, p, exchanges_per_iter, reductions_per_iter)
+        if m:
+            m["cells"] = s ** 3
+            weak.append(m)
+    for m in weak:
+        m["efficiency"] = weak[0]["total_s"] / m["total_s"]
+    eff512 = next((m["efficiency"] for m in strong if m["ranks"] == 512), None)
+    metrics.append(metric("model_strong_efficiency_512_ranks", eff512, "", "info", None,
+                          f"modelled, {nx}x{ny}x{nz} cells, per MG-PCG iteration (parameters.model)"))
+    params = {"records": {str(k): v for k, v in sorted(recs.items())},
+              "model": {"assumptions": {"latency_s": LATENCY_S, "bandwidth_B_per_s": BANDWIDTH_BPS,
+                                        "cost_per_cell_iteration_s": t_cell_iter,
+                                        "exchanges_per_iteration": exchanges_per_iter,
+                                        "reductions_per_iteration": reductions_per_iter,
+                                        "notes": "compute scales as cells per rank at the 1-rank cost; halo as the largest "
+                                                 "block's faces over all levels (x 4/3); reductions allgather ny x nz line "
+                                                 "sums; the gathered level (every level halved until a rank would hold fewer "
+                                                 "than 2 lines) is solved on rank 0 at the 1-rank cost"},
+                        "grid": [nx, ny, nz], "strong": strong, "weak": weak}}
+    write_summary(a.out, "bench", "scaling", "the pressure solve on MPI ranks against the threaded solver; scaling model",
+                  metrics, params, "scaling_bench.py finverse", threads=2, inputs=a.record)
+
+
+if __name__ == "__main__":
+    main()
