@@ -13,15 +13,6 @@ using namespace finverse::cfd;
 
 namespace {
 
-FaceCoefficients multigrid_slice(const FaceCoefficients& whole, const StretchedGrid& block_grid, const Block& b) {
-  FaceCoefficients local(block_grid, 0.0);
-  for (int d = 0; d < block_grid.dim(); ++d)
-    for (int k = 0; k < block_grid.nz() + (d == 2); ++k)
-      for (int j = 0; j < block_grid.ny() + (d == 1); ++j)
-        for (int i = 0; i < block_grid.nx() + (d == 0); ++i) local(d, i, j, k) = whole(d, i, j + b.j0, k + b.k0);
-  return local;
-}
-
 void expect_serial_cycles(const StretchedGrid& whole, const BoundaryConditions& bc, bool solid, CycleType type) {
   const int dim = whole.dim();
   FaceCoefficients beta(whole, [](double x, double y, double z) { return 1 + 0.5 * std::sin(2 * x - y) + 0.2 * z; });
@@ -49,7 +40,7 @@ void expect_serial_cycles(const StretchedGrid& whole, const BoundaryConditions& 
   const std::array<bool, 3> periodic{false, bc.periodic(1), dim == 3 && bc.periodic(2)};
   const DistributedGrid g(MPI_COMM_WORLD, split.fine, periodic);
   const Block& blk = g.block();
-  const DistributedPoisson dp(g, whole, multigrid_slice(beta, whole.block(blk.j0, blk.j1, blk.k0, blk.k1), blk), bc);
+  const DistributedPoisson dp(g, whole, block_faces(beta, whole.block(blk.j0, blk.j1, blk.k0, blk.k1), blk), bc);
   DistributedMultigrid dmg(dp, h, split.gathered_level, options);
   if (ranks > 1) {
     EXPECT_GT(dmg.gathered_level(), 0) << "every level gathered: nothing distributed";

@@ -17,16 +17,6 @@ using namespace finverse::cfd;
 
 namespace {
 
-// The whole grid's beta on a block's faces (each rank would compute its own; here sliced).
-FaceCoefficients block_beta(const FaceCoefficients& whole, const StretchedGrid& block_grid, const Block& b) {
-  FaceCoefficients local(block_grid, 0.0);
-  for (int d = 0; d < block_grid.dim(); ++d)
-    for (int k = 0; k < block_grid.nz() + (d == 2); ++k)
-      for (int j = 0; j < block_grid.ny() + (d == 1); ++j)
-        for (int i = 0; i < block_grid.nx() + (d == 0); ++i) local(d, i, j, k) = whole(d, i, j + b.j0, k + b.k0);
-  return local;
-}
-
 struct Case {
   StretchedGrid grid;
   BoundaryConditions bc;
@@ -50,7 +40,7 @@ void expect_serial_bits(const Case& c) {
   const std::array<bool, 3> periodic{false, c.bc.periodic(1), dim == 3 && c.bc.periodic(2)};
   const DistributedGrid g(MPI_COMM_WORLD, nx, ny, nz, dim, periodic);
   const Block& blk = g.block();
-  const DistributedPoisson dp(g, whole, block_beta(beta, whole.block(blk.j0, blk.j1, blk.k0, blk.k1), blk), c.bc);
+  const DistributedPoisson dp(g, whole, block_faces(beta, whole.block(blk.j0, blk.j1, blk.k0, blk.k1), blk), c.bc);
   Field xl = g.make_field(1), bl = g.make_field(1), rl = g.make_field(1);
   g.scatter(x, xl);
   g.scatter(b, bl);

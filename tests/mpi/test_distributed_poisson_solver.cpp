@@ -58,14 +58,7 @@ SolveRun solve_both(const BoundaryConditions& bc, int body) {
   run.serial = serial.solve_system(b, x);
   run.x_serial = x;
 
-  const auto block_beta = [&](const StretchedGrid& block_grid, const Block& blk) {
-    FaceCoefficients local(block_grid, 0.0);
-    for (int d = 0; d < block_grid.dim(); ++d)
-      for (int k = 0; k < block_grid.nz() + (d == 2); ++k)
-        for (int j = 0; j < block_grid.ny() + (d == 1); ++j)
-          for (int i = 0; i < block_grid.nx() + (d == 0); ++i) local(d, i, j, k) = beta(d, i, j + blk.j0, k + blk.k0);
-    return local;
-  };
+  const auto block_beta = [&](const StretchedGrid& block_grid, const Block& blk) { return block_faces(beta, block_grid, blk); };
   DistributedPoissonSolver dist(MPI_COMM_WORLD, whole, block_beta, bc, options);
   const DistributedGrid& g = dist.grid();
   Field bl = g.make_field(1), xl = g.make_field(1);

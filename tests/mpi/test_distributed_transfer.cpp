@@ -19,15 +19,6 @@ using namespace finverse::cfd;
 
 namespace {
 
-FaceCoefficients slice_beta(const FaceCoefficients& whole, const StretchedGrid& block_grid, const Block& b) {
-  FaceCoefficients local(block_grid, 0.0);
-  for (int d = 0; d < block_grid.dim(); ++d)
-    for (int k = 0; k < block_grid.nz() + (d == 2); ++k)
-      for (int j = 0; j < block_grid.ny() + (d == 1); ++j)
-        for (int i = 0; i < block_grid.nx() + (d == 0); ++i) local(d, i, j, k) = whole(d, i, j + b.j0, k + b.k0);
-  return local;
-}
-
 std::vector<int> coarse_faces(const AxisCoarsening& m) { return m.first; }
 
 void gathered_equal(const DistributedGrid& g, const Field& local, const Field& serial, const char* what) {
@@ -80,7 +71,7 @@ void expect_serial_transfers(const StretchedGrid& whole, const BoundaryCondition
   const DistributedGrid gf(MPI_COMM_WORLD, fine_split, periodic), gc(MPI_COMM_WORLD, coarse_split, periodic);
   const Block &fb = gf.block(), &cbk = gc.block();
   const StretchedGrid fine_block = whole.block(fb.j0, fb.j1, fb.k0, fb.k1);
-  const DistributedPoisson fine_op(gf, whole, slice_beta(beta, fine_block, fb), bc);
+  const DistributedPoisson fine_op(gf, whole, block_faces(beta, fine_block, fb), bc);
   const Coarsening local = block_coarsening(c, fb.j0, fb.j1, fb.k0, fb.k1, dim);
   const StretchedGrid coarse_block = cw.block(cbk.j0, cbk.j1, cbk.k0, cbk.k1);
   const DistributedPoisson coarse_op(gc, cw, coarsen_beta(fine_block, fine_op.block_operator().beta(), local, coarse_block), bc);

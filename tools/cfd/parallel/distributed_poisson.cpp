@@ -41,6 +41,15 @@ void wrap_periodic_beta(const DistributedGrid& g, FaceCoefficients& beta, int ax
 
 }  // namespace
 
+FaceCoefficients block_faces(const FaceCoefficients& whole, const StretchedGrid& block_grid, const Block& b) {
+  FaceCoefficients local(block_grid, 0.0);
+  for (int d = 0; d < block_grid.dim(); ++d)
+    for (int k = 0; k < block_grid.nz() + (d == 2); ++k)
+      for (int j = 0; j < block_grid.ny() + (d == 1); ++j)
+        for (int i = 0; i < block_grid.nx() + (d == 0); ++i) local(d, i, j, k) = whole(d, i, j + b.j0, k + b.k0);
+  return local;
+}
+
 DistributedPoisson::DistributedPoisson(const DistributedGrid& grid, const StretchedGrid& whole, FaceCoefficients beta,
                                        const BoundaryConditions& bc)
     : grid_(grid), bc_(bc) {

@@ -22,6 +22,11 @@
 
 namespace finverse::cfd {
 
+// A whole grid's face coefficients cut to one rank's block (its grid: whole.block(...)): for a
+// caller that has the whole beta, as tests and benchmarks do; a flow solver computes each block's
+// own.
+FaceCoefficients block_faces(const FaceCoefficients& whole, const StretchedGrid& block_grid, const Block& block);
+
 class DistributedPoisson {
  public:
   // Collective. `whole`: the whole grid (its axes only are used); `beta`: this rank's block faces

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "cfd/poisson/mg_pcg.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {
@@ -35,7 +36,7 @@ DistributedPoissonSolver::DistributedPoissonSolver(MPI_Comm comm, const Stretche
                          static_cast<long long>(op_->block_operator().grid().cells())};
   MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_LONG_LONG, MPI_SUM, comm);
   active_cells_ = counts[0], cells_ = counts[1];
-  r_ = grid_->make_field(1), z_ = grid_->make_field(1), q_ = grid_->make_field(1), d_ = grid_->make_field(1);
+  work_ = {grid_->make_field(1), grid_->make_field(1), grid_->make_field(1), grid_->make_field(1)};
 }
 
 DistributedPoissonSolver::~DistributedPoissonSolver() = default;
@@ -111,83 +112,30 @@ void DistributedPoissonSolver::remove_volume_mean(Field& p) const {
       }
 }
 
+namespace {
+
+// The ranks' operations for mg_pcg.hpp.
+struct RankOps {
+  const DistributedPoissonSolver& solver;
+  const DistributedPoisson& op;
+  const DistributedGrid& grid;
+  DistributedMultigrid& mg;
+  void residual(const Field& b, Field& x, Field& r) const { op.residual(b, x, r); }
+  void apply(Field& p, Field& out) const { op.apply(p, out); }
+  void cycle(const Field& b, Field& x) const { mg.cycle(b, x); }
+  double dot(const Field& a, const Field& b) const { return grid.dot(a, b); }
+  double norm2(const Field& a) const { return grid.norm2(a); }
+  void remove_mean(Field& f) const { solver.remove_mean(f); }
+  void make_compatible(Field& b) const { solver.make_compatible(b); }
+  void remove_volume_mean(Field& x) const { solver.remove_volume_mean(x); }
+  void zero_inactive(Field& f) const { op.block_operator().zero_inactive(f); }
+};
+
+}  // namespace
+
 PoissonSolveStats DistributedPoissonSolver::solve_system(Field& b, Field& x) {
-  zero_inactive(b);
-  make_compatible(b);
-  zero_inactive(x);
-  const double bnorm = grid_->norm2(b);
-  PoissonSolveStats st;
-  st.rhs_norm = bnorm;
-  if (bnorm == 0) {
-    x.fill(0.0);
-    st.converged = true;
-    st.history.push_back(0);
-    return st;
-  }
-  st = options_.method == PoissonMethod::MultigridPCG ? pcg(b, x, bnorm) : cycles(b, x, bnorm);
-  remove_volume_mean(x);
-  st.rhs_norm = bnorm;
-  st.relative_residual = st.history.back() / bnorm;
-  st.initial_residual = st.history.front();
-  st.convergence_factor = st.iterations > 0 && st.history.front() > 0
-                              ? std::pow(st.history.back() / st.history.front(), 1.0 / st.iterations)
-                              : 0.0;
-  return st;
-}
-
-PoissonSolveStats DistributedPoissonSolver::cycles(const Field& b, Field& x, double bnorm) {
-  PoissonSolveStats st;
-  op_->residual(b, x, r_);
-  double rn = grid_->norm2(r_);
-  st.history.push_back(rn);
-  while (rn > options_.rtol * bnorm && st.iterations < options_.max_iterations) {
-    mg_->cycle(b, x);
-    op_->residual(b, x, r_);
-    rn = grid_->norm2(r_);
-    st.history.push_back(rn);
-    ++st.iterations;
-  }
-  st.converged = rn <= options_.rtol * bnorm;
-  return st;
-}
-
-PoissonSolveStats DistributedPoissonSolver::pcg(const Field& b, Field& x, double bnorm) {
-  PoissonSolveStats st;
-  op_->residual(b, x, r_);
-  remove_mean(r_);
-  double rn = grid_->norm2(r_);
-  st.history.push_back(rn);
-  if (rn <= options_.rtol * bnorm) {
-    st.converged = true;
-    return st;
-  }
-  double rz_old = 0;
-  while (st.iterations < options_.max_iterations) {
-    z_.fill(0.0);
-    mg_->cycle(r_, z_);
-    remove_mean(z_);
-    const double rz = grid_->dot(r_, z_);
-    if (st.iterations == 0) copy_interior(z_, d_);
-    else xpby(z_, rz / rz_old, d_);
-    rz_old = rz;
-    op_->apply(d_, q_);
-    const double dq = grid_->dot(d_, q_);
-    if (!(dq > 0)) break;
-    const double alpha = rz / dq;
-    axpy(alpha, d_, x);
-    ++st.iterations;
-    if (st.iterations % 50 == 0) op_->residual(b, x, r_);
-    else axpy(-alpha, q_, r_);
-    remove_mean(r_);
-    rn = grid_->norm2(r_);
-    st.history.push_back(rn);
-    if (rn <= options_.rtol * bnorm) break;
-  }
-  op_->residual(b, x, r_);
-  remove_mean(r_);
-  st.history.back() = grid_->norm2(r_);
-  st.converged = st.history.back() <= options_.rtol * bnorm;
-  return st;
+  RankOps ops{*this, *op_, *grid_, *mg_};
+  return solve_poisson_system(ops, b, x, options_, work_);
 }
 
 }  // namespace finverse::cfd

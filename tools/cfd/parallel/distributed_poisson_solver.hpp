@@ -42,15 +42,14 @@ class DistributedPoissonSolver {
   // Collective: A x = b on the blocks (b made compatible in place), as PoissonSolver::solve_system.
   PoissonSolveStats solve_system(Field& b, Field& x);
 
- private:
-  PoissonSolveStats pcg(const Field& b, Field& x, double bnorm);
-  PoissonSolveStats cycles(const Field& b, Field& x, double bnorm);
+  // The null-space projections (PoissonOperator's, over the ranks' blocks).
   void remove_mean(Field& r) const;
   void make_compatible(Field& b) const;
   void remove_volume_mean(Field& p) const;
+
+ private:
   // Sum over the singular component's cells of w x and of w, line by line in the global order.
   std::pair<double, double> singular_sums(const Field& x, bool volume_weight) const;
-  void zero_inactive(Field& x) const { op_->block_operator().zero_inactive(x); }
 
   PoissonSolverOptions options_;
   StretchedGrid whole_;
@@ -60,7 +59,7 @@ class DistributedPoissonSolver {
   std::unique_ptr<DistributedMultigrid> mg_;
   std::unique_ptr<DistributedComponents> components_;
   long long active_cells_ = 0, cells_ = 0;  // the whole grid's
-  Field r_, z_, q_, d_;
+  SolveWork work_;
 };
 
 }  // namespace finverse::cfd

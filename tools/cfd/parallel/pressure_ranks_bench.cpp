@@ -66,12 +66,7 @@ nlohmann::json run_pressure_ranks_bench(MPI_Comm comm, const PressureRanksBench&
   omp_set_num_threads(1);
   // The ranks, one thread each.
   const auto block_beta = [&](const StretchedGrid& block_grid, const Block& blk) {
-    FaceCoefficients local(block_grid, 0.0);
-    for (int d = 0; d < block_grid.dim(); ++d)
-      for (int k = 0; k < block_grid.nz() + (d == 2); ++k)
-        for (int j = 0; j < block_grid.ny() + (d == 1); ++j)
-          for (int i = 0; i < block_grid.nx() + (d == 0); ++i) local(d, i, j, k) = problem.beta(d, i, j + blk.j0, k + blk.k0);
-    return local;
+    return block_faces(problem.beta, block_grid, blk);
   };
   double setup = std::numeric_limits<double>::infinity(), solve = setup;
   PoissonSolveStats st;

@@ -63,6 +63,24 @@ Rows axis_rows(const std::vector<Entries>& pr, int nc, bool periodic) {
 
 }  // namespace
 
+// The renormalisation of fine cell (i, j, k): 1 / (1 - the weight its prolongation puts on
+// inactive coarse cells), 0 where nothing active is left. coarse_cell(c, d) maps an entry's coarse
+// index along d to the one to look at (-1: the wall, always present); inactive(cx, cy, cz).
+template <class CoarseCell, class Inactive>
+double GridTransfer::renormalisation(int i, int j, int k, CoarseCell coarse_cell, Inactive inactive) const {
+  double lost = 0;
+  for (const Entry& ez : prol_[2][static_cast<std::size_t>(k)])
+    for (const Entry& ey : prol_[1][static_cast<std::size_t>(j)])
+      for (const Entry& ex : prol_[0][static_cast<std::size_t>(i)]) {
+        const double w = ex.w * ey.w * ez.w;
+        if (w == 0.0) continue;
+        const int cx = coarse_cell(ex.c, 0), cy = coarse_cell(ey.c, 1), cz = coarse_cell(ez.c, 2);
+        if (cx == kWall || cy == kWall || cz == kWall) continue;
+        if (inactive(cx, cy, cz)) lost += w;
+      }
+  return lost < 1 - 1e-12 ? 1 / (1 - lost) : 0.0;
+}
+
 void GridTransfer::set_rows(int d, const std::vector<std::vector<std::pair<int, double>>>& rows) {
   const auto sd = static_cast<std::size_t>(d);
   rptr_[sd].assign(1, 0);
@@ -98,25 +116,14 @@ void GridTransfer::setup(const PoissonOperator& fine, const PoissonOperator& coa
   const auto wrap = [&](int c, int d) {
     const int n = cg.n(d);
     if (c >= 0 && c < n) return c;
-    return fine.bc().periodic(d) ? (c + n) % n : -1;  // -1: the wall value, always "present"
+    return fine.bc().periodic(d) ? (c + n) % n : kWall;  // the wall value, always "present"
   };
+  const auto inactive = [&](int cx, int cy, int cz) { return !coarse.active(cx, cy, cz); };
 #pragma omp parallel for schedule(static) if (static_cast<long>(fg.cells()) >= parallel_min_cells)
   for (int l = 0; l < fg.ny() * fg.nz(); ++l) {
     const int j = l % fg.ny(), k = l / fg.ny();
-    for (int i = 0; i < fg.nx(); ++i) {
-      if (!fine.active(i, j, k)) continue;
-      double lost = 0;
-      for (const Entry& ez : prol_[2][static_cast<std::size_t>(k)])
-        for (const Entry& ey : prol_[1][static_cast<std::size_t>(j)])
-          for (const Entry& ex : prol_[0][static_cast<std::size_t>(i)]) {
-            const double w = ex.w * ey.w * ez.w;
-            if (w == 0.0) continue;
-            const int cx = wrap(ex.c, 0), cy = wrap(ey.c, 1), cz = wrap(ez.c, 2);
-            if (cx < 0 || cy < 0 || cz < 0) continue;
-            if (!coarse.active(cx, cy, cz)) lost += w;
-          }
-      scale_[fine.cell_index(i, j, k)] = lost < 1 - 1e-12 ? 1 / (1 - lost) : 0.0;
-    }
+    for (int i = 0; i < fg.nx(); ++i)
+      if (fine.active(i, j, k)) scale_[fine.cell_index(i, j, k)] = renormalisation(i, j, k, wrap, inactive);
   }
 }
 
@@ -177,26 +184,15 @@ void GridTransfer::block_scale(const BlockTransferInfo& info) {
   coarse_->fill_ghosts(active);
   info.exchange_coarse(active);
   const int co[3] = {0, info.coarse_offset[0], info.coarse_offset[1]};
-  const auto present = [&](int c, int d) {  // a wall's ghost is "present" (value 0 there)
+  const auto local = [&](int c, int d) {  // a neighbour's or the wrap's ghost, or the wall
     const int g = c + co[d];
-    if (g >= 0 && g < info.coarse_whole->n(d)) return false;
-    return !info.bc->periodic(d) && d < cg.dim();
+    return (g >= 0 && g < info.coarse_whole->n(d)) || info.bc->periodic(d) || d >= cg.dim() ? c : kWall;
   };
+  const auto inactive = [&](int cx, int cy, int cz) { return active(cx, cy, cz) == 0.0; };
   for (int k = 0; k < fg.nz(); ++k)
     for (int j = 0; j < fg.ny(); ++j)
-      for (int i = 0; i < fg.nx(); ++i) {
-        if (!fine_->active(i, j, k)) continue;
-        double lost = 0;
-        for (const Entry& ez : prol_[2][static_cast<std::size_t>(k)])
-          for (const Entry& ey : prol_[1][static_cast<std::size_t>(j)])
-            for (const Entry& ex : prol_[0][static_cast<std::size_t>(i)]) {
-              const double w = ex.w * ey.w * ez.w;
-              if (w == 0.0) continue;
-              if (present(ex.c, 0) || present(ey.c, 1) || present(ez.c, 2)) continue;
-              if (active(ex.c, ey.c, ez.c) == 0.0) lost += w;
-            }
-        scale(i, j, k) = lost < 1 - 1e-12 ? 1 / (1 - lost) : 0.0;
-      }
+      for (int i = 0; i < fg.nx(); ++i)
+        if (fine_->active(i, j, k)) scale(i, j, k) = renormalisation(i, j, k, local, inactive);
   fine_->fill_ghosts(scale);
   info.exchange_fine(scale);
   const int py = pad_y_, pz = pad_z_, ny = fg.ny() + 2 * py;

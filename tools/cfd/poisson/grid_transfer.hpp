@@ -65,6 +65,9 @@ class GridTransfer {
  private:
   void set_rows(int d, const std::vector<std::vector<std::pair<int, double>>>& rows);
   void block_scale(const BlockTransferInfo& info);
+  static constexpr int kWall = -1 << 30;  // a coarse index that stands for a wall's ghost
+  template <class CoarseCell, class Inactive>
+  double renormalisation(int i, int j, int k, CoarseCell coarse_cell, Inactive inactive) const;
 
   const PoissonOperator* coarse_ = nullptr;
   const PoissonOperator* fine_ = nullptr;

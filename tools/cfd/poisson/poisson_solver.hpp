@@ -45,6 +45,11 @@ struct PoissonSolveStats {
   std::vector<double> history;  // ||r|| after each iteration, history[0] = initial
 };
 
+// Work vectors of the iterations (mg_pcg.hpp): residual, preconditioned residual, A d, direction.
+struct SolveWork {
+  Field r, z, q, d;
+};
+
 class PoissonSolver {
  public:
   // Builds the operator and the multigrid hierarchy.
@@ -63,13 +68,11 @@ class PoissonSolver {
   const PoissonSolverOptions& options() const { return options_; }
 
  private:
-  PoissonSolveStats cycles(const Field& b, Field& x, double bnorm);
-  PoissonSolveStats pcg(const Field& b, Field& x, double bnorm);
-
   PoissonSolverOptions options_;
   PoissonOperator op_;
   Multigrid mg_;
-  Field b_, r_, z_, q_, d_;
+  Field b_;
+  SolveWork work_;
 };
 
 }  // namespace finverse::cfd
