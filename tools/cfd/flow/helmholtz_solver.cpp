@@ -2,21 +2,19 @@
 // helmholtz_solver.hpp for why this is the method of choice here.
 #include "cfd/flow/helmholtz_solver.hpp"
 
+#include "cfd/flow/helmholtz_pcg.hpp"
+
 #include <cmath>
 
 namespace finverse::cfd {
 
 void HelmholtzSolver::setup(const StretchedGrid& grid, const FaceCoefficients& beta, const BoundaryConditions& bc) {
   op_.setup(grid, beta, bc);
-  r_ = op_.make_field();
-  z_ = op_.make_field();
-  d_ = op_.make_field();
-  q_ = op_.make_field();
+  work_ = {op_.make_field(), op_.make_field(), op_.make_field(), op_.make_field()};
 }
 
-void HelmholtzSolver::apply(double mass, double stiffness, Field& x, Field& out) const {
-  op_.apply(x, out);
-  const StretchedGrid& g = op_.grid();
+void add_mass(const PoissonOperator& op, double mass, double stiffness, const Field& x, Field& out) {
+  const StretchedGrid& g = op.grid();
 #pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
   for (int l = 0; l < g.ny() * g.nz(); ++l) {
     const int j = l % g.ny(), k = l / g.ny();
@@ -27,56 +25,42 @@ void HelmholtzSolver::apply(double mass, double stiffness, Field& x, Field& out)
   }
 }
 
+void jacobi(const PoissonOperator& op, double mass, double stiffness, const Field& r, Field& z) {
+  const StretchedGrid& g = op.grid();
+  const auto& diag = op.diagonal();
+#pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
+  for (int l = 0; l < g.ny() * g.nz(); ++l) {
+    const int j = l % g.ny(), k = l / g.ny();
+    const double ayz = g.dy(j) * g.dz(k);
+    const double* pr = &r(0, j, k);
+    double* pz = &z(0, j, k);
+    const std::size_t c0 = op.cell_index(0, j, k);
+    for (int i = 0; i < g.nx(); ++i) pz[i] = pr[i] / (mass * g.dx(i) * ayz + stiffness * diag[c0 + i]);
+  }
+}
+
+void HelmholtzSolver::apply(double mass, double stiffness, Field& x, Field& out) const {
+  op_.apply(x, out);
+  add_mass(op_, mass, stiffness, x, out);
+}
+
+namespace {
+
+struct HelmholtzOps {
+  const HelmholtzSolver& solver;
+  double mass, stiffness;
+  void apply(Field& x, Field& out) const { solver.apply(mass, stiffness, x, out); }
+  void precondition(const Field& r, Field& z) const { jacobi(solver.op(), mass, stiffness, r, z); }
+  double dot(const Field& a, const Field& b) const { return cfd::dot(a, b); }
+  double norm2(const Field& a) const { return cfd::norm2(a); }
+};
+
+}  // namespace
+
 HelmholtzStats HelmholtzSolver::solve(double mass, double stiffness, const Field& b, Field& x, double rtol,
                                       int max_iterations) {
-  const StretchedGrid& g = op_.grid();
-  const auto& diag = op_.diagonal();
-  const auto precondition = [&] {
-#pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
-    for (int l = 0; l < g.ny() * g.nz(); ++l) {
-      const int j = l % g.ny(), k = l / g.ny();
-      const double ayz = g.dy(j) * g.dz(k);
-      const double* pr = &r_(0, j, k);
-      double* pz = &z_(0, j, k);
-      const std::size_t c0 = op_.cell_index(0, j, k);
-      for (int i = 0; i < g.nx(); ++i) pz[i] = pr[i] / (mass * g.dx(i) * ayz + stiffness * diag[c0 + i]);
-    }
-  };
-  HelmholtzStats st;
-  const double bnorm = norm2(b);
-  if (!std::isfinite(bnorm)) {  // a blown-up right-hand side: report, do not iterate on NaN
-    st.relative_residual = bnorm;
-    return st;
-  }
-  apply(mass, stiffness, x, q_);
-  copy_interior(b, r_);
-  axpy(-1.0, q_, r_);
-  double rn = norm2(r_);
-  if (bnorm == 0 || rn <= rtol * bnorm) {
-    st.converged = true;
-    st.relative_residual = bnorm > 0 ? rn / bnorm : 0;
-    return st;
-  }
-  double rz_old = 0;
-  while (st.iterations < max_iterations) {
-    precondition();
-    const double rz = dot(r_, z_);
-    if (st.iterations == 0) copy_interior(z_, d_);
-    else xpby(z_, rz / rz_old, d_);
-    rz_old = rz;
-    apply(mass, stiffness, d_, q_);
-    const double dq = dot(d_, q_);
-    if (!(dq > 0)) break;
-    const double alpha = rz / dq;
-    axpy(alpha, d_, x);
-    axpy(-alpha, q_, r_);
-    ++st.iterations;
-    rn = norm2(r_);
-    if (rn <= rtol * bnorm) break;
-  }
-  st.relative_residual = rn / bnorm;
-  st.converged = st.relative_residual <= rtol;
-  return st;
+  HelmholtzOps ops{*this, mass, stiffness};
+  return helmholtz_pcg(ops, b, x, rtol, max_iterations, work_);
 }
 
 }  // namespace finverse::cfd

@@ -25,6 +25,11 @@ struct HelmholtzStats {
   bool converged = false;
 };
 
+// Work vectors of helmholtz_pcg.hpp: residual, preconditioned residual, direction, A d.
+struct HelmholtzWork {
+  Field r, z, d, q;
+};
+
 class HelmholtzSolver {
  public:
   void setup(const StretchedGrid& grid, const FaceCoefficients& beta, const BoundaryConditions& bc);
@@ -39,7 +44,7 @@ class HelmholtzSolver {
 
  private:
   PoissonOperator op_;
-  Field r_, z_, d_, q_;
+  HelmholtzWork work_;
 };
 
 }  // namespace finverse::cfd

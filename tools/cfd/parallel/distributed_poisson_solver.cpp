@@ -115,7 +115,7 @@ void DistributedPoissonSolver::remove_volume_mean(Field& p) const {
 namespace {
 
 // The ranks' operations for mg_pcg.hpp.
-struct RankOps {
+struct RankPoissonOps {
   const DistributedPoissonSolver& solver;
   const DistributedPoisson& op;
   const DistributedGrid& grid;
@@ -134,7 +134,7 @@ struct RankOps {
 }  // namespace
 
 PoissonSolveStats DistributedPoissonSolver::solve_system(Field& b, Field& x) {
-  RankOps ops{*this, *op_, *grid_, *mg_};
+  RankPoissonOps ops{*this, *op_, *grid_, *mg_};
   return solve_poisson_system(ops, b, x, options_, work_);
 }
 

@@ -30,7 +30,7 @@ PoissonSolveStats PoissonSolver::solve(const Field& f, const BoundaryValues& val
 namespace {
 
 // The threaded solver's operations for mg_pcg.hpp.
-struct SerialOps {
+struct PoissonOps {
   const PoissonOperator& op;
   Multigrid& mg;
   void residual(const Field& b, Field& x, Field& r) const { op.residual(b, x, r); }
@@ -47,7 +47,7 @@ struct SerialOps {
 }  // namespace
 
 PoissonSolveStats PoissonSolver::solve_system(Field& b, Field& x) {
-  SerialOps ops{op_, mg_};
+  PoissonOps ops{op_, mg_};
   return solve_poisson_system(ops, b, x, options_, work_);
 }
 
