@@ -13,14 +13,15 @@ using namespace finverse::cfd;
 
 namespace {
 
-void expect_serial_cycles(const StretchedGrid& whole, const BoundaryConditions& bc, bool solid, CycleType type) {
+void expect_serial_cycles(const StretchedGrid& whole, const BoundaryConditions& bc, bool solid, CycleType type,
+                          long serial_below_cells = 1L << 15) {
   const int dim = whole.dim();
   FaceCoefficients beta(whole, [](double x, double y, double z) { return 1 + 0.5 * std::sin(2 * x - y) + 0.2 * z; });
   if (solid)
     beta.mask_cells([](int i, int j, int k) { return i >= 8 && i <= 13 && j >= 7 && j <= 12 && k >= 3 && k <= 8; });
   MultigridOptions options;
   options.cycle = type;
-  options.coarsest_max_cells = 200;
+  options.coarsest_max_cells = serial_below_cells == 0 ? 8 : 200;  // agglomeration: a deep hierarchy
   PoissonOperator op;
   op.setup(whole, beta, bc);
   Multigrid mg;
@@ -41,9 +42,12 @@ void expect_serial_cycles(const StretchedGrid& whole, const BoundaryConditions& 
   const DistributedGrid g(MPI_COMM_WORLD, split.fine, periodic);
   const Block& blk = g.block();
   const DistributedPoisson dp(g, whole, block_faces(beta, whole.block(blk.j0, blk.j1, blk.k0, blk.k1), blk), bc);
-  DistributedMultigrid dmg(dp, h, split.gathered_level, options);
+  DistributedMultigrid dmg(dp, h, split.gathered_level, options, serial_below_cells);
   if (ranks > 1) {
     EXPECT_GT(dmg.gathered_level(), 0) << "every level gathered: nothing distributed";
+  }
+  if (ranks >= 4 && serial_below_cells == 0) {
+    EXPECT_TRUE(dmg.agglomerated()) << "levels below the gathered one not agglomerated on " << ranks << " ranks";
   }
   Field bl = g.make_field(1), xl = g.make_field(1);
   g.scatter(b0, bl);
@@ -98,4 +102,14 @@ TEST(DistributedMultigrid, FCyclesIn2DAreTheSerialOnes) {
   bc[Side::XLo] = bc[Side::YHi] = BcType::Dirichlet;
   expect_serial_cycles(StretchedGrid(Axis::stretched_count(0, 2, 0.5, 1.2, 48, 1.15), Axis::stretched_count(-1, 1, -0.3, 0.3, 40, 1.15)),
                        bc, true, CycleType::F);
+}
+
+// The levels below the gathered one on half the ranks (agglomeration), forced by a zero threshold:
+// on 4 ranks levels D and below run on 2 of them; the cycles are still the serial ones.
+TEST(DistributedMultigrid, AgglomeratedCoarseLevelsGiveTheSerialCycles) {
+  BoundaryConditions bc;
+  bc[Side::XHi] = BcType::Dirichlet;
+  expect_serial_cycles(StretchedGrid(Axis::stretched_count(0, 1.6, 0.5, 1.1, 32, 1.2), Axis::uniform(-0.6, 0.6, 64),
+                                     Axis::uniform(0, 0.9, 8)),
+                       bc, true, CycleType::W, 0);
 }

@@ -51,6 +51,25 @@ def pencil_split(ny, nz, p):
     return best
 
 
+SERIAL_BELOW_CELLS = 1 << 15  # DistributedMultigrid's default threshold
+
+
+def gathered_levels(t_cell_iter, cells, ny, nz, p, py, pz):
+    """Seconds per iteration for the level gathered below the distributed ones and all under it."""
+    level_cells, ly, lz = cells, ny, nz
+    while ly // 2 // py >= 2 and lz // 2 // pz >= 2:
+        level_cells //= 8
+        ly //= 2
+        lz //= 2
+    move = 2 * 8 * level_cells / BANDWIDTH_BPS + 2 * math.log2(max(p, 2)) * LATENCY_S
+    half = p // 2
+    sub = pencil_split(ly, lz, half) if half >= 2 and level_cells > SERIAL_BELOW_CELLS else None
+    if sub is None:
+        return move + t_cell_iter * level_cells * 8 / 7
+    _, spy, spz, _, _ = sub
+    return move + t_cell_iter * level_cells * 8 / 7 / half + gathered_levels(t_cell_iter, level_cells, ly, lz, half, spy, spz)
+
+
 def model(t_cell_iter, nx, ny, nz, p, exchanges_per_iter, reductions_per_iter):
     """Seconds per MG-PCG iteration on p ranks: compute, halo, reductions, the gathered level."""
     split = pencil_split(ny, nz, p)
@@ -66,14 +85,10 @@ def model(t_cell_iter, nx, ny, nz, p, exchanges_per_iter, reductions_per_iter):
     halo = exchanges_per_iter * (messages * LATENCY_S + 8 * face_cells / exchanges_per_iter * 2 / BANDWIDTH_BPS)
     # Reductions: an allgather of ny x nz line sums (recursive doubling).
     reductions = reductions_per_iter * (math.log2(p) * LATENCY_S + 8 * ny * nz / BANDWIDTH_BPS)
-    # The gathered level: every level halved until a rank would hold fewer than 2 lines; its cells
-    # solved on rank 0 (serial cycle below), plus its gather and scatter.
-    level_cells, ly, lz = cells, ny, nz
-    while ly // 2 // py >= 2 and lz // 2 // pz >= 2:
-        level_cells //= 8
-        ly //= 2
-        lz //= 2
-    gathered = t_cell_iter * level_cells * 8 / 7 + 2 * 8 * level_cells / BANDWIDTH_BPS + 2 * math.log2(p) * LATENCY_S
+    # The gathered level: every level halved until a rank would hold fewer than 2 lines; it goes
+    # through rank 0 to half the ranks when large (DistributedMultigrid's agglomeration), else it
+    # is solved on rank 0.
+    gathered = gathered_levels(t_cell_iter, cells, ny, nz, p, py, pz)
     return {"ranks": p, "split": [py, pz], "compute_s": compute, "halo_s": halo, "reductions_s": reductions,
             "gathered_s": gathered, "total_s": compute + halo + reductions + gathered}
 

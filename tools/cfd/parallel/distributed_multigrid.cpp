@@ -98,7 +98,7 @@ FaceCoefficients gather_beta(const DistributedGrid& g, const FaceCoefficients& l
 }  // namespace
 
 DistributedMultigrid::DistributedMultigrid(const DistributedPoisson& fine, const WholeHierarchy& hierarchy, int gathered_level,
-                                           const MultigridOptions& options)
+                                           const MultigridOptions& options, long serial_below_cells)
     : hierarchy_(hierarchy), options_(options), gathered_(gathered_level) {
   if (options.smoother != SmootherKind::RedBlack)
     throw Error("distributed multigrid: only the red-black smoother runs on MPI ranks (the zebra lines along y and z do not)");
@@ -150,10 +150,13 @@ DistributedMultigrid::DistributedMultigrid(const DistributedPoisson& fine, const
     f.transfer.setup_block(fo, co, info);
   }
   for (auto& lv : levels_) lv->x = lv->grid->make_field(1), lv->b = lv->grid->make_field(1), lv->r = lv->grid->make_field(1);
-  // Level D's whole operator on rank 0 and the serial cycle below it.
+  // Level D's whole operator on rank 0; below it, the serial cycle there, or (a large level D on
+  // many ranks) the levels below on half the ranks, agglomerated.
   const Level& last = *levels_.back();
   const StretchedGrid& gd = hierarchy.grids[static_cast<std::size_t>(D)];
   const FaceCoefficients beta = gather_beta(*last.grid, last.op->block_operator().beta(), gd, 0);
+  gb_ = std::make_unique<Field>(gd, 1), gx_ = std::make_unique<Field>(gd, 1);
+  if (agglomerate(beta, bc, serial_below_cells)) return;
   if (last.grid->rank() == 0) {
     whole_gathered_ = std::make_unique<PoissonOperator>();
     whole_gathered_->setup(gd, beta, bc);
@@ -162,18 +165,66 @@ DistributedMultigrid::DistributedMultigrid(const DistributedPoisson& fine, const
     coarse_mg_ = std::make_unique<Multigrid>();
     coarse_mg_->setup(*whole_gathered_, sub);
   }
-  gb_ = std::make_unique<Field>(gd, 1), gx_ = std::make_unique<Field>(gd, 1);
 }
 
-DistributedMultigrid::~DistributedMultigrid() = default;
+// Levels D and below on the first half of the ranks (a sub-communicator), as a multigrid of their
+// own, when level D is too large for rank 0 alone: the pattern of agglomerating coarse levels onto
+// fewer ranks (AMReX's MLMG), with the redistribution through rank 0 (level D gathered there and
+// scattered over the half; a direct all-to-all is the next step). Collective; false: no
+// agglomeration (level D small, or the half cannot split it on a level below).
+bool DistributedMultigrid::agglomerate(const FaceCoefficients& beta, const BoundaryConditions& bc, long serial_below_cells) {
+  const Level& last = *levels_.back();
+  const DistributedGrid& g = *last.grid;
+  const StretchedGrid& gd = hierarchy_.grids[static_cast<std::size_t>(gathered_)];
+  if (g.size() < 2 || static_cast<long>(gd.cells()) <= serial_below_cells) return false;
+  const int half = BlockDecomposition::largest_feasible(gd.ny(), gd.nz(), gd.dim(), g.size() / 2);
+  if (half < 2) return false;
+  auto sub = std::make_unique<WholeHierarchy>();
+  sub->grids.assign(hierarchy_.grids.begin() + gathered_, hierarchy_.grids.end());
+  sub->coarsenings.assign(hierarchy_.coarsenings.begin() + gathered_, hierarchy_.coarsenings.end());
+  const MultigridSplit split = plan_multigrid_split(*sub, half);
+  if (split.gathered_level < 1) return false;
+  MPI_Comm comm = MPI_COMM_NULL;
+  MPI_Comm_split(g.communicator(), g.rank() < half ? 0 : MPI_UNDEFINED, g.rank(), &comm);
+  sub_hierarchy_ = std::move(sub);
+  if (comm == MPI_COMM_NULL) return true;
+  sub_comm_ = comm;
+  // The whole level-D coefficients to the half (rank 0 has them), each rank cutting its block.
+  FaceCoefficients whole_beta = beta;
+  for (int a = 0; a < gd.dim(); ++a)
+    MPI_Bcast(&whole_beta(a, 0, 0, 0), static_cast<int>(whole_beta.values(a).size()), MPI_DOUBLE, 0, comm);
+  sub_grid_ = std::make_unique<DistributedGrid>(comm, split.fine, g.periodic());
+  const Block& b = sub_grid_->block();
+  sub_op_ = std::make_unique<DistributedPoisson>(*sub_grid_, gd, block_faces(whole_beta, gd.block(b.j0, b.j1, b.k0, b.k1), b), bc);
+  MultigridOptions options = options_;
+  options.max_levels = options_.max_levels - gathered_;
+  sub_mg_ = std::make_unique<DistributedMultigrid>(*sub_op_, *sub_hierarchy_, split.gathered_level, options, serial_below_cells);
+  sub_b_ = std::make_unique<Field>(sub_grid_->make_field(1)), sub_x_ = std::make_unique<Field>(sub_grid_->make_field(1));
+  return true;
+}
+
+DistributedMultigrid::~DistributedMultigrid() {
+  sub_mg_.reset(), sub_op_.reset(), sub_grid_.reset();
+  if (sub_comm_ != MPI_COMM_NULL) MPI_Comm_free(&sub_comm_);
+}
 
 void DistributedMultigrid::cycle(const Field& b, Field& x) { cycle_level(0, b, x, options_.cycle); }
+void DistributedMultigrid::cycle(const Field& b, Field& x, CycleType type) { cycle_level(0, b, x, type); }
 
 void DistributedMultigrid::gathered_cycle(const Field& b, Field& x, CycleType type) {
   const DistributedGrid& g = *levels_.back()->grid;
   g.gather(b, *gb_);
   g.gather(x, *gx_);
-  if (g.rank() == 0) coarse_mg_->cycle(*gb_, *gx_, type);
+  if (sub_hierarchy_) {  // agglomerated: the half's own multigrid (the other ranks wait in the scatter)
+    if (sub_mg_) {
+      sub_grid_->scatter(*gb_, *sub_b_);
+      sub_grid_->scatter(*gx_, *sub_x_);
+      sub_mg_->cycle(*sub_b_, *sub_x_, type);
+      sub_grid_->gather(*sub_x_, *gx_);
+    }
+  } else if (g.rank() == 0) {
+    coarse_mg_->cycle(*gb_, *gx_, type);
+  }
   g.scatter(*gx_, x);
 }
 

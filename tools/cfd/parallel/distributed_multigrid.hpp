@@ -50,19 +50,25 @@ class DistributedMultigrid {
   // Collective. `fine`: the fine level's operator on the split plan_multigrid_split gave (its
   // DistributedGrid's decomposition must be MultigridSplit::fine); `hierarchy` from
   // whole_hierarchy with the same options. Both must outlive this object.
+  // Level D larger than serial_below_cells cells goes to half the ranks (agglomeration) rather
+  // than to rank 0 alone, recursively.
   DistributedMultigrid(const DistributedPoisson& fine, const WholeHierarchy& hierarchy, int gathered_level,
-                       const MultigridOptions& options);
+                       const MultigridOptions& options, long serial_below_cells = 1L << 15);
   ~DistributedMultigrid();
 
   // Collective: one cycle for A x = b on the fine level (x the initial guess), the serial cycle.
   void cycle(const Field& b, Field& x);
+  void cycle(const Field& b, Field& x, CycleType type);
   int levels() const { return static_cast<int>(hierarchy_.grids.size()); }
   int gathered_level() const { return gathered_; }
+  // Whether levels D and below run agglomerated on half the ranks (else on rank 0).
+  bool agglomerated() const { return sub_hierarchy_ != nullptr; }
 
  private:
   struct Level;
   void cycle_level(int l, const Field& b, Field& x, CycleType type);
   void gathered_cycle(const Field& b, Field& x, CycleType type);
+  bool agglomerate(const FaceCoefficients& beta, const BoundaryConditions& bc, long serial_below_cells);
 
   const WholeHierarchy& hierarchy_;
   MultigridOptions options_;
@@ -73,6 +79,14 @@ class DistributedMultigrid {
   std::unique_ptr<PoissonOperator> whole_gathered_;
   std::unique_ptr<Multigrid> coarse_mg_;
   std::unique_ptr<Field> gb_, gx_;
+  // Agglomerated: the half's hierarchy (levels D and below), communicator, grid, operator and
+  // multigrid (the last four on the half's ranks only).
+  std::unique_ptr<WholeHierarchy> sub_hierarchy_;
+  MPI_Comm sub_comm_ = MPI_COMM_NULL;
+  std::unique_ptr<DistributedGrid> sub_grid_;
+  std::unique_ptr<DistributedPoisson> sub_op_;
+  std::unique_ptr<DistributedMultigrid> sub_mg_;
+  std::unique_ptr<Field> sub_b_, sub_x_;
 };
 
 }  // namespace finverse::cfd
