@@ -9,6 +9,8 @@
 
 #include "cfd/parallel/distributed_helmholtz.hpp"
 
+#include "gathered_equal.hpp"
+
 using namespace finverse::cfd;
 
 namespace {
@@ -29,8 +31,6 @@ void expect_serial_helmholtz(const StretchedGrid& whole, const BoundaryCondition
   const HelmholtzStats st = serial.solve(mass, stiffness, b, x, 1e-12, 200);
 
   const std::array<bool, 3> periodic{false, bc.periodic(1), dim == 3 && bc.periodic(2)};
-  int ranks = 0;
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   const DistributedGrid g(MPI_COMM_WORLD, whole.nx(), whole.ny(), whole.nz(), dim, periodic);
   const Block& blk = g.block();
   DistributedHelmholtz dist(g, whole, block_faces(beta, whole.block(blk.j0, blk.j1, blk.k0, blk.k1), blk), bc);
@@ -40,14 +40,7 @@ void expect_serial_helmholtz(const StretchedGrid& whole, const BoundaryCondition
   EXPECT_TRUE(dst.converged);
   EXPECT_EQ(dst.iterations, st.iterations);
   EXPECT_EQ(dst.relative_residual, st.relative_residual);
-  Field gathered(whole.nx(), whole.ny(), whole.nz(), dim, 0);
-  g.gather(xl, gathered);
-  if (g.rank() != 0) return;
-  int wrong = 0;
-  for (int k = 0; k < whole.nz(); ++k)
-    for (int j = 0; j < whole.ny(); ++j)
-      for (int i = 0; i < whole.nx(); ++i) wrong += gathered(i, j, k) != x(i, j, k);
-  EXPECT_EQ(wrong, 0) << "cells whose velocity differs from the threaded solve on " << ranks << " ranks";
+  expect_gathered_equal(g, xl, x, "the velocity after the solve");
 }
 
 }  // namespace

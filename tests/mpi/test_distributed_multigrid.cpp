@@ -6,8 +6,11 @@
 #include <mpi.h>
 
 #include <cmath>
+#include <string>
 
 #include "cfd/parallel/distributed_multigrid.hpp"
+
+#include "gathered_equal.hpp"
 
 using namespace finverse::cfd;
 
@@ -55,18 +58,8 @@ void expect_serial_cycles(const StretchedGrid& whole, const BoundaryConditions& 
     mg.cycle(b, x);
     dmg.cycle(bl, xl);
   }
-  Field gathered(whole.nx(), whole.ny(), whole.nz(), dim, 0);
-  g.gather(xl, gathered);
-  if (g.rank() != 0) return;
-  int wrong = 0;
-  for (int k = 0; k < whole.nz(); ++k)
-    for (int j = 0; j < whole.ny(); ++j)
-      for (int i = 0; i < whole.nx(); ++i)
-        if (gathered(i, j, k) != x(i, j, k) && ++wrong <= 3)
-          ADD_FAILURE() << "after 3 cycles at (" << i << "," << j << "," << k << "): " << gathered(i, j, k) << " on " << ranks
-                        << " ranks, " << x(i, j, k) << " serial (gathered level " << split.gathered_level << " of " << mg.levels()
-                        << ")";
-  EXPECT_EQ(wrong, 0);
+  expect_gathered_equal(g, xl, x, "after 3 cycles (gathered level " + std::to_string(split.gathered_level) + " of " +
+                                        std::to_string(mg.levels()) + ")");
 }
 
 StretchedGrid multigrid_grid3() {

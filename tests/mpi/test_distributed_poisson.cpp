@@ -13,6 +13,8 @@
 #include "cfd/parallel/distributed_poisson.hpp"
 #include "cfd/poisson/smoother.hpp"
 
+#include "gathered_equal.hpp"
+
 using namespace finverse::cfd;
 
 namespace {
@@ -46,17 +48,7 @@ void expect_serial_bits(const Case& c) {
   g.scatter(b, bl);
 
   const auto compare = [&](const Field& local, const Field& serial, const char* what) {
-    Field gathered(nx, ny, nz, dim, 0);
-    g.gather(local, gathered);
-    if (g.rank() != 0) return;
-    int wrong = 0;
-    for (int k = 0; k < nz; ++k)
-      for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i)
-          if (gathered(i, j, k) != serial(i, j, k) && ++wrong <= 3)
-            ADD_FAILURE() << what << " at (" << i << "," << j << "," << k << "): " << gathered(i, j, k) << " on "
-                          << g.size() << " ranks, " << serial(i, j, k) << " serial";
-    EXPECT_EQ(wrong, 0) << what;
+    expect_gathered_equal(g, local, serial, what);
   };
   op.residual(b, x, r);
   dp.residual(bl, xl, rl);

@@ -15,25 +15,13 @@
 #include "cfd/poisson/coarsening.hpp"
 #include "cfd/poisson/grid_transfer.hpp"
 
+#include "gathered_equal.hpp"
+
 using namespace finverse::cfd;
 
 namespace {
 
 std::vector<int> coarse_faces(const AxisCoarsening& m) { return m.first; }
-
-void gathered_equal(const DistributedGrid& g, const Field& local, const Field& serial, const char* what) {
-  Field gathered(serial.nx(), serial.ny(), serial.nz(), serial.dim(), 0);
-  g.gather(local, gathered);
-  if (g.rank() != 0) return;
-  int wrong = 0;
-  for (int k = 0; k < serial.nz(); ++k)
-    for (int j = 0; j < serial.ny(); ++j)
-      for (int i = 0; i < serial.nx(); ++i)
-        if (gathered(i, j, k) != serial(i, j, k) && ++wrong <= 3)
-          ADD_FAILURE() << what << " at (" << i << "," << j << "," << k << "): " << gathered(i, j, k) << " on " << g.size()
-                        << " ranks, " << serial(i, j, k) << " serial";
-  EXPECT_EQ(wrong, 0) << what;
-}
 
 void expect_serial_transfers(const StretchedGrid& whole, const BoundaryConditions& bc, bool solid) {
   const int dim = whole.dim();
@@ -89,15 +77,15 @@ void expect_serial_transfers(const StretchedGrid& whole, const BoundaryCondition
         bl = gc.make_field(1);
   gf.scatter(r_in, rl), gf.scatter(fx_in, fxl), gc.scatter(e_in, el), gc.scatter(bc_field, bl);
   coarse_op.residual(bl, el, rcl);
-  gathered_equal(gc, rcl, rc, "coarse operator's residual");
+  expect_gathered_equal(gc, rcl, rc, "coarse operator's residual");
   gf.exchange(rl);
   tb.restrict_residual(rl, cbl);
-  gathered_equal(gc, cbl, cb, "restriction");
+  expect_gathered_equal(gc, cbl, cb, "restriction");
   // A correction whose ghosts were never exchanged: prolongate_add exchanges them itself.
   Field fresh = gc.make_field(1);
   gc.scatter(e_in, fresh);
   tb.prolongate_add(fresh, fxl);
-  gathered_equal(gf, fxl, fx, "prolongation");
+  expect_gathered_equal(gf, fxl, fx, "prolongation");
 }
 
 StretchedGrid stretched3() {

@@ -74,16 +74,19 @@ class DistributedGrid {
   std::vector<int> counts_, displs_;         // each rank's lines, and where they sit in the gathered array
   std::vector<std::size_t> line_position_;   // global line l -> its index in the gathered array
   mutable long reductions_ = 0;
+  mutable std::vector<double> mine_, all_;  // line_sum's scratch
 };
 
 template <class LineSum>
 inline double DistributedGrid::line_sum(const Field& shape, LineSum line) const {
   // This rank's line sums, local line order (j fastest), as ordered_line_sum computes them.
   const int lines = shape.ny() * shape.nz();
-  std::vector<double> mine(static_cast<std::size_t>(lines));
+  std::vector<double>& mine = mine_;  // scratch kept between calls: several reductions per iteration
+  mine.resize(static_cast<std::size_t>(lines));
 #pragma omp parallel for schedule(static) if (static_cast<long>(shape.nx()) * lines >= parallel_min_cells)
   for (int l = 0; l < lines; ++l) mine[static_cast<std::size_t>(l)] = line(l % shape.ny(), l / shape.ny());
-  std::vector<double> all(line_position_.size());
+  std::vector<double>& all = all_;
+  all.resize(line_position_.size());
   ++reductions_;
   MPI_Allgatherv(mine.data(), lines, MPI_DOUBLE, all.data(), counts_.data(), displs_.data(), MPI_DOUBLE, comm_);
   double s = 0;

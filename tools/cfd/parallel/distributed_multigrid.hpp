@@ -1,17 +1,11 @@
-// The pressure multigrid over MPI ranks (issue 48, deliverable 2; docs/studies/flow_mpi.md).
-//
-// The hierarchy is the serial Multigrid's (multigrid.hpp), chosen from the whole grid's axes and
-// conditions. Levels 0 .. D-1 are smoothed, their residuals restricted and corrections
-// prolongated on the ranks' blocks (DistributedPoisson, GridTransfer::setup_block); level D's
-// right-hand side and iterate are gathered onto rank 0, which runs the serial cycle of levels
-// D .. coarsest on the whole level-D operator (the established pattern of gathering coarse levels
-// onto fewer ranks, as AMReX's MLMG and IBAMR do, here onto one) and scatters the result back.
-// D is the deepest level on which every rank still gets at least two lines in each cut direction;
-// the finer levels' block edges are refined from level D's, so every block of every level is whole
-// coarse cells. A cycle is the serial cycle bit for bit, for any rank count.
-//
-// Red-black smoothing only (the zebra line smoothers along y and z would need distributed
-// tridiagonal solves).
+// The pressure multigrid over MPI ranks (issue 48; docs/studies/flow_mpi.md). The serial
+// hierarchy (multigrid.hpp), chosen from the whole grid's axes: levels 0 .. D-1 are smoothed,
+// restricted and prolongated on the ranks' blocks; level D (the deepest on which every rank keeps
+// two lines per cut direction) is gathered onto rank 0, which runs the serial cycle below it, or,
+// when large, handed to half the ranks as a multigrid of their own (agglomeration, as AMReX's MLMG
+// does). Finer splits refine level D's edges, so every block is whole coarse cells. A cycle is the
+// serial cycle bit for bit on any rank count. Red-black smoothing only: the zebra lines along y
+// and z would need distributed tridiagonal solves.
 #pragma once
 
 #include <memory>

@@ -1,16 +1,9 @@
-// The pressure Poisson operator and its red-black smoother over MPI ranks (issue 48, deliverable
-// 2; docs/studies/flow_mpi.md, step 1).
-//
-// Each rank holds its block's PoissonOperator (poisson_operator.hpp, setup_block): the whole
-// grid's transmissibilities and diagonal bit for bit. apply and residual exchange the halo and
-// run the serial stencil on the block; a red-black sweep exchanges before each colour and updates
-// the block's cells of that colour, the colour taken by the parity of the global i + j + k. The
-// results are the serial ones on the whole grid, bit for bit, for any rank count: the kernels
-// are the same code reading the same numbers.
-//
-// Not yet distributed: the connectivity (components and their singularity are the block's own,
-// so the null-space projections are not offered here), the right-hand side's boundary terms, the
-// zebra line smoothers along y and z, and the multigrid's transfers and coarse levels.
+// The pressure Poisson operator and its red-black smoother over MPI ranks (issue 48;
+// docs/studies/flow_mpi.md). Each rank holds its block's PoissonOperator (setup_block: the whole
+// grid's coefficients bit for bit); apply and residual exchange the halo and run the serial
+// stencil, and a sweep exchanges before each colour, colours by the parity of the global
+// i + j + k. Results are the serial ones bit for bit on any rank count. The components and
+// null-space projections live in distributed_components.hpp and distributed_poisson_solver.hpp.
 #pragma once
 
 #include "cfd/grid/field.hpp"

@@ -41,21 +41,20 @@ DistributedPoissonSolver::DistributedPoissonSolver(MPI_Comm comm, const Stretche
 
 DistributedPoissonSolver::~DistributedPoissonSolver() = default;
 
-std::pair<double, double> DistributedPoissonSolver::singular_sums(const Field& x, bool volume_weight) const {
+double DistributedPoissonSolver::singular_sum(const Field* x, bool volume_weight) const {
   const StretchedGrid& g = op_->block_grid();
   const auto& comp = *components_;
-  const auto line = [&](const Field& f, bool weights, int j, int k) {
+  const Field& shape = x ? *x : work_.r;  // the block's shape only, when summing the weights
+  return grid_->line_sum(shape, [&](int j, int k) {
     double s = 0;
     for (int i = 0; i < g.nx(); ++i) {
       const int c = comp.component(i, j, k);
       if (c < 0 || !comp.singular(c)) continue;
       const double w = volume_weight ? g.volume(i, j, k) : 1.0;
-      s += weights ? w : w * f(i, j, k);
+      s += x ? w * (*x)(i, j, k) : w;
     }
     return s;
-  };
-  return {grid_->line_sum(x, [&](int j, int k) { return line(x, false, j, k); }),
-          grid_->line_sum(x, [&](int j, int k) { return line(x, true, j, k); })};
+  });
 }
 
 // PoissonOperator::remove_mean: with one component the lane sums of field.hpp, line-ordered (the
@@ -75,8 +74,8 @@ void DistributedPoissonSolver::remove_mean(Field& r) const {
            }) /
            static_cast<double>(active_cells_);
   } else {
-    const auto sums = singular_sums(r, false);
-    mean = sums.second > 0 ? sums.first / sums.second : 0;
+    const double n = singular_sum(nullptr, false);
+    mean = n > 0 ? singular_sum(&r, false) / n : 0;
   }
   for (int k = 0; k < g.nz(); ++k)
     for (int j = 0; j < g.ny(); ++j)
@@ -89,7 +88,7 @@ void DistributedPoissonSolver::remove_mean(Field& r) const {
 void DistributedPoissonSolver::make_compatible(Field& b) const {
   if (!components_->any_singular()) return;
   const StretchedGrid& g = op_->block_grid();
-  const double s = singular_sums(b, false).first, v = singular_sums(b, true).second;
+  const double s = singular_sum(&b, false), v = singular_sum(nullptr, true);
   const double shift = v > 0 ? s / v : 0;
   for (int k = 0; k < g.nz(); ++k)
     for (int j = 0; j < g.ny(); ++j)
@@ -102,7 +101,7 @@ void DistributedPoissonSolver::make_compatible(Field& b) const {
 void DistributedPoissonSolver::remove_volume_mean(Field& p) const {
   if (!components_->any_singular()) return;
   const StretchedGrid& g = op_->block_grid();
-  const auto [s, v] = singular_sums(p, true);
+  const double s = singular_sum(&p, true), v = singular_sum(nullptr, true);
   const double shift = v > 0 ? s / v : 0;
   for (int k = 0; k < g.nz(); ++k)
     for (int j = 0; j < g.ny(); ++j)

@@ -1,16 +1,9 @@
-// The pressure Poisson solve over MPI ranks: MG-PCG or multigrid cycles (poisson_solver.hpp) on
-// the ranks' blocks (issue 48, deliverable 2; docs/studies/flow_mpi.md).
-//
-// Every step is the serial solver's on the block: the operator and smoother
-// (distributed_poisson.hpp), the multigrid with its coarse levels gathered onto rank 0
-// (distributed_multigrid.hpp), inner products and norms bitwise the serial ones
-// (distributed_grid.hpp), the components (distributed_components.hpp). Where every component of
-// the problem touches a Dirichlet face (the flow's usual case: an outflow at fixed pressure) the
-// iterates, the iteration count and the solution are the serial solver's bit for bit, for any
-// rank count. On singular components (all-Neumann) the compatibility and mean projections sum
-// each grid line and then the lines in order (the serial code sums cell after cell), so the
-// solution agrees with the serial one to rounding (about 1e-14 relative), not bit for bit; one
-// singular component only (several: refused, one line).
+// The pressure Poisson solve over MPI ranks (issue 48; docs/studies/flow_mpi.md): PoissonSolver's
+// MG-PCG or cycles (mg_pcg.hpp) with the block operator, the distributed multigrid, the bitwise
+// reductions and the components across ranks. Where every component touches a Dirichlet face
+// (the flow's usual case) iterates and solution are the serial ones bit for bit. On one singular
+// component the projections sum line by line where the serial code sums cell after cell: the
+// solution agrees to rounding (about 1e-12 relative). Several singular components are refused.
 #pragma once
 
 #include <functional>
@@ -48,8 +41,9 @@ class DistributedPoissonSolver {
   void remove_volume_mean(Field& p) const;
 
  private:
-  // Sum over the singular component's cells of w x and of w, line by line in the global order.
-  std::pair<double, double> singular_sums(const Field& x, bool volume_weight) const;
+  // Sum over the singular component's cells of w x (x null: of w), w the volume or 1, line by
+  // line in the global order.
+  double singular_sum(const Field* x, bool volume_weight) const;
 
   PoissonSolverOptions options_;
   StretchedGrid whole_;
