@@ -30,6 +30,11 @@ endif()
 # The Navier-Stokes solver's validation cases (rules/cfd.smk).
 add_executable(fin-cfd ${CMAKE_CURRENT_LIST_DIR}/fin-cfd.cpp)
 target_link_libraries(fin-cfd PRIVATE finverse_cfd_cases finverse_cfd_validation finverse_cfd finverse_cfd_io finverse_core finverse_vtkio finverse_warnings)
+if(TARGET finverse_cfd_mpi)
+  # fin-cfd fin's pressure solve over MPI ranks (cfd/parallel/rank_pressure_system.hpp).
+  target_link_libraries(fin-cfd PRIVATE finverse_cfd_mpi)
+  target_compile_definitions(fin-cfd PRIVATE FINVERSE_HAVE_MPI)
+endif()
 
 # The flow solver's benchmark file results/bench/cfd.json (rules/bench.smk).
 add_executable(fin-cfd-bench ${CMAKE_CURRENT_LIST_DIR}/fin-cfd-bench.cpp)

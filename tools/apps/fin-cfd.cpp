@@ -4,6 +4,9 @@
 //   fin-cfd taylor_green [--coarse]                  a validation case (fin-cfd --help lists them;
 //   fin-cfd dfg_2d2 --cells-per-diameter 32          fin-cfd <case> --help lists its options)
 //   fin-cfd fin --mesh mesh.h5 --motion motion.h5 --out loads.h5 [--reynolds 1000] ...
+//   mpirun -n 4 fin-cfd --threads 1 fin ...   the pressure solve over 4 ranks, each holding the whole
+//                                             flow (cfd/parallel/rank_pressure_system.hpp); the same
+//                                             loads.h5 as one process
 //   fin-cfd thin_plate --mesh plate_mesh.h5 --motion plate_motion.h5
 //   fin-cfd thin_surface_bench --out results/bench/thin_surface.json   a thin body's step cost
 //   fin-cfd [--coarse] run data/cases/cfd/dfg_2d2.yaml [--t-end 2]     a case file (cases/case_file.hpp):
@@ -35,6 +38,10 @@
 #include "core/log.hpp"
 #include "core/stage_files.hpp"
 
+#ifdef FINVERSE_HAVE_MPI
+#include "cfd/parallel/rank_pressure_system.hpp"
+#endif
+
 namespace {
 
 using namespace finverse;
@@ -59,17 +66,20 @@ int run_fin(const FinArgs& a, const CLI::App& app) {
   cfd::io::log_fin_input(in, a.mesh, a.motion);
   cfd::io::FinFlowStats st;
   cfd::io::FinCheckpointing ck;
-  ck.every = a.checkpoint_every;
+  // On MPI ranks every rank runs the whole flow and rank 0 alone writes files.
+  const bool writer = cli::mpi_launch_rank() == 0;
+  ck.every = writer ? a.checkpoint_every : 0;
   ck.file = !a.checkpoint.empty() ? a.checkpoint : a.out.parent_path() / (a.out.stem().string() + ".checkpoint.h5");
   ck.restart = a.restart;
-  cfd::io::FlowSnapshots snapshots(a.out.parent_path() / (a.out.stem().string() + ".flow.pvd"), a.snapshot_every,
+  cfd::io::FlowSnapshots snapshots(a.out.parent_path() / (a.out.stem().string() + ".flow.pvd"), writer ? a.snapshot_every : 0,
                                    !ck.restart.empty());
-  if (a.snapshot_every > 0)
+  if (writer && a.snapshot_every > 0)
     ck.at_output = [&](long output, double t, const cfd::FlowSolver& s) { snapshots.at_output(output, t, st.dt, s); };
   if (!ck.restart.empty()) log::info("restarting from " + ck.restart.string());
   cfd::io::FinProgress progress;
   stage::Loads loads = cfd::io::run_fin_flow(in, a.flow, st, std::ref(progress), ck);
   progress.finish(st.t_end);
+  if (!writer) return kExitOk;
   if (snapshots.size())
     log::info("wrote " + std::to_string(snapshots.size()) + " flow snapshots to " + snapshots.pvd().string());
   cfd::io::log_fin_run(in, st, ck.file);
@@ -206,11 +216,35 @@ int run_thin_surface_bench(const BenchArgs& a, bool coarse) {
   return s.pass() ? kExitOk : kExitDifferent;
 }
 
+// fin-cfd fin on MPI ranks when a launcher started it on several (the pressure system solved over
+// them); a failure on any rank ends the whole job, whose other ranks may wait in a collective.
+int on_ranks(const std::function<int()>& body) {
+#ifdef FINVERSE_HAVE_MPI
+  cfd::FlowRanks ranks;
+  if (!ranks.active()) return body();
+  log::info("the pressure solve over " + std::to_string(ranks.size()) +
+            " MPI ranks, every rank holding the whole flow; rank 0 writes the files");
+  try {
+    return body();
+  } catch (const std::exception& e) {
+    if (ranks.every_rank_failed()) throw;  // rank 0 says it once; the job ends normally
+    ranks.abort("fin-cfd", e.what(), kExitError);
+  }
+#else
+  if (cli::mpi_launch_size() > 1)
+    throw Error("started by an MPI launcher on " + std::to_string(cli::mpi_launch_size()) +
+                " ranks, but this fin-cfd was built without MPI: install libopenmpi-dev and rebuild "
+                "(cmake -DFINVERSE_MPI=ON), or run it without mpirun");
+  return body();
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"fin-cfd: incompressible Navier-Stokes solver (fractional step, collocated, stretched grid)"};
   cli::Standard standard(app, "fin-cfd");
+  standard.mpi = true;  // fin-cfd fin; the other subcommands refuse ranks below
   app.require_subcommand(1);
   // A flag given twice takes its last value: a case file's options, then the command line's.
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
@@ -262,8 +296,11 @@ int main(int argc, char** argv) {
   std::vector<char*> argv2;
   for (std::string& a : args) argv2.push_back(a.data());
   return cli::run(app, standard, static_cast<int>(argv2.size()), argv2.data(), [&]() -> int {
+    if (*fin) return on_ranks([&] { return run_fin(fin_args, app); });
+    if (cli::mpi_launch_size() > 1)
+      throw Error("fin-cfd " + app.get_subcommands().front()->get_name() +
+                  " does not run on MPI ranks (fin-cfd fin does); run it without mpirun");
     if (*run) return cfd::cases::run_flow_case_file(case_file, options.coarse, out_dir);
-    if (*fin) return run_fin(fin_args, app);
     if (*plate) return run_plate(plate_args, app, options.coarse);
     if (*bench) return run_thin_surface_bench(bench_args, options.coarse);
     options.out_dir = out_dir;

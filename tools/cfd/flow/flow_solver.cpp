@@ -34,6 +34,7 @@ void FlowSolver::setup(const StretchedGrid& grid, const FlowBoundary& boundary, 
     }
     helmholtz_[static_cast<std::size_t>(c)].setup(grid, beta_, bc);
   }
+  poisson_.set_system_solver(make_flow_pressure_system());  // the MPI ranks' solve, when installed
   poisson_.setup(grid, beta_, bnd_.pressure_conditions(), opt_.poisson);
   for (int c = 0; c < 3; ++c) {
     const auto C = static_cast<std::size_t>(c);

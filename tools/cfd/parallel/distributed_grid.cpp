@@ -92,6 +92,38 @@ void DistributedGrid::gather(const Field& local, Field& global, int root) const 
   }
 }
 
+void DistributedGrid::allgather(const Field& local, Field& global) const {
+  if (global.nx() != d_.nx() || global.ny() != d_.ny() || global.nz() != d_.nz())
+    throw Error("allgather: the field is not shaped like the whole grid");
+  const Block& mine = block();
+  std::vector<double> send(static_cast<std::size_t>(d_.nx()) * static_cast<std::size_t>(mine.ny() * mine.nz()));
+  std::size_t c = 0;
+  for (int k = 0; k < mine.nz(); ++k)
+    for (int j = 0; j < mine.ny(); ++j)
+      for (int i = 0; i < d_.nx(); ++i) send[c++] = local(i, j, k);
+  std::vector<int> counts(counts_), displs(displs_);
+  for (std::size_t r = 0; r < counts.size(); ++r) counts[r] *= d_.nx(), displs[r] *= d_.nx();
+  std::vector<double> all(static_cast<std::size_t>(d_.nx()) * line_position_.size());
+  MPI_Allgatherv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, all.data(), counts.data(), displs.data(),
+                 MPI_DOUBLE, comm_);
+  c = 0;
+  for (int r = 0; r < d_.ranks(); ++r) {
+    const Block& b = d_.block(r);
+    for (int k = b.k0; k < b.k1; ++k)
+      for (int j = b.j0; j < b.j1; ++j)
+        for (int i = 0; i < d_.nx(); ++i) global(i, j, k) = all[c++];
+  }
+}
+
+void DistributedGrid::own_part(const Field& global, Field& local) const {
+  if (global.nx() != d_.nx() || global.ny() != d_.ny() || global.nz() != d_.nz())
+    throw Error("own_part: the field is not shaped like the whole grid");
+  const Block& b = block();
+  for (int k = 0; k < b.nz(); ++k)
+    for (int j = 0; j < b.ny(); ++j)
+      for (int i = 0; i < d_.nx(); ++i) local(i, j, k) = global(i, b.j0 + j, b.k0 + k);
+}
+
 void DistributedGrid::scatter(const Field& global, Field& local, int root) const {
   std::vector<double> all;
   if (rank_ == root) {

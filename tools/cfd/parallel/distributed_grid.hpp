@@ -62,6 +62,10 @@ class DistributedGrid {
   // there; ignored elsewhere). scatter: the reverse, every rank's interior from root's field.
   void gather(const Field& local, Field& global, int root = 0) const;
   void scatter(const Field& global, Field& local, int root = 0) const;
+  // Collective: the whole grid's interior onto every rank (a flow that every rank holds whole).
+  void allgather(const Field& local, Field& global) const;
+  // Not collective: this rank's block of a whole field that every rank holds.
+  void own_part(const Field& global, Field& local) const;
 
  private:
   void index_lines();

@@ -6,8 +6,23 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace finverse::cfd {
+
+namespace {
+PoissonSystemFactory& flow_pressure_factory() {
+  static PoissonSystemFactory factory;
+  return factory;
+}
+}  // namespace
+
+void install_flow_pressure_system(PoissonSystemFactory factory) { flow_pressure_factory() = std::move(factory); }
+
+std::shared_ptr<PoissonSystemSolver> make_flow_pressure_system() {
+  const PoissonSystemFactory& f = flow_pressure_factory();
+  return f ? f() : nullptr;
+}
 
 void PoissonSolver::setup(const StretchedGrid& grid, const FaceCoefficients& beta, const BoundaryConditions& bc,
                           const PoissonSolverOptions& options) {
@@ -15,7 +30,12 @@ void PoissonSolver::setup(const StretchedGrid& grid, const FaceCoefficients& bet
     throw std::invalid_argument("PoissonSolver: need rtol > 0 and max_iterations >= 1");
   options_ = options;
   op_.setup(grid, beta, bc);
-  mg_.setup(op_, options.multigrid);
+  if (system_) {
+    mg_ = Multigrid();
+    system_->setup(op_, beta, options);
+  } else {
+    mg_.setup(op_, options.multigrid);
+  }
   b_ = op_.make_field();
   work_ = {op_.make_field(), op_.make_field(), op_.make_field(), op_.make_field()};
 }
@@ -47,6 +67,7 @@ struct PoissonOps {
 }  // namespace
 
 PoissonSolveStats PoissonSolver::solve_system(Field& b, Field& x) {
+  if (system_) return system_->solve_system(op_, b, x);
   PoissonOps ops{op_, mg_};
   return solve_poisson_system(ops, b, x, options_, work_);
 }

@@ -15,6 +15,8 @@
 // compatibility projection), or max_iterations.
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include "cfd/poisson/poisson_boundary.hpp"
@@ -50,8 +52,31 @@ struct SolveWork {
   Field r, z, q, d;
 };
 
+// A solver of the assembled system that takes the multigrid's place: the MPI ranks' one
+// (cfd/parallel/rank_pressure_system.hpp). It sees every operator PoissonSolver builds, and
+// solves with it as solve_poisson_system (mg_pcg.hpp) does: x as that leaves it, ghosts included;
+// b is scratch afterwards.
+class PoissonSystemSolver {
+ public:
+  virtual ~PoissonSystemSolver() = default;
+  virtual void setup(const PoissonOperator& op, const FaceCoefficients& beta, const PoissonSolverOptions& options) = 0;
+  virtual PoissonSolveStats solve_system(const PoissonOperator& op, Field& b, Field& x) = 0;
+};
+
+// The process's flow solvers (FlowSolver::setup) take their pressure system solver from this
+// factory once one is installed: fin-cfd and fin-fsi under an MPI launcher install the ranks'
+// one, so every flow of the run (a validation case's grids, the FSI's flow) solves its pressure on
+// the ranks. Empty (the default): the threaded multigrid.
+using PoissonSystemFactory = std::function<std::shared_ptr<PoissonSystemSolver>()>;
+void install_flow_pressure_system(PoissonSystemFactory factory);
+std::shared_ptr<PoissonSystemSolver> make_flow_pressure_system();
+
 class PoissonSolver {
  public:
+  // Solve the systems with `system` instead of the multigrid (null: the multigrid); takes effect
+  // at the next setup().
+  void set_system_solver(std::shared_ptr<PoissonSystemSolver> system) { system_ = std::move(system); }
+
   // Builds the operator and the multigrid hierarchy.
   void setup(const StretchedGrid& grid, const FaceCoefficients& beta, const BoundaryConditions& bc,
              const PoissonSolverOptions& options = {});
@@ -71,6 +96,7 @@ class PoissonSolver {
   PoissonSolverOptions options_;
   PoissonOperator op_;
   Multigrid mg_;
+  std::shared_ptr<PoissonSystemSolver> system_;
   Field b_;
   SolveWork work_;
 };

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# fin-cfd fin on 1, 2 and 4 MPI ranks (oversubscribed on CI's two cores) against one process
+# (issue 48; tools/cfd/parallel/rank_pressure_system.hpp): the coarse heaving plate as the closed
+# body and as the zero-thickness sheet, and the tiny case's fin at h = c/20. The pressure is
+# all-Neumann here (one singular component), whose projections the ranks sum line by line where
+# one process sums cell by cell: loads.h5 agrees to 1e-12 relative, with an absolute floor of
+# 1e-12 of each dataset's scale for values near zero (measured: up to 7e-15 of each dataset's
+# largest value). A subcommand that does not run on
+# ranks refuses mpirun in one line, exit 2.
+# Usage: run_fin_cfd_ranks.sh <fin-cfd> <fin-diff> <mpiexec> <source dir> <work dir>
+set -euo pipefail
+cfd=$1 diff=$2 mpiexec=$3 src=$4 work=$5
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+# Scales: coefficients O(1), the sheet's pressure jump O(10-100) Pa, forces O(1e-4-1e-2) N.
+cat > tolerances.json <<'JSON'
+{"default": {"atol": 1e-12, "rtol": 1e-12},
+ "datasets": {"/nodal_force": {"atol": 1e-16, "rtol": 1e-12}, "/force_total": {"atol": 1e-15, "rtol": 1e-12},
+              "/pressure_jump": {"atol": 1e-11, "rtol": 1e-12}}}
+JSON
+launch=("$mpiexec" --oversubscribe)
+[ "$(id -u)" = 0 ] && launch+=(--allow-run-as-root)
+"$cfd" --coarse thin_plate --thickness 0.2 --mesh plate_mesh.h5 --motion plate_motion.h5 > plate.log 2>&1
+plate=(--mesh plate_mesh.h5 --motion plate_motion.h5 --reynolds 100 --speed 0.1 --periods 0.25 --output-periods 0
+       --cells-per-chord 12 --upstream 1.5 --downstream 3 --lateral 1.5 --spanwise 1.5 --stretch-ratio 1.2)
+reg=$src/tests/regression/mesh/tiny_case
+fin=(--mesh "$reg/mesh.h5" --motion "$reg/motion.h5" --cells-per-chord 20 --upstream 1.5 --downstream 3 --lateral 1.5
+     --spanwise 1.5 --stretch-ratio 1.2)
+run_case() {  # name, ranks list, flags...
+  local name=$1 ranks=$2
+  shift 2
+  OMP_NUM_THREADS=1 "$cfd" --threads 1 fin "$@" --out "$name.h5" > "$name.log" 2>&1 ||
+    { tail -3 "$name.log"; echo "$name: one process failed"; exit 1; }
+  for n in $ranks; do
+    OMP_NUM_THREADS=1 "${launch[@]}" -np "$n" "$cfd" --threads 1 fin "$@" --out "$name.ranks$n.h5" > "$name.ranks$n.log" 2>&1 ||
+      { tail -5 "$name.ranks$n.log"; echo "$name: $n ranks failed"; exit 1; }
+    grep -q "pressure solve over $n MPI ranks" "$name.ranks$n.log" || { echo "$name: $n ranks did not share the solve"; exit 1; }
+    "$diff" --tolerances tolerances.json "$name.h5" "$name.ranks$n.h5" > "$name.ranks$n.diff" 2>&1 ||
+      { cat "$name.ranks$n.diff"; echo "$name: $n ranks differ from one process"; exit 1; }
+  done
+}
+run_case plate "2 4" "${plate[@]}"
+run_case sheet "2" "${plate[@]}" --surface sheet
+run_case fin "2 4" "${fin[@]}"
+# Ranks write nothing but rank 0's files: no checkpoint or snapshot of their own to race on.
+[ "$(ls fin.ranks4* | wc -l)" = 3 ] || { ls; echo "fin on 4 ranks: files besides rank 0's"; exit 1; }
+rc=0
+"${launch[@]}" -np 2 "$cfd" --coarse taylor_green > tg.out 2> tg.err || rc=$?
+[ $rc = 2 ] && [ "$(grep -c 'fin-cfd: error:' tg.err)" -ge 1 ] && grep -q "does not run on MPI ranks" tg.err ||
+  { cat tg.err; echo "fin-cfd taylor_green under mpirun: exit $rc, not one line saying why"; exit 1; }
+echo "fin_cfd_mpi_ranks: plate, sheet and fin on 2 and 4 ranks give one process's loads.h5 within 1e-12"

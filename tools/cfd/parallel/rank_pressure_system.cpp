@@ -1,0 +1,72 @@
+// The pressure system of a whole-flow run solved over MPI ranks; see rank_pressure_system.hpp.
+#include "cfd/parallel/rank_pressure_system.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <thread>
+
+#include "core/cli.hpp"
+
+namespace finverse::cfd {
+
+void RankPressureSystem::setup(const PoissonOperator& op, const FaceCoefficients& beta, const PoissonSolverOptions& options) {
+  const auto block_beta = [&](const StretchedGrid& block_grid, const Block& b) { return block_faces(beta, block_grid, b); };
+  solver_.reset();  // the old hierarchy's memory first
+  solver_ = std::make_unique<DistributedPoissonSolver>(comm_, op.grid(), block_beta, op.bc(), options);
+  b_ = solver_->grid().make_field(1);
+  x_ = solver_->grid().make_field(1);
+}
+
+PoissonSolveStats RankPressureSystem::solve_system(const PoissonOperator& op, Field& b, Field& x) {
+  const DistributedGrid& g = solver_->grid();
+  g.own_part(b, b_);
+  g.own_part(x, x_);
+  const PoissonSolveStats st = solver_->solve_system(b_, x_);
+  g.allgather(x_, x);
+  // The serial solve's last residual filled x's periodic ghosts; the other sides' ghosts belong to
+  // the caller and are left as they were.
+  op.fill_ghosts(x);
+  return st;
+}
+
+FlowRanks::FlowRanks() {
+  if (cli::mpi_launch_size() < 2) return;
+  int provided = 0;
+  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  MPI_Comm_dup(MPI_COMM_WORLD, &failures_);
+  active_ = true;
+  install_flow_pressure_system([] { return std::make_shared<RankPressureSystem>(MPI_COMM_WORLD); });
+}
+
+FlowRanks::~FlowRanks() {
+  if (!active_) return;
+  install_flow_pressure_system({});
+  MPI_Comm_free(&failures_);
+  MPI_Finalize();
+}
+
+bool FlowRanks::every_rank_failed(double seconds) const {
+  MPI_Request barrier = MPI_REQUEST_NULL;
+  MPI_Ibarrier(failures_, &barrier);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  int done = 0;
+  for (;;) {
+    MPI_Test(&barrier, &done, MPI_STATUS_IGNORE);
+    if (done || std::chrono::steady_clock::now() > deadline) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return done != 0;  // else the barrier stays posted: the job is about to be aborted
+}
+
+void FlowRanks::abort(const char* tool, const char* what, int code) const {
+  if (rank_ == 0) std::fprintf(stderr, "%s: error: %s\n", tool, what);
+  else std::fprintf(stderr, "%s: rank %d: error: %s\n", tool, rank_, what);
+  std::fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::abort();
+}
+
+}  // namespace finverse::cfd
