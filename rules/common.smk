@@ -116,6 +116,16 @@ def progress_order():
     return truth + list(PIPELINE_STAGES)
 
 
+def mpi_launch(wildcards, resources):
+    """The launcher of a stage that runs on MPI ranks: "<mpi> -n <tasks>" when a profile gives the
+    rule an `mpi` resource and more than one task (profiles/slurm: mpi="srun"; Snakemake 8's SLURM
+    executor reads the same two names), else nothing: one process."""
+    mpi = resources.get("mpi", "") if hasattr(resources, "get") else getattr(resources, "mpi", "")
+    tasks = int(resources.get("tasks", 1) if hasattr(resources, "get") else getattr(resources, "tasks", 1))
+    mpi = str(mpi).strip().strip("'\"")  # a value given on the command line keeps its quotes
+    return f"{mpi} -n {tasks}" if mpi and tasks > 1 else ""
+
+
 def stage_shell(stage, command):
     """command, then the stage's progress line (not printed when the command fails)."""
     expected = ",".join(f"{k}={v}" for k, v in sorted(config["progress"]["expected_minutes"].items()))

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The workflow on SLURM (issue 48): starts a one-node SLURM cluster of its own (slurmctld and
 # slurmd on loopback, auth/none, its configuration and state in a scratch directory), runs the tiny
-# case's first stages (fin-synth, fin-track, fin-mesh) as batch jobs through profiles/slurm, checks
-# that each ran as a SLURM job and that its files equal the golden files under their tolerances,
+# case's stages up to the loads (fin-synth, fin-track, fin-mesh, and fin-cfd fin as a 2-rank MPI
+# job launched by srun) as batch jobs through profiles/slurm, checks that each ran as a SLURM job,
+# that the loads ran on 2 ranks and that the files equal the golden files under their tolerances,
 # and stops the daemons; nothing is left running. Exit 77 (skipped) without slurm-wlm or root.
 # Usage: run_slurm.sh <source dir> <build dir>
 set -euo pipefail
@@ -56,7 +57,7 @@ SchedulerType=sched/builtin
 SelectType=select/cons_tres
 SelectTypeParameters=CR_Core
 SlurmdParameters=config_overrides
-MpiDefault=none
+MpiDefault=pmix
 ReturnToService=2
 NodeName=finverse-node NodeAddr=127.0.0.1 CPUs=$(nproc) RealMemory=131072 State=UNKNOWN
 PartitionName=main Nodes=finverse-node Default=YES MaxTime=INFINITE State=UP
@@ -74,18 +75,26 @@ done
 sinfo -h -N -o "%t" | grep -qx idle ||
   { tail -n 20 "$work"/slurmctld.log "$work"/slurmd.log; echo "no test cluster could be started here: skipped"; exit 77; }
 
-echo "== the tiny case's first stages through profiles/slurm"
+echo "== the tiny case's stages up to the loads through profiles/slurm, the loads on 2 ranks"
 run=$work/run
-mkdir -p "$run"
-if ! snakemake results/tiny/mesh.h5 -s "$src/Snakefile" -d "$run" --profile "$src/profiles/slurm" --max-threads "$(nproc)" \
+mkdir -p "$run" "$work/profile"
+# The profile as a site would adapt it: the loads on 2 tasks of one thread. (--set-resources on the
+# command line would replace the profile's whole list, its `mpi` launcher included.)
+sed -e 's/^  - loads:tasks=1$/  - loads:tasks=2/' -e 's/^  - loads=32$/  - loads=1/' "$src/profiles/slurm/config.yaml" \
+  > "$work/profile/config.yaml"
+grep -q "loads:tasks=2" "$work/profile/config.yaml" && grep -q "^  - loads=1$" "$work/profile/config.yaml" ||
+  { echo "profiles/slurm: no loads:tasks=1 or loads=32 line to adapt"; exit 1; }
+if ! snakemake results/tiny/loads.h5 -s "$src/Snakefile" -d "$run" --profile "$work/profile" --max-threads "$(nproc)" \
     --configfile "$src/config/cases/tiny.yaml" --config build_dir="$build" > "$work/run.log" 2>&1; then
-  cat "$work/run.log"; echo "snakemake through profiles/slurm failed"; exit 1
+  cat "$work/run.log" "$run"/results/logs/tiny/loads.log 2> /dev/null; echo "snakemake through profiles/slurm failed"; exit 1
 fi
-for rule in synth track mesh; do
+grep -q "pressure solve over 2 MPI ranks" "$run/results/logs/tiny/loads.log" ||
+  { cat "$run/results/logs/tiny/loads.log"; echo "the loads stage did not run on 2 MPI ranks"; exit 1; }
+for rule in synth track mesh loads; do
   ls "$run"/.snakemake/slurm_logs/rule_$rule/*.log > /dev/null 2>&1 ||
     { cat "$work/run.log"; echo "rule $rule did not run as a SLURM job"; exit 1; }
 done
-for golden in vision/tiny_case/kinematics mesh/tiny_case/mesh mesh/tiny_case/motion; do
+for golden in vision/tiny_case/kinematics mesh/tiny_case/mesh mesh/tiny_case/motion cfd/tiny_case/loads; do
   dir=$src/tests/regression/$(dirname "$golden") file=$(basename "$golden").h5
   "$build/bin/fin-diff" "$dir/$file" "$run/results/tiny/$file" --tolerances "$dir/tolerances.json" > "$work/diff.log" 2>&1 ||
     { cat "$work/diff.log"; echo "results/tiny/$file from SLURM differs from its golden file"; exit 1; }

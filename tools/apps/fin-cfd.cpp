@@ -217,24 +217,12 @@ int run_thin_surface_bench(const BenchArgs& a, bool coarse) {
 }
 
 // fin-cfd fin on MPI ranks when a launcher started it on several (the pressure system solved over
-// them); a failure on any rank ends the whole job, whose other ranks may wait in a collective.
+// them; cfd/parallel/rank_pressure_system.hpp).
 int on_ranks(const std::function<int()>& body) {
 #ifdef FINVERSE_HAVE_MPI
-  cfd::FlowRanks ranks;
-  if (!ranks.active()) return body();
-  log::info("the pressure solve over " + std::to_string(ranks.size()) +
-            " MPI ranks, every rank holding the whole flow; rank 0 writes the files");
-  try {
-    return body();
-  } catch (const std::exception& e) {
-    if (ranks.every_rank_failed()) throw;  // rank 0 says it once; the job ends normally
-    ranks.abort("fin-cfd", e.what(), kExitError);
-  }
+  return cfd::run_on_flow_ranks("fin-cfd", body);
 #else
-  if (cli::mpi_launch_size() > 1)
-    throw Error("started by an MPI launcher on " + std::to_string(cli::mpi_launch_size()) +
-                " ranks, but this fin-cfd was built without MPI: install libopenmpi-dev and rebuild "
-                "(cmake -DFINVERSE_MPI=ON), or run it without mpirun");
+  cli::refuse_mpi_launch_without_mpi("fin-cfd");
   return body();
 #endif
 }

@@ -13,6 +13,7 @@
 //       --out-dir DIR [--name N]   (issue 34: the Phase I flow, plane version only)
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <string>
 
@@ -35,6 +36,10 @@
 #include "fsi/validation/seed_table1.hpp"
 #ifdef FINVERSE_FSI_HAS_FIT
 #include "fit/fin_parameters.hpp"
+#endif
+
+#ifdef FINVERSE_HAVE_MPI
+#include "cfd/parallel/rank_pressure_system.hpp"
 #endif
 
 namespace {
@@ -205,11 +210,18 @@ struct FinCommand {
       in.effects_name = effects;
       inputs.push_back(effects);
     }
-    o.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+    // On MPI ranks every rank runs the whole coupled step (the pressure solve shared) and rank 0
+    // alone speaks and writes files.
+    const bool writer = finverse::cli::mpi_launch_rank() == 0;
+    o.progress = [writer](const std::string& line) {
+      if (writer) std::cerr << line << "\n";
+    };
     // As fin-cfd fin: checkpoints go next to --out unless --checkpoint names the file.
     if (o.checkpoint_every > 0 && o.checkpoint.empty())
       o.checkpoint = std::filesystem::path(out).parent_path() / (std::filesystem::path(out).stem().string() + ".checkpoint.h5");
+    if (!writer) o.checkpoint.clear(), o.paraview_dir.clear();
     fs::FinFsiResult r = fs::run_fin_fsi(in, o);
+    if (!writer) return 0;
     nlohmann::json config = r.config;
     config["inputs"] = materials_config;
     config["threads"] = finverse::cli::threads_in_use();
@@ -255,11 +267,23 @@ struct HessenthalerPlaneCommand {
   }
 };
 
+// fin-fsi fin on MPI ranks when a launcher started it on several: the flow's pressure system
+// solved over them (cfd/parallel/rank_pressure_system.hpp), the rest of the step on every rank.
+int on_ranks(const std::function<int()>& body) {
+#ifdef FINVERSE_HAVE_MPI
+  return finverse::cfd::run_on_flow_ranks("fin-fsi", body);
+#else
+  finverse::cli::refuse_mpi_launch_without_mpi("fin-fsi");
+  return body();
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"fin-fsi: implicit partitioned flow-structure coupling (Aitken, IQN-ILS)"};
   finverse::cli::Standard standard(app, "fin-fsi");
+  standard.mpi = true;  // fin-fsi fin; the other subcommands refuse ranks below
   app.require_subcommand(1);
   TurekHronCommand turek_hron;
   turek_hron.add(app);
@@ -272,7 +296,10 @@ int main(int argc, char** argv) {
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     if (turek_hron.th->parsed()) return turek_hron.run();
     if (pitching_plate.pp->parsed()) return pitching_plate.run();
-    if (fin.fin->parsed()) return fin.run();
+    if (fin.fin->parsed()) return on_ranks([&] { return fin.run(); });
+    if (finverse::cli::mpi_launch_size() > 1)
+      throw finverse::Error("fin-fsi " + app.get_subcommands().front()->get_name() +
+                            " does not run on MPI ranks (fin-fsi fin does); run it without mpirun");
     if (hessenthaler_plane.hp->parsed()) return hessenthaler_plane.run();
     return 2;
   });

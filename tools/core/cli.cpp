@@ -135,14 +135,24 @@ int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::fun
 
 int mpi_launch_rank() {
   // Open MPI's mpirun, PMIx launchers (srun --mpi=pmix) and Hydra (MPICH) set one of these.
-  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"})
     if (const char* v = std::getenv(name)) return std::atoi(v);
   return 0;
+}
+
+void refuse_mpi_launch_without_mpi(const std::string& tool) {
+  if (mpi_launch_size() > 1)
+    throw Error("started by an MPI launcher on " + std::to_string(mpi_launch_size()) + " ranks, but this " + tool +
+                " was built without MPI: install libopenmpi-dev and rebuild (cmake -DFINVERSE_MPI=ON), or run it "
+                "without mpirun");
 }
 
 int mpi_launch_size() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_SIZE", "PMI_SIZE"})
     if (const char* v = std::getenv(name)) return std::atoi(v);
+  // srun (with or without an MPI plugin: PMIX_RANK alone says which) sets the step's task count;
+  // a batch script itself has none.
+  if (const char* v = std::getenv("SLURM_STEP_NUM_TASKS")) return std::atoi(v);
   return 1;
 }
 

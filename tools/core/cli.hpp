@@ -43,6 +43,9 @@ int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::fun
 // environment: 0 and 1 for a plain run. Ranks above 0 print nothing from run().
 int mpi_launch_rank();
 int mpi_launch_size();
+// For a tool built without MPI that could run on ranks: throws a one-line Error naming what to
+// change when an MPI launcher started it on several ranks.
+void refuse_mpi_launch_without_mpi(const std::string& tool);
 
 int threads_in_use();
 

@@ -81,6 +81,12 @@ RankPool::RankPool() {
   MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  if (size_ != cli::mpi_launch_size()) {  // srun without an MPI plugin: unconnected singletons
+    const int launched = cli::mpi_launch_size();
+    MPI_Finalize();
+    throw InvalidInput("started as " + std::to_string(launched) + " tasks, but MPI sees " + std::to_string(size_) +
+                       " rank(s): the launcher did not connect them (srun needs --mpi=pmix, or the site's MPI plugin)");
+  }
   g_current = this;
 }
 

@@ -4,21 +4,40 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <thread>
 
 #include "core/cli.hpp"
+#include "core/error.hpp"
+#include "core/log.hpp"
 
 namespace finverse::cfd {
 
+namespace {
+// The process's time in the ranks' pressure solves (all its flows), for the run's last log line.
+struct PressureTimes {
+  double setup = 0, solve = 0;
+  long setups = 0, solves = 0;
+} g_times;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
 void RankPressureSystem::setup(const PoissonOperator& op, const FaceCoefficients& beta, const PoissonSolverOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
   const auto block_beta = [&](const StretchedGrid& block_grid, const Block& b) { return block_faces(beta, block_grid, b); };
   solver_.reset();  // the old hierarchy's memory first
   solver_ = std::make_unique<DistributedPoissonSolver>(comm_, op.grid(), block_beta, op.bc(), options);
   b_ = solver_->grid().make_field(1);
   x_ = solver_->grid().make_field(1);
+  g_times.setup += seconds_since(t0);
+  ++g_times.setups;
 }
 
 PoissonSolveStats RankPressureSystem::solve_system(const PoissonOperator& op, Field& b, Field& x) {
+  const auto t0 = std::chrono::steady_clock::now();
   const DistributedGrid& g = solver_->grid();
   g.own_part(b, b_);
   g.own_part(x, x_);
@@ -27,6 +46,8 @@ PoissonSolveStats RankPressureSystem::solve_system(const PoissonOperator& op, Fi
   // The serial solve's last residual filled x's periodic ghosts; the other sides' ghosts belong to
   // the caller and are left as they were.
   op.fill_ghosts(x);
+  g_times.solve += seconds_since(t0);
+  ++g_times.solves;
   return st;
 }
 
@@ -36,6 +57,13 @@ FlowRanks::FlowRanks() {
   MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  if (size_ != cli::mpi_launch_size()) {
+    // srun without an MPI plugin starts independent singletons that would each write the files.
+    const int launched = cli::mpi_launch_size();
+    MPI_Finalize();
+    throw Error("started as " + std::to_string(launched) + " tasks, but MPI sees " + std::to_string(size_) +
+                " rank(s): the launcher did not connect them (srun needs --mpi=pmix, or the site's MPI plugin)");
+  }
   MPI_Comm_dup(MPI_COMM_WORLD, &failures_);
   active_ = true;
   install_flow_pressure_system([] { return std::make_shared<RankPressureSystem>(MPI_COMM_WORLD); });
@@ -67,6 +95,24 @@ void FlowRanks::abort(const char* tool, const char* what, int code) const {
   std::fflush(stderr);
   MPI_Abort(MPI_COMM_WORLD, code);
   std::abort();
+}
+
+int run_on_flow_ranks(const std::string& tool, const std::function<int()>& body) {
+  FlowRanks ranks;
+  if (!ranks.active()) return body();
+  log::info("the pressure solve over " + std::to_string(ranks.size()) +
+            " MPI ranks, every rank holding the whole flow; rank 0 writes the files");
+  try {
+    const int rc = body();
+    char line[200];
+    std::snprintf(line, sizeof line, "pressure on %d ranks: %ld set-ups %.1f s, %ld solves %.1f s (gathers included)",
+                  ranks.size(), g_times.setups, g_times.setup, g_times.solves, g_times.solve);
+    log::info(line);
+    return rc;
+  } catch (const std::exception& e) {
+    if (ranks.every_rank_failed()) throw;  // rank 0 says it once; the job ends normally
+    ranks.abort(tool.c_str(), e.what(), kExitError);
+  }
 }
 
 }  // namespace finverse::cfd

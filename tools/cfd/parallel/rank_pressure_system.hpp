@@ -11,7 +11,9 @@
 
 #include <mpi.h>
 
+#include <functional>
 #include <memory>
+#include <string>
 
 #include "cfd/parallel/distributed_poisson_solver.hpp"
 
@@ -60,5 +62,10 @@ class FlowRanks {
   int rank_ = 0, size_ = 1;
   MPI_Comm failures_ = MPI_COMM_NULL;
 };
+
+// body() as a flow run on the ranks a launcher started (FlowRanks), or plainly without one. A
+// failure on any rank ends the whole job: every rank's together with rank 0's one line, a lone
+// rank's by aborting the job.
+int run_on_flow_ranks(const std::string& tool, const std::function<int()>& body);
 
 }  // namespace finverse::cfd
