@@ -68,22 +68,28 @@ double DistributedGrid::max_abs(const Field& a) const {
   return m;
 }
 
-void DistributedGrid::gather(const Field& local, Field& global, int root) const {
+// gather and allgather: this rank's interior packed line by line, every rank's place in the
+// gathered array (counts and offsets in doubles), and the gathered array unpacked into the whole
+// field in rank order.
+std::vector<double> DistributedGrid::packed_block(const Field& local) const {
   const Block& mine = block();
   std::vector<double> send(static_cast<std::size_t>(d_.nx()) * static_cast<std::size_t>(mine.ny() * mine.nz()));
   std::size_t c = 0;
   for (int k = 0; k < mine.nz(); ++k)
     for (int j = 0; j < mine.ny(); ++j)
       for (int i = 0; i < d_.nx(); ++i) send[c++] = local(i, j, k);
-  std::vector<int> counts(counts_), displs(displs_);
+  return send;
+}
+
+void DistributedGrid::cell_counts(std::vector<int>& counts, std::vector<int>& displs) const {
+  counts = counts_, displs = displs_;
   for (std::size_t r = 0; r < counts.size(); ++r) counts[r] *= d_.nx(), displs[r] *= d_.nx();
-  std::vector<double> all(rank_ == root ? static_cast<std::size_t>(d_.nx()) * line_position_.size() : 0);
-  MPI_Gatherv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
-              root, comm_);
-  if (rank_ != root) return;
+}
+
+void DistributedGrid::unpack_whole(const std::vector<double>& all, Field& global, const char* what) const {
   if (global.nx() != d_.nx() || global.ny() != d_.ny() || global.nz() != d_.nz())
-    throw Error("gather: the root's field is not shaped like the whole grid");
-  c = 0;
+    throw Error(std::string(what) + ": the field is not shaped like the whole grid");
+  std::size_t c = 0;
   for (int r = 0; r < d_.ranks(); ++r) {
     const Block& b = d_.block(r);
     for (int k = b.k0; k < b.k1; ++k)
@@ -92,27 +98,24 @@ void DistributedGrid::gather(const Field& local, Field& global, int root) const 
   }
 }
 
+void DistributedGrid::gather(const Field& local, Field& global, int root) const {
+  const std::vector<double> send = packed_block(local);
+  std::vector<int> counts, displs;
+  cell_counts(counts, displs);
+  std::vector<double> all(rank_ == root ? static_cast<std::size_t>(d_.nx()) * line_position_.size() : 0);
+  MPI_Gatherv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
+              root, comm_);
+  if (rank_ == root) unpack_whole(all, global, "gather");
+}
+
 void DistributedGrid::allgather(const Field& local, Field& global) const {
-  if (global.nx() != d_.nx() || global.ny() != d_.ny() || global.nz() != d_.nz())
-    throw Error("allgather: the field is not shaped like the whole grid");
-  const Block& mine = block();
-  std::vector<double> send(static_cast<std::size_t>(d_.nx()) * static_cast<std::size_t>(mine.ny() * mine.nz()));
-  std::size_t c = 0;
-  for (int k = 0; k < mine.nz(); ++k)
-    for (int j = 0; j < mine.ny(); ++j)
-      for (int i = 0; i < d_.nx(); ++i) send[c++] = local(i, j, k);
-  std::vector<int> counts(counts_), displs(displs_);
-  for (std::size_t r = 0; r < counts.size(); ++r) counts[r] *= d_.nx(), displs[r] *= d_.nx();
+  const std::vector<double> send = packed_block(local);
+  std::vector<int> counts, displs;
+  cell_counts(counts, displs);
   std::vector<double> all(static_cast<std::size_t>(d_.nx()) * line_position_.size());
   MPI_Allgatherv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, all.data(), counts.data(), displs.data(),
                  MPI_DOUBLE, comm_);
-  c = 0;
-  for (int r = 0; r < d_.ranks(); ++r) {
-    const Block& b = d_.block(r);
-    for (int k = b.k0; k < b.k1; ++k)
-      for (int j = b.j0; j < b.j1; ++j)
-        for (int i = 0; i < d_.nx(); ++i) global(i, j, k) = all[c++];
-  }
+  unpack_whole(all, global, "allgather");
 }
 
 void DistributedGrid::own_part(const Field& global, Field& local) const {

@@ -69,6 +69,9 @@ class DistributedGrid {
 
  private:
   void index_lines();
+  std::vector<double> packed_block(const Field& local) const;
+  void cell_counts(std::vector<int>& counts, std::vector<int>& displs) const;
+  void unpack_whole(const std::vector<double>& all, Field& global, const char* what) const;
 
   MPI_Comm comm_;
   int rank_ = 0;
