@@ -34,13 +34,11 @@
 #include "cfd/validation/thin_plate_case.hpp"
 #include "cfd/validation/thin_surface_bench.hpp"
 #include "core/cli.hpp"
+#include "flow_ranks_launch.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/stage_files.hpp"
 
-#ifdef FINVERSE_HAVE_MPI
-#include "cfd/parallel/rank_pressure_system.hpp"
-#endif
 
 namespace {
 
@@ -216,17 +214,6 @@ int run_thin_surface_bench(const BenchArgs& a, bool coarse) {
   return s.pass() ? kExitOk : kExitDifferent;
 }
 
-// fin-cfd fin on MPI ranks when a launcher started it on several (the pressure system solved over
-// them; cfd/parallel/rank_pressure_system.hpp).
-int on_ranks(const std::function<int()>& body) {
-#ifdef FINVERSE_HAVE_MPI
-  return cfd::run_on_flow_ranks("fin-cfd", body);
-#else
-  cli::refuse_mpi_launch_without_mpi("fin-cfd");
-  return body();
-#endif
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -284,7 +271,7 @@ int main(int argc, char** argv) {
   std::vector<char*> argv2;
   for (std::string& a : args) argv2.push_back(a.data());
   return cli::run(app, standard, static_cast<int>(argv2.size()), argv2.data(), [&]() -> int {
-    if (*fin) return on_ranks([&] { return run_fin(fin_args, app); });
+    if (*fin) return on_flow_ranks("fin-cfd", [&] { return run_fin(fin_args, app); });
     if (cli::mpi_launch_size() > 1)
       throw Error("fin-cfd " + app.get_subcommands().front()->get_name() +
                   " does not run on MPI ranks (fin-cfd fin does); run it without mpirun");

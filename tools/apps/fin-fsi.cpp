@@ -22,6 +22,7 @@
 #include "cfd/io/fin_flow_case.hpp"
 #include "core/atomic_file.hpp"
 #include "core/cli.hpp"
+#include "flow_ranks_launch.hpp"
 #include "core/error.hpp"
 #include "core/hdf5_file.hpp"
 #include "core/provenance.hpp"
@@ -38,9 +39,6 @@
 #include "fit/fin_parameters.hpp"
 #endif
 
-#ifdef FINVERSE_HAVE_MPI
-#include "cfd/parallel/rank_pressure_system.hpp"
-#endif
 
 namespace {
 
@@ -267,17 +265,6 @@ struct HessenthalerPlaneCommand {
   }
 };
 
-// fin-fsi fin on MPI ranks when a launcher started it on several: the flow's pressure system
-// solved over them (cfd/parallel/rank_pressure_system.hpp), the rest of the step on every rank.
-int on_ranks(const std::function<int()>& body) {
-#ifdef FINVERSE_HAVE_MPI
-  return finverse::cfd::run_on_flow_ranks("fin-fsi", body);
-#else
-  finverse::cli::refuse_mpi_launch_without_mpi("fin-fsi");
-  return body();
-#endif
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -296,7 +283,7 @@ int main(int argc, char** argv) {
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     if (turek_hron.th->parsed()) return turek_hron.run();
     if (pitching_plate.pp->parsed()) return pitching_plate.run();
-    if (fin.fin->parsed()) return on_ranks([&] { return fin.run(); });
+    if (fin.fin->parsed()) return on_flow_ranks("fin-fsi", [&] { return fin.run(); });
     if (finverse::cli::mpi_launch_size() > 1)
       throw finverse::Error("fin-fsi " + app.get_subcommands().front()->get_name() +
                             " does not run on MPI ranks (fin-fsi fin does); run it without mpirun");
