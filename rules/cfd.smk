@@ -58,6 +58,13 @@ _CFD_CASES = {
     # docs/studies/garrick_heaving_plate.md.
     "heaving_plate_garrick": ("thin plate heaving at k 2, Re 1000: mean thrust per amplitude vs Garrick's linear theory",
                               "garrick_heaving_plate.json", THREADS_2D, 500, _FORCES),
+    # Graded: centreline speed and wall shear within 2 %, dp/dz within 3 % of Poiseuille flow, the
+    # fluid inside the immersed wall (issue 49, goal 4); a ball in the same pipe as a user's case
+    # file beside it, reported. Numbers in docs/studies/pipe_flow.md.
+    "pipe_poiseuille": ("Poiseuille flow in a round pipe, fluid inside the immersed wall (Re 1283): profile, shear, dp/dz",
+                        None, THREADS, 1000, {}),
+    "pipe_flow": ("a ball in a round pipe as a user's case file (fluid: inside, pipe inlet): forces, reported",
+                  None, THREADS, 1500, _FORCES),
     # Graded: the 3-D paths' mean C_T and C_L amplitude within 2 % of the 2-D solver's on the same
     # section, grid and step, closed body (slip-walled slab) and sheet (periodic slab, issue 44
     # goal 5); numbers in docs/studies/spanwise_plate_2d3d.md and thin_surface.md.

@@ -16,6 +16,7 @@ folder. Cases needing a bad file write it with `make` (a function of the scratch
   /usr/bin/python3 tests/bad_input/run_bad_inputs.py --bin build/bin --repo . --work /tmp/bad_input [--only fin-mesh]
 """
 import argparse
+import math
 import os
 import re
 import shutil
@@ -245,6 +246,40 @@ def surface_cases():
             for name, t in (("nan vertex", tetrahedron("nan")), ("broken", broken))]
 
 
+def pipe_cases():
+    """fin-cfd run on the pipe case (fluid inside a wall): an open pipe surface, an inlet disc off the
+    pipe's cross-section, a ball that sticks through the wall."""
+    source = "{repo}/data/cases/cfd/pipe_flow.yaml"
+
+    def open_tube(w, fmt):
+        # A tube of 16 segments without end caps: not closed.
+        n, r, pts = 16, 0.01095, []
+        ring = [(r * math.cos(2 * math.pi * k / n), r * math.sin(2 * math.pi * k / n)) for k in range(n)]
+        out = ["solid tube"]
+        for k in range(n):
+            (x0, y0), (x1, y1) = ring[k], ring[(k + 1) % n]
+            for tri in (((x0, y0, -0.004), (x1, y1, -0.004), (x1, y1, 0.1)),
+                        ((x0, y0, -0.004), (x1, y1, 0.1), (x0, y0, 0.1))):
+                out += [" facet normal 0 0 0", "  outer loop"]
+                out += [f"   vertex {a} {b} {c}" for a, b, c in tri]
+                out += ["  endloop", " endfacet"]
+        with open(os.path.join(w, "tube.stl"), "w") as f:
+            f.write("\n".join(out + ["endsolid tube", ""]))
+        text = open(fmt(source)).read()
+        new = re.sub(r"shape: cylinder .*\n(    .*\n){4}", "surface: tube.stl\n", text, count=1)
+        assert new != text
+        with open(os.path.join(w, "case_open.yaml"), "w") as f:
+            f.write(new)
+    c = [case("fin-cfd", "--out-dir {w}/out run {w}/case_open.yaml", "tube.stl", ["{w}/out"], make=open_tube,
+              label="fin-cfd run: pipe surface not closed")]
+    for name, pattern, repl, names in [
+            ("inlet_off", r"centre: \[0, 0, 0\], radius", "centre: [0.003, 0, 0], radius", "boundaries.z_lo.pipes[0]"),
+            ("through_wall", r"radius: 0.004", "radius: 0.012", "bodies[1]")]:
+        c.append(case("fin-cfd", f"--out-dir {{w}}/out run {{w}}/case_{name}.yaml", names, ["{w}/out"],
+                      make=edited(source, pattern, repl, f"case_{name}.yaml"), label=f"fin-cfd run: pipe {name}"))
+    return c
+
+
 def contract_cases():
     """fin-contract check on a mesh.h5 whose triangle names a vertex past the end."""
     def make(w, fmt):
@@ -407,7 +442,7 @@ def main():
     args = ap.parse_args()
     args.bin, args.repo, args.work = map(os.path.abspath, (args.bin, args.repo, args.work))
     args.fix = os.path.join(args.repo, "tests", "regression", "mesh", "tiny_case")
-    all_cases = cases() + camera_cases() + frame_cases() + surface_cases() + contract_cases()
+    all_cases = cases() + camera_cases() + frame_cases() + surface_cases() + pipe_cases() + contract_cases()
     selected = [(i, k) for i, k in enumerate(all_cases) if not args.only or k["tool"] == args.only]
     kills = [(i, k) for i, k in enumerate(kill_cases()) if not args.only or k["tool"] == args.only]
     failed = 0

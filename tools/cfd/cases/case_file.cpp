@@ -12,9 +12,11 @@
 #include <sstream>
 
 #include "cfd/cases/case_reader.hpp"
+#include "cfd/cases/enclosed_fluid.hpp"
 #include "cfd/cases/motion_section.hpp"
 #include "cfd/cases/surface_file.hpp"
 #include "cfd/immersed/immersed_polygon.hpp"
+#include "cfd/immersed/surface_geometry.hpp"
 #include "cfd/immersed/surface_shapes.hpp"
 #include "core/error.hpp"
 #include "core/machine_memory.hpp"
@@ -92,7 +94,7 @@ TriangulatedSurface flat_plate(std::array<double, 3> le, double chord, double sp
 CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
   r.only(n, at,
          {"name", "surface", "shape", "centre", "radius", "subdivisions", "lo", "hi", "scale", "translate",
-          "leading_edge", "chord", "span", "incidence", "cells", "motion"});
+          "leading_edge", "chord", "span", "incidence", "cells", "motion", "fluid", "from", "to", "segments"});
   CaseBody b;
   b.name = n["name"] ? r.scalar<std::string>(n["name"], at + ".name", "a name") : "body";
   if (n["surface"] && n["shape"]) r.fail(n, at, "give either surface: (a file) or shape:, not both");
@@ -100,14 +102,27 @@ CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
     const fs::path p = r.path(n["surface"], at + ".surface");
     b.surface = read_surface_file(p);
     b.source = p.filename().string();
+    try {  // closed, consistently oriented: named here rather than when the solver immerses it
+      SurfaceGeometry(b.surface, b.source);
+    } catch (const Error& e) {
+      r.fail(n["surface"], at + ".surface", e.what());
+    }
   } else if (n["shape"]) {
-    const std::string shape = r.scalar<std::string>(n["shape"], at + ".shape", "sphere or box");
+    const std::string shape = r.scalar<std::string>(n["shape"], at + ".shape", "sphere, box, cylinder or plate");
     if (shape == "sphere") {
       if (!n["radius"]) r.fail(n, at, "a sphere needs radius:");
       const auto c = n["centre"] ? r.numbers<3>(n["centre"], at + ".centre") : std::array<double, 3>{0, 0, 0};
       const int level = n["subdivisions"] ? r.scalar<int>(n["subdivisions"], at + ".subdivisions", "an integer") : 4;
       b.surface = icosphere(c, r.positive(n["radius"], at + ".radius"), level, true);
       b.source = "icosphere, " + std::to_string(level) + " subdivisions";
+    } else if (shape == "cylinder") {
+      if (!n["from"] || !n["to"] || !n["radius"]) r.fail(n, at, "a cylinder needs from:, to: and radius:");
+      const int segments = n["segments"] ? r.scalar<int>(n["segments"], at + ".segments", "an integer") : 128;
+      if (segments < 8 || segments > 4096) r.fail(n["segments"], at + ".segments", "expected 8..4096");
+      const auto a = r.numbers<3>(n["from"], at + ".from"), c = r.numbers<3>(n["to"], at + ".to");
+      if (a == c) r.fail(n["to"], at + ".to", "the axis has zero length (to: equals from:)");
+      b.surface = cylinder_between(a, c, r.positive(n["radius"], at + ".radius"), segments);
+      b.source = "cylinder, " + std::to_string(segments) + " segments";
     } else if (shape == "box") {
       if (!n["lo"] || !n["hi"]) r.fail(n, at, "a box needs lo: and hi:");
       b.surface = box_surface(r.numbers<3>(n["lo"], at + ".lo"), r.numbers<3>(n["hi"], at + ".hi"));
@@ -126,7 +141,7 @@ CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
       b.sheet = true;
       b.source = "flat plate (sheet)";
     } else {
-      r.fail(n["shape"], at + ".shape", "'" + shape + "', expected sphere, box or plate");
+      r.fail(n["shape"], at + ".shape", "'" + shape + "', expected sphere, box, cylinder or plate");
     }
   } else {
     r.fail(n, at, "expected surface: (a .stl, .obj, .vtp or mesh .h5 file) or shape:");
@@ -135,6 +150,18 @@ CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
     transform(b.surface, n["scale"] ? r.positive(n["scale"], at + ".scale") : 1.0,
               n["translate"] ? r.numbers<3>(n["translate"], at + ".translate") : std::array<double, 3>{0, 0, 0});
   if (n["motion"]) b.motion = motion_section(r, n["motion"], at + ".motion", 3);
+  if (n["fluid"]) {
+    const std::string f = r.scalar<std::string>(n["fluid"], at + ".fluid", "inside or outside");
+    if (f != "inside" && f != "outside") r.fail(n["fluid"], at + ".fluid", "'" + f + "', expected inside or outside");
+    b.encloses_fluid = f == "inside";
+    if (b.encloses_fluid && b.sheet) r.fail(n["fluid"], at + ".fluid", "a sheet encloses nothing; give a closed surface");
+    if (b.encloses_fluid && b.motion)
+      r.fail(n["fluid"], at + ".fluid", "a body that encloses the fluid is fixed (leave out motion:)");
+    // Outward as read; the walls of the fluid face inwards (triangulated_surface.hpp).
+    if (b.encloses_fluid)
+      for (auto& t : b.surface.triangles) std::swap(t[1], t[2]);
+    b.surface.encloses_fluid = b.encloses_fluid;
+  }
   return b;
 }
 
@@ -308,9 +335,16 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
     }
     if (!b[sides[k]]) r.fail(b, at, "missing");
     const YAML::Node side = b[sides[k]];
-    r.only(side, at, {"type", "velocity", "profile", "ramp_time"});
+    r.only(side, at, {"type", "velocity", "profile", "ramp_time", "pipes"});
     if (!side["type"]) r.fail(side, at + ".type", "missing");
     s.sides[k].type = side_type(r, side["type"], at + ".type");
+    if (side["pipes"]) {
+      if (s.sides[k].type != FlowBcType::Inlet) r.fail(side["pipes"], at + ".pipes", "only an inlet side has pipes");
+      if (side["velocity"] || side["profile"])
+        r.fail(side["pipes"], at + ".pipes", "give either velocity: (and profile:) or pipes:, not both");
+      if (s.dim != 3) r.fail(side["pipes"], at + ".pipes", "pipes need a 3-D flow");
+      s.sides[k].pipes = read_pipe_inlets(r, side["pipes"], at + ".pipes", s, k);
+    }
     if (side["velocity"]) s.sides[k].velocity = r.numbers<3>(side["velocity"], at + ".velocity");
     if (side["profile"]) {
       const std::string p = r.scalar<std::string>(side["profile"], at + ".profile", "uniform or parabolic");
@@ -329,6 +363,7 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
   for (std::size_t i = 0; i < bodies.size(); ++i)
     s.bodies.push_back(s.dim == 3 ? body(r, bodies[i], "bodies[" + std::to_string(i) + "]")
                                   : plane_body(r, bodies[i], "bodies[" + std::to_string(i) + "]"));
+  check_enclosed_fluid(r, root, s);
   const YAML::Node t = need("time");
   r.only(t, "time", {"t_end", "cfl", "dt_max"});
   if (!t["t_end"]) r.fail(t, "time.t_end", "missing");

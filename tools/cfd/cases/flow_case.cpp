@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "cfd/cases/enclosed_fluid.hpp"
 #include "cfd/forces/control_volume_force.hpp"
 #include "cfd/forces/surface_traction.hpp"
 #include "cfd/forces/surface_traction_3d.hpp"
@@ -36,13 +37,14 @@ Axis axis(double lo, double hi, double ulo, double uhi, double h, double ratio) 
   }
 }
 
-// All bodies as one closed surface (the solver immerses one; they are disjoint components) and
-// the triangle range of each.
+}  // namespace
+
 // (A plane sheet's segments {a, b, -1} keep their -1.)
-TriangulatedSurface merged(const std::vector<CaseBody>& bodies, std::vector<std::size_t>& first_triangle,
-                           std::vector<std::size_t>* first_node = nullptr) {
+TriangulatedSurface merged_bodies(const std::vector<CaseBody>& bodies, std::vector<std::size_t>& first_triangle,
+                                  std::vector<std::size_t>* first_node) {
   TriangulatedSurface all;
   for (const CaseBody& b : bodies) {
+    all.encloses_fluid = all.encloses_fluid || b.encloses_fluid;
     first_triangle.push_back(all.triangles.size());
     if (first_node) first_node->push_back(all.points.size());
     const int offset = static_cast<int>(all.points.size());
@@ -54,6 +56,8 @@ TriangulatedSurface merged(const std::vector<CaseBody>& bodies, std::vector<std:
   if (first_node) first_node->push_back(all.points.size());
   return all;
 }
+
+namespace {
 
 bool any_moves(const std::vector<CaseBody>& bodies) {
   return std::any_of(bodies.begin(), bodies.end(), [](const CaseBody& b) { return b.motion && b.motion->moves(); });
@@ -241,7 +245,8 @@ StretchedGrid flow_case_grid(const FlowCaseSpec& s) {
                        axis(d[4], d[5], c[4], c[5], s.h, s.stretch_ratio));
 }
 
-FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(const StepStats&, double)>& progress) {
+FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(const StepStats&, double)>& progress,
+                             const std::function<void(const FlowSolver&)>& finished) {
   if (!(s.h > 0)) throw Error(s.name + ": grid.h must be > 0");
   if (!(s.t_end > 0)) throw Error(s.name + ": time.t_end must be > 0");
   if (s.bodies.empty()) throw Error(s.name + ": no bodies");
@@ -257,6 +262,10 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
       side.speed = sc.velocity[normal];
       side.profile = sc.parabolic ? InletProfile::Parabolic : InletProfile::Uniform;
       side.ramp_time = sc.ramp_time;
+      if (!sc.pipes.empty()) {
+        side.profile = InletProfile::Function;
+        side.function = pipe_inflow(sc.pipes, k);
+      }
     }
   }
   FlowOptions opt;
@@ -273,7 +282,7 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
   if (sheets > 0 && sheets < s.bodies.size())
     throw Error(s.name + ": bodies: every body is a sheet or none is (closed bodies and sheets cannot be mixed yet)");
   std::vector<std::size_t> first, first_node;
-  const TriangulatedSurface body = merged(s.bodies, first, &first_node);
+  const TriangulatedSurface body = merged_bodies(s.bodies, first, &first_node);
   if (s.dim == 2) {
     opt.cut_cell_continuity_fixed = s.cut_cells && !any_moves(s.bodies);
     solver.setup(grid, b, opt);
@@ -296,9 +305,16 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
     solver.immerse(body);
   }
   const auto u0 = s.initial_velocity;
-  solver.initialise([u0](double, double, double, double) { return u0; });
+  if (s.initial_field)
+    solver.initialise(s.initial_field);
+  else
+    solver.initialise([u0](double, double, double, double) { return u0; });
   std::optional<SurfaceTraction3D> fixed_traction;
-  if (!moving) fixed_traction.emplace(grid, *solver.immersed(), *solver.body_surface());
+  // Walls that enclose the fluid cross the domain's sides: only their part inside carries traction.
+  SurfaceClip clip;
+  clip.enabled = body.encloses_fluid;
+  for (std::size_t k = 0; k < 6; ++k) clip.no_slip[k] = s.sides[k].type == FlowBcType::NoSlip;
+  if (!moving) fixed_traction.emplace(grid, *solver.immersed(), *solver.body_surface(), clip);
   std::optional<ControlVolumeForce> control_volume;
   if (s.control_volume) control_volume.emplace(grid, *solver.immersed(), s.control_volume_box);
   std::vector<ControlVolumeSample> cv;
@@ -337,6 +353,7 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
     return cx;
   });
   finish(s, cv, r, t0);
+  if (finished) finished(solver);
   return r;
 }
 

@@ -23,17 +23,30 @@
 
 namespace finverse::cfd::cases {
 
+// A pipe's inflow: the parabola u = speed (1 - r^2 / radius^2) on the disc where a pipe whose fluid
+// is inside (CaseBody::encloses_fluid) crosses an inlet side (enclosed_fluid.hpp).
+struct PipeInlet {
+  std::array<double, 3> centre{};  // on the side's plane [m]
+  double radius = 0;               // [m]
+  double speed = 0;                // centreline speed into the domain [m/s]
+};
+
 struct SideCondition {
   FlowBcType type = FlowBcType::Slip;
   std::array<double, 3> velocity{};  // inlet: the inflow velocity [m/s] (parabolic: at the centre)
   bool parabolic = false;            // inlet: a parabola across the side instead of a uniform stream
   double ramp_time = 0;              // inlet: (1 - cos(pi t / ramp)) / 2 for t < ramp [s]
+  std::vector<PipeInlet> pipes;      // inlet: parabolas on pipes' cross-sections (zero elsewhere)
 };
 
 struct CaseBody {
   std::string name;
-  // 3-D: closed, outward-oriented, in the domain's coordinates [m]; a sheet: open, any orientation.
+  // 3-D: closed, oriented towards the fluid (outward, or inward for encloses_fluid), in the
+  // domain's coordinates [m]; a sheet: open, any orientation.
   TriangulatedSurface surface;
+  // The fluid is inside this closed surface (a pipe, a junction; `fluid: inside`): the solid is
+  // everything outside it, and the surface may cross the domain's sides (docs/studies/pipe_flow.md).
+  bool encloses_fluid = false;
   // A zero-thickness surface (FlowSolver::immerse_sheet; docs/studies/thin_surface.md) instead of a
   // closed body: every body of a case is a sheet or none is.
   bool sheet = false;
@@ -56,6 +69,7 @@ struct FlowCaseSpec {
   double nu = 1e-6, rho = 1000;          // kinematic viscosity [m^2/s], density [kg/m^3]
   std::array<SideCondition, 6> sides{};  // XLo, XHi, YLo, YHi, ZLo, ZHi
   std::array<double, 3> initial_velocity{};
+  VelocityFunction initial_field;  // C++ callers: the initial velocity as a field (else initial_velocity)
   std::vector<CaseBody> bodies;
   double t_end = 0;   // simulated time [s]
   double cfl = 0.5;   // target convective CFL number
@@ -97,9 +111,16 @@ struct FlowCaseResult {
 // cell counts rounded to multiples of 8 (three multigrid halvings).
 StretchedGrid flow_case_grid(const FlowCaseSpec& spec);
 
+// Every closed body as one surface (disjoint components; the solver immerses one), flagged
+// encloses_fluid when one of them does, and the first triangle of each body (and its end).
+TriangulatedSurface merged_bodies(const std::vector<CaseBody>& bodies, std::vector<std::size_t>& first_triangle,
+                                  std::vector<std::size_t>* first_node = nullptr);
+
 // Runs the case; `progress` is called after every step with the first body's drag coefficient at
-// the latest force evaluation.
+// the latest force evaluation; `finished` (3-D closed bodies) with the solver at t_end, to sample
+// its fields.
 FlowCaseResult run_flow_case(const FlowCaseSpec& spec,
-                             const std::function<void(const StepStats&, double cx)>& progress = {});
+                             const std::function<void(const StepStats&, double cx)>& progress = {},
+                             const std::function<void(const FlowSolver&)>& finished = {});
 
 }  // namespace finverse::cfd::cases

@@ -4,6 +4,8 @@
 // and the boundary face-normal velocities that enter continuity, with the outlet fluxes shifted
 // uniformly so that the net flux through the boundary is zero: the pressure-correction Poisson
 // problem with Neumann conditions is then compatible and the faces become exactly solenoidal.
+// Only the faces of fluid cells count: where a body crosses a side (the wall of a pipe whose fluid
+// is inside), the faces of its cells carry no flux.
 #include <cmath>
 #include <string>
 
@@ -48,6 +50,7 @@ void FlowSolver::set_boundary_values(double t, double dt, bool initial) {
       double q = 0, area = 0;
       const double sign = side_is_high(side) ? 1.0 : -1.0;
       for_side(grid_, side, [&](int i, int j, int k, std::size_t) {
+        if (!fluid(i, j, k)) return;
         int f[3] = {i, j, k};
         if (side_is_high(side)) ++f[a];
         const double A = face_area(a, i, j, k);
@@ -91,10 +94,15 @@ void FlowSolver::set_boundary_values(double t, double dt, bool initial) {
     if (b.type == FlowBcType::Periodic) continue;
     const int a = side_axis(side);
     const double sign = side_is_high(side) ? 1.0 : -1.0;
-    const auto& vn = bv_new_[static_cast<std::size_t>(a)][side];
+    auto& vn = bv_new_[static_cast<std::size_t>(a)][side];
     for_side(grid_, side, [&](int i, int j, int k, std::size_t m) {
       int f[3] = {i, j, k};
       if (side_is_high(side)) ++f[a];
+      if (!fluid(i, j, k)) {  // a body crossing the side (a pipe's wall): no flux into solid cells
+        Ustar_(a, f[0], f[1], f[2]) = 0;
+        if (!vn.empty()) vn[m] = 0;
+        return;
+      }
       const double un = vn.empty() ? u_[static_cast<std::size_t>(a)](i, j, k) : vn[m];
       Ustar_(a, f[0], f[1], f[2]) = un;
       const double A = face_area(a, i, j, k);
@@ -112,6 +120,7 @@ void FlowSolver::set_boundary_values(double t, double dt, bool initial) {
       const double sign = side_is_high(side) ? 1.0 : -1.0;
       auto& vn = bv_new_[static_cast<std::size_t>(a)][side];
       for_side(grid_, side, [&](int i, int j, int k, std::size_t m) {
+        if (!fluid(i, j, k)) return;
         int f[3] = {i, j, k};
         if (side_is_high(side)) ++f[a];
         Ustar_(a, f[0], f[1], f[2]) += sign * shift;

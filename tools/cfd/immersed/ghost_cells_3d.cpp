@@ -158,16 +158,19 @@ GhostCellSet::GhostCellSet(const StretchedGrid& grid, const SurfaceGeometry& bod
   const int nx = grid.nx(), ny = grid.ny(), nz = grid.nz();
   kind_.assign(grid.cells(), CellKind::Fluid);
   const Vec3 lo = body.lower(), hi = body.upper();
+  // Only centres inside the surface's bounding box can be inside a body; a surface that encloses
+  // the fluid (a pipe) has its solid everywhere outside, so every centre is classified.
   std::array<std::array<int, 2>, 3> r;
   for (int d = 0; d < 3; ++d)
     r[static_cast<std::size_t>(d)] =
-        centre_range(grid.axis(d), lo[static_cast<std::size_t>(d)], hi[static_cast<std::size_t>(d)]);
+        body.encloses_fluid()
+            ? std::array<int, 2>{0, grid.axis(d).size() - 1}
+            : centre_range(grid.axis(d), lo[static_cast<std::size_t>(d)], hi[static_cast<std::size_t>(d)]);
   const auto index = [&](int i, int j, int k) {
     return static_cast<std::size_t>(i) +
            static_cast<std::size_t>(nx) *
                (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(k));
   };
-  // Only centres inside the surface's bounding box can be inside it.
   mark_solid(grid, body, r, kind_);
   const auto fluid = [&](int i, int j, int k) {
     return i >= 0 && j >= 0 && k >= 0 && i < nx && j < ny && k < nz && kind_[index(i, j, k)] == CellKind::Fluid;

@@ -154,7 +154,10 @@ void SurfaceGeometry::compute_normals(const std::string& what) {
       for (std::size_t d = 0; d < 3; ++d) vn[d] += angle * face_normal_[t][d];
     }
   }
-  if (!(volume() > 0))
+  if (s_.encloses_fluid && !(volume() < 0))
+    throw Error(what + ": the surface encloses the fluid, but its enclosed volume is not negative (triangles must be "
+                       "counter-clockwise seen from the fluid inside)");
+  if (!s_.encloses_fluid && !(volume() > 0))
     throw Error(what + ": the enclosed volume is not positive (triangles must be counter-clockwise seen from outside)");
 }
 

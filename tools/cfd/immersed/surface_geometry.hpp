@@ -19,7 +19,9 @@
 //
 // Watertightness is checked on construction: every edge is shared by exactly two triangles that
 // traverse it in opposite directions (consistent orientation), no triangle is degenerate, and the
-// enclosed volume is positive (outward normals); otherwise a one-line finverse::Error.
+// enclosed volume is positive (outward normals), or negative for a surface that encloses the fluid
+// (TriangulatedSurface::encloses_fluid, normals into the fluid, the solid unbounded: then every
+// point far from the surface is inside); otherwise a one-line finverse::Error.
 #pragma once
 
 #include <array>
@@ -63,7 +65,8 @@ class SurfaceGeometry {
   }
   Vec3 lower() const { return nodes_.empty() ? Vec3{} : nodes_[0].lo; }
   Vec3 upper() const { return nodes_.empty() ? Vec3{} : nodes_[0].hi; }
-  double volume() const;  // enclosed volume (divergence theorem)
+  double volume() const;  // enclosed volume (divergence theorem); negative when it encloses the fluid
+  bool encloses_fluid() const { return s_.encloses_fluid; }
   double area() const;
 
   // Linear interpolation of per-vertex data (velocity, acceleration) at a hit; empty data: zero.

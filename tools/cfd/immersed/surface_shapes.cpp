@@ -1,6 +1,7 @@
 // Triangulated sphere and box; see surface_shapes.hpp.
 #include "cfd/immersed/surface_shapes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -96,6 +97,32 @@ TriangulatedSurface cylinder_surface(double xc, double yc, double radius, double
   for (int k = 0; k < segments; ++k) {
     s.triangles.push_back({bottom, ring(0, k + 1), ring(0, k)});               // normal -z
     s.triangles.push_back({bottom + 1, ring(layers, k), ring(layers, k + 1)});  // normal +z
+  }
+  return s;
+}
+
+TriangulatedSurface cylinder_between(const std::array<double, 3>& from, const std::array<double, 3>& to, double radius,
+                                     int segments) {
+  const Vec3 axis = sub(to, from);
+  const double length = norm(axis);
+  if (!(length > 0) || !(radius > 0)) throw Error("cylinder_between: need a positive length and radius");
+  const int layers = std::max(1, static_cast<int>(std::lround(length / (2 * std::numbers::pi * radius / segments))));
+  TriangulatedSurface s = cylinder_surface(0, 0, radius, 0, length, segments, layers);
+  // A right-handed frame (u, v, w) with w along the axis keeps the triangles counter-clockwise.
+  const Vec3 w{axis[0] / length, axis[1] / length, axis[2] / length};
+  int least = 0;
+  for (int d = 1; d < 3; ++d)
+    if (std::abs(w[static_cast<std::size_t>(d)]) < std::abs(w[static_cast<std::size_t>(least)])) least = d;
+  Vec3 e{0, 0, 0};
+  e[static_cast<std::size_t>(least)] = 1;
+  const double ew = dot(e, w);
+  Vec3 u{e[0] - ew * w[0], e[1] - ew * w[1], e[2] - ew * w[2]};
+  const double nu = norm(u);
+  u = {u[0] / nu, u[1] / nu, u[2] / nu};
+  const Vec3 v = cross(w, u);
+  for (auto& p : s.points) {
+    const Vec3 q = p;
+    for (std::size_t d = 0; d < 3; ++d) p[d] = from[d] + q[0] * u[d] + q[1] * v[d] + q[2] * w[d];
   }
   return s;
 }

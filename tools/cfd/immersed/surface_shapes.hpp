@@ -1,5 +1,5 @@
 // Closed triangulated test bodies for the 3-D immersed boundary (triangulated_surface.hpp): a
-// sphere as a subdivided icosahedron, an axis-aligned box and a z-aligned circular cylinder, all
+// sphere as a subdivided icosahedron, an axis-aligned box and a circular cylinder, all
 // with counter-clockwise (outward) triangles.
 #pragma once
 
@@ -24,5 +24,11 @@ TriangulatedSurface box_surface(const std::array<double, 3>& lo, const std::arra
 // end cap a fan around its centre.
 TriangulatedSurface cylinder_surface(double xc, double yc, double radius, double z0, double z1, int segments,
                                      int layers);
+
+// The closed circular cylinder from point `from` to point `to` on its axis (a pipe's wall, with
+// fluid: inside): `segments` vertices per ring, rings about one segment's length apart so that the
+// lateral triangles are about as long as they are wide.
+TriangulatedSurface cylinder_between(const std::array<double, 3>& from, const std::array<double, 3>& to, double radius,
+                                     int segments);
 
 }  // namespace finverse::cfd

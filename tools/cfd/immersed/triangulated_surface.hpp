@@ -13,10 +13,15 @@
 
 namespace finverse::cfd {
 
-// Vertices and triangles; triangles are counter-clockwise seen from outside (outward normals).
+// Vertices and triangles; triangles are counter-clockwise seen from the fluid (normals into it).
+// Usually the fluid is outside (outward normals, positive enclosed volume). With encloses_fluid
+// the surface bounds the fluid instead (a pipe, a junction): its normals point inwards, the
+// enclosed volume is negative and the solid reaches to infinity; other closed bodies may float
+// inside it, oriented outward as usual (docs/studies/pipe_flow.md).
 struct TriangulatedSurface {
   std::vector<std::array<double, 3>> points;
   std::vector<std::array<int, 3>> triangles;
+  bool encloses_fluid = false;
 };
 
 // The surface at one instant: positions, and the vertex velocity and acceleration (the no-slip

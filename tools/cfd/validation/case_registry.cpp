@@ -32,6 +32,9 @@ const std::vector<ValidationCase>& validation_cases() {
        run_heaving_plate_garrick, "data/reference/garrick_heaving_plate.json"},
       {"spanwise_plate_2d3d", "heaving/pitching plate across a slab (Re 100): 3-D thin body against the 2-D section",
        run_spanwise_plate_2d3d},
+      {"pipe_poiseuille",
+       "Poiseuille flow in a round pipe, the fluid inside the immersed wall (Re 1283): profile, shear, dp/dz",
+       run_pipe_poiseuille},
       {"sheet_towed_plate",
        "flat plate towed through fluid at rest against the fixed plate in a stream (Re 100): "
        "the zero-thickness sheet and the closed body",
@@ -136,6 +139,11 @@ std::vector<CaseOption> case_options(const ValidationCase& c, CaseOptions& o) {
                  "default dp/dn = 0, to compare (on bodies of about 28 cells per diameter or more; the default "
                  "D/12 keeps dp/dn = 0)"});
     v.push_back({"--span-cells", &o.span_cells, "cells along z (0: mid-span width about h; a multiple of 8)", 0, 4096});
+  } else if (n == "pipe_poiseuille") {
+    v.push_back({"--cells-per-diameter", &o.cells_per_diameter, "grid: h = D / N (default 22, h about 1 mm)", 4, 1000});
+    v.push_back({"--t-end", &o.t_end, "simulated time [s] (default: three times the pipe over its mean speed)", 0, 0,
+                 true});
+    v.push_back({"--reynolds", &o.reynolds, "Re = rho U D / mu on the centreline speed (default 1283)", 0, 0, true});
   } else if (n == "heaving_plate_garrick") {
     v.push_back({"--reynolds", &o.reynolds, "Re = U c / nu (default 1000)", 0, 0, true});
     v.push_back({"--reduced-frequency", &o.reduced_frequency, "k = pi f c / U (default 2)", 0, 0, true});

@@ -34,7 +34,7 @@ struct CaseOptions {
   double kick_velocity = -1;                  // Turek-Hron CFD3: the start-up push (< 0: the default)
   int span_cells = 0;                         // DFG 3D-1Z, spanwise_plate_2d3d: cells along z
   // Heaving plate against Garrick's theory (heaving_plate_garrick.hpp; also cfl above).
-  double reynolds = 0;                        // U c / nu
+  double reynolds = 0;                        // U c / nu (pipe_poiseuille: rho U D / mu)
   double reduced_frequency = 0;               // k = pi f c / U
   std::string amplitudes;                     // h0/c, comma-separated
   double thickness = 0;                       // t/c
@@ -100,5 +100,6 @@ int run_sphere_re100(const CaseOptions& o);
 int run_dfg_3d1z(const CaseOptions& o);
 int run_heaving_plate_garrick(const CaseOptions& o);
 int run_spanwise_plate_2d3d(const CaseOptions& o);
+int run_pipe_poiseuille(const CaseOptions& o);
 
 }  // namespace finverse::cfd::validation
