@@ -14,6 +14,8 @@
 #                        parser with line numbers for errors beats a hand-written subset.
 #   python3-jsonschema   Snakemake's config validation against config/config.schema.yaml.
 #   python3-numpy        array handling in the plotting and summary helpers.
+#   python3-scipy        Qhull's Delaunay triangulation for the flap phantom's floor
+#                        (hessenthaler_junction_stl.py): robust where a hand-written one is not.
 #   ninja-build          faster incremental builds than make (optional; CMake falls back to make).
 #   clang, libclang-rt-14-dev  the sanitized test build (test-all.sh; the runtime is only a
 #                        recommendation of clang): clang compiles that build in about
@@ -32,7 +34,7 @@ pkgs=(
   libeigen3-dev libopencv-dev libcgal-dev libvtk9-dev libhdf5-dev
   libpagmo-dev libcli11-dev libgtest-dev libgmock-dev nlohmann-json3-dev libsuitesparse-dev libyaml-cpp-dev
   clang libclang-rt-14-dev libomp-dev libopenmpi-dev openmpi-bin
-  snakemake slurm-wlm python3-jsonschema python3-yaml python3-numpy python3-h5py python3-matplotlib
+  snakemake slurm-wlm python3-jsonschema python3-yaml python3-numpy python3-scipy python3-h5py python3-matplotlib
 )
 peers=(openfoam calculix-ccx libhypre-dev)
 

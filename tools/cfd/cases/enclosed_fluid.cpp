@@ -101,12 +101,14 @@ void check_enclosed_fluid(const Reader& r, const YAML::Node& root, const FlowCas
   } catch (const Error& e) {
     r.fail(root["bodies"], "bodies", e.what());
   }
-  // Every other body floats in the fluid: all its vertices on the fluid side of the walls.
+  // Every other body floats in the fluid or is clamped to a wall: all its vertices on the fluid
+  // side of the walls or on them (a flap's root), within rounding of the walls' size.
+  const double touch = 1e-9 * norm(sub(wall.upper(), wall.lower()));
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     const CaseBody& b = s.bodies[i];
     if (b.encloses_fluid) continue;
     for (std::size_t v = 0; v < b.surface.points.size(); ++v)
-      if (!(wall.closest(b.surface.points[v]).distance > 0))
+      if (!(wall.closest(b.surface.points[v]).distance >= -touch))
         r.fail(root["bodies"][i], "bodies[" + std::to_string(i) + "]",
                "body " + b.name + " sticks through a wall: its vertex " + std::to_string(v) + " at " +
                    point(b.surface.points[v]) + " is outside the fluid that the bodies with fluid: inside enclose");
