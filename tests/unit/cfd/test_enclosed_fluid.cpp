@@ -22,8 +22,7 @@ namespace {
 
 TriangulatedSurface pipe_wall(double radius, double z0, double z1) {
   TriangulatedSurface s = cylinder_between({0, 0, z0}, {0, 0, z1}, radius, 64);
-  for (auto& t : s.triangles) std::swap(t[1], t[2]);
-  s.encloses_fluid = true;
+  enclose_fluid(s);
   return s;
 }
 

@@ -158,9 +158,7 @@ CaseBody body(const Reader& r, const YAML::Node& n, const std::string& at) {
     if (b.encloses_fluid && b.motion)
       r.fail(n["fluid"], at + ".fluid", "a body that encloses the fluid is fixed (leave out motion:)");
     // Outward as read; the walls of the fluid face inwards (triangulated_surface.hpp).
-    if (b.encloses_fluid)
-      for (auto& t : b.surface.triangles) std::swap(t[1], t[2]);
-    b.surface.encloses_fluid = b.encloses_fluid;
+    if (b.encloses_fluid) enclose_fluid(b.surface);
   }
   return b;
 }

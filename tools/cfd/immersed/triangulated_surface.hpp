@@ -9,6 +9,7 @@
 
 #include <array>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace finverse::cfd {
@@ -23,6 +24,13 @@ struct TriangulatedSurface {
   std::vector<std::array<int, 3>> triangles;
   bool encloses_fluid = false;
 };
+
+// The same closed surface as the wall of the fluid inside it: every triangle reversed (normals
+// into the fluid) and encloses_fluid set.
+inline void enclose_fluid(TriangulatedSurface& s) {
+  for (auto& t : s.triangles) std::swap(t[1], t[2]);
+  s.encloses_fluid = true;
+}
 
 // The surface at one instant: positions, and the vertex velocity and acceleration (the no-slip
 // datum and the pressure's Neumann datum dp/dn = -a . n are interpolated linearly over a triangle).

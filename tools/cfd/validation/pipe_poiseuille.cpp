@@ -38,8 +38,8 @@ cases::FlowCaseSpec pipe_case(const PipePoiseuilleSetup& p, double U, double h, 
   cases::CaseBody wall;
   wall.name = "pipe";
   wall.surface = cylinder_between({centre, centre, -3 * h}, {centre, centre, Lz + 3 * h}, R, 256);
-  for (auto& t : wall.surface.triangles) std::swap(t[1], t[2]);
-  wall.surface.encloses_fluid = wall.encloses_fluid = true;
+  enclose_fluid(wall.surface);
+  wall.encloses_fluid = true;
   wall.source = "cylinder, 256 segments";
   s.bodies.push_back(wall);
   s.initial_field = [=](double x, double y, double, double) {
