@@ -31,7 +31,9 @@ s = [socket.socket() for _ in range(2)]
 for x in s: x.bind(("127.0.0.1", 0))
 print(*[x.getsockname()[1] for x in s])')
 host=$(hostname -s)
-mkdir -p "$work"/state "$work"/spool
+mkdir -p "$work"/state "$work"/spool "$work"/tmp
+# TmpFS: PMIx makes its per-step directories there; under /tmp they would outlive the test, and
+# the next run's step 4.0 (job ids start at 1 again) would find its directory taken and not launch.
 # config_overrides: the node's size is taken from here, not measured; memory is not scheduled
 # (CR_Core), so the profile's per-stage memory requests fit a small machine.
 cat > "$work/slurm.conf" <<CONF
@@ -45,6 +47,7 @@ SlurmctldPort=$ctld_port
 SlurmdPort=$slurmd_port
 StateSaveLocation=$work/state
 SlurmdSpoolDir=$work/spool
+TmpFS=$work/tmp
 SlurmctldPidFile=$work/slurmctld.pid
 SlurmdPidFile=$work/slurmd.pid
 SlurmctldLogFile=$work/slurmctld.log
@@ -86,7 +89,9 @@ grep -q "loads:tasks=2" "$work/profile/config.yaml" && grep -q "^  - loads=1$" "
   { echo "profiles/slurm: no loads:tasks=1 or loads=32 line to adapt"; exit 1; }
 if ! snakemake results/tiny/loads.h5 -s "$src/Snakefile" -d "$run" --profile "$work/profile" --max-threads "$(nproc)" \
     --configfile "$src/config/cases/tiny.yaml" --config build_dir="$build" > "$work/run.log" 2>&1; then
-  cat "$work/run.log" "$run"/results/logs/tiny/loads.log 2> /dev/null; echo "snakemake through profiles/slurm failed"; exit 1
+  cat "$work/run.log" "$run"/results/logs/tiny/loads.log 2> /dev/null
+  tail -n 30 "$work"/slurmd.log "$run"/.snakemake/slurm_logs/rule_loads/*.log 2> /dev/null
+  echo "snakemake through profiles/slurm failed"; exit 1
 fi
 grep -q "pressure solve over 2 MPI ranks" "$run/results/logs/tiny/loads.log" ||
   { cat "$run/results/logs/tiny/loads.log"; echo "the loads stage did not run on 2 MPI ranks"; exit 1; }
