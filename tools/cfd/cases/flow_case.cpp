@@ -188,47 +188,87 @@ FlowCaseResult run_plane(const FlowCaseSpec& s, const StretchedGrid& grid, FlowS
   return r;
 }
 
-// Zero-thickness sheets, fixed or moving: the forces of the markers on each body's elements.
+// Zero-thickness sheets, fixed or moving, beside fixed closed bodies (3-D; walls that enclose the
+// fluid, a cylinder a flag hangs from): each sheet's force from its markers, each closed body's
+// from the traction on its surface; per body in the case's order.
 FlowCaseResult run_sheets(const FlowCaseSpec& s, const StretchedGrid& grid, FlowSolver& solver,
-                          const TriangulatedSurface& all, const std::vector<std::size_t>& first,
-                          const std::vector<std::size_t>& first_node,
                           const std::function<void(const StepStats&, double)>& progress,
+                          const std::function<void(const FlowSolver&)>& finished,
                           std::chrono::steady_clock::time_point t0) {
   if (s.control_volume) throw Error(s.name + ": outputs.control_volume: not available with sheet bodies");
+  std::vector<CaseBody> sheets, walls;
+  std::vector<std::size_t> sheet_of, wall_of;  // each one's place in s.bodies
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+    (s.bodies[b].sheet ? sheets : walls).push_back(s.bodies[b]);
+    (s.bodies[b].sheet ? sheet_of : wall_of).push_back(b);
+  }
+  if (!walls.empty() && s.dim == 2)
+    throw Error(s.name + ": bodies: a plane flow's sheet cannot share it with a closed body yet");
+  if (any_moves(walls))
+    throw Error(s.name + ": bodies: a closed body beside a sheet must be fixed (leave out its motion:)");
+  std::vector<std::size_t> first, first_node, wall_first;
+  const TriangulatedSurface all = merged_bodies(sheets, first, &first_node);
+  const TriangulatedSurface wall = merged_bodies(walls, wall_first, nullptr);
+  if (!walls.empty()) solver.immerse(wall);
   std::vector<Vec3> rest(all.points.begin(), all.points.end());
   SheetMotion motion = [rest](double) { return SheetState{rest, {}}; };
-  if (any_moves(s.bodies))
-    motion = [&bodies = s.bodies, rest, first_node](double t) {
-      NodeKinematics k = place_nodes(bodies, rest, first_node, t);
+  if (any_moves(sheets))
+    motion = [sheets, rest, first_node](double t) {
+      NodeKinematics k = place_nodes(sheets, rest, first_node, t);
       return SheetState{std::move(k.position), std::move(k.velocity)};
     };
   solver.immerse_sheet(SheetTopology{s.dim, rest.size(), all.triangles}, rest, s.sheet, motion);
   const auto u0 = s.initial_velocity;
-  solver.initialise([u0](double, double, double, double) { return u0; });
+  if (s.initial_field)
+    solver.initialise(s.initial_field);
+  else
+    solver.initialise([u0](double, double, double, double) { return u0; });
+  std::optional<SurfaceTraction3D> traction;
+  if (!walls.empty()) {
+    SurfaceClip clip;  // walls that enclose the fluid cross the domain's sides
+    clip.enabled = wall.encloses_fluid;
+    for (std::size_t k = 0; k < 6; ++k) clip.no_slip[k] = s.sides[k].type == FlowBcType::NoSlip;
+    traction.emplace(grid, *solver.immersed(), *solver.body_surface(), clip);
+  }
   FlowCaseResult r;
   r.cells = {grid.nx(), grid.ny(), s.dim == 3 ? grid.nz() : 1};
-  r.triangles = static_cast<long>(all.triangles.size());
+  r.triangles = static_cast<long>(all.triangles.size() + wall.triangles.size());
   r.surface_samples = static_cast<long>(solver.sheet()->size());
+  if (traction) {
+    r.ghost_cells = static_cast<long>(solver.immersed()->ghosts().size());
+    r.surface_samples += static_cast<long>(traction->samples().size());
+  }
   const double U = s.reference_speed;
   const double scale = 2 / (U * U * s.reference_area);
+  using Forces = std::vector<std::array<double, 3>>;
   march(solver, s, r, progress, [&](double t) {
+    Forces force(s.bodies.size(), {0, 0, 0}), pressure = force, viscous = force;
     const SheetLoads L = solver.sheet_loads(s.rho);
-    std::vector<std::array<double, 3>> bodies(first.size() - 1, {0, 0, 0});
     for (std::size_t m = 0; m < L.marker.size(); ++m) {
       const auto e = static_cast<std::size_t>(solver.sheet()->element(m));
-      const std::size_t b =
-          static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), e) - first.begin()) - 1;
-      for (int c = 0; c < 3; ++c) bodies[b][c] += L.marker[m][c];
+      const auto b = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), e) - first.begin()) - 1;
+      // A sheet's force is the jump across it: pressure and shear are not told apart.
+      for (int c = 0; c < 3; ++c) force[sheet_of[b]][c] += L.marker[m][c], pressure[sheet_of[b]][c] += L.marker[m][c];
+    }
+    if (traction) {
+      const SurfaceForces F = traction->evaluate(solver.u(0), solver.u(1), solver.u(2), solver.p(), s.nu, s.rho);
+      const Forces wp = per_body(F.pressure, wall_first), wv = per_body(F.viscous, wall_first);
+      for (std::size_t w = 0; w < walls.size(); ++w)
+        for (int c = 0; c < 3; ++c) {
+          pressure[wall_of[w]][c] = wp[w][c];
+          viscous[wall_of[w]][c] = wv[w][c];
+          force[wall_of[w]][c] = wp[w][c] + wv[w][c];
+        }
     }
     r.time.push_back(t);
-    r.force.push_back(bodies);
-    // A sheet's force is the jump across it: pressure and shear are not told apart.
-    r.pressure.push_back(bodies);
-    r.viscous.push_back(std::vector<std::array<double, 3>>(bodies.size(), {0, 0, 0}));
-    return scale * bodies[0][0] / s.rho;
+    r.force.push_back(force);
+    r.pressure.push_back(pressure);
+    r.viscous.push_back(viscous);
+    return scale * force[0][0] / s.rho;
   });
   std::vector<ControlVolumeSample> none;
   finish(s, none, r, t0);
+  if (finished) finished(solver);
   return r;
 }
 
@@ -277,20 +317,17 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
   opt.viscous_wall_pressure = s.wall_momentum_balance;
   check_motion_span(s);
   FlowSolver solver;
-  const std::size_t sheets = static_cast<std::size_t>(
-      std::count_if(s.bodies.begin(), s.bodies.end(), [](const CaseBody& c) { return c.sheet; }));
-  if (sheets > 0 && sheets < s.bodies.size())
-    throw Error(s.name + ": bodies: every body is a sheet or none is (closed bodies and sheets cannot be mixed yet)");
-  std::vector<std::size_t> first, first_node;
-  const TriangulatedSurface body = merged_bodies(s.bodies, first, &first_node);
+  const bool sheets = std::any_of(s.bodies.begin(), s.bodies.end(), [](const CaseBody& c) { return c.sheet; });
   if (s.dim == 2) {
     opt.cut_cell_continuity_fixed = s.cut_cells && !any_moves(s.bodies);
     solver.setup(grid, b, opt);
-    if (sheets > 0) return run_sheets(s, grid, solver, body, first, first_node, progress, t0);
+    if (sheets) return run_sheets(s, grid, solver, progress, finished, t0);
     return run_plane(s, grid, solver, progress, t0);
   }
   solver.setup(grid, b, opt);
-  if (sheets > 0) return run_sheets(s, grid, solver, body, first, first_node, progress, t0);
+  if (sheets) return run_sheets(s, grid, solver, progress, finished, t0);
+  std::vector<std::size_t> first, first_node;
+  const TriangulatedSurface body = merged_bodies(s.bodies, first, &first_node);
   const bool moving = any_moves(s.bodies);
   if (moving && s.control_volume) throw Error(s.name + ": outputs.control_volume: not available with moving bodies");
   if (moving) {

@@ -36,11 +36,12 @@ void check_sheet_state(const SheetState& s, std::size_t nodes, double t) {
 
 void FlowSolver::immerse_sheet(const SheetTopology& topology, const std::vector<Vec3>& rest,
                                const SheetForcingOptions& options, SheetMotion motion) {
-  // A fixed 2-D ghost-cell body may share the grid (a flag's sheet on a cylinder): the forcing acts
-  // on u* after the predictor, and the body's ghost cells take their wall condition again after the
-  // projection, as without a sheet. A moving one would change cells' kinds under the markers.
-  if (moving_ || deforming_ || surface_motion_ || surface_)
-    throw Error("flow solver: a sheet shares the grid only with a fixed 2-D ghost-cell body");
+  // A fixed ghost-cell body may share the grid (a flag's sheet on a cylinder; a flap clamped to the
+  // walls of a pipe junction, 3-D): the forcing acts on u* after the predictor, and the body's
+  // ghost cells take their wall condition again after the projection, as without a sheet. A moving
+  // one would change cells' kinds under the markers.
+  if (moving_ || deforming_ || surface_motion_)
+    throw Error("flow solver: a sheet shares the grid only with fixed ghost-cell bodies");
   if (topology.dim != dim())
     throw Error("flow solver: a " + std::to_string(topology.dim) + "-D sheet in a " + std::to_string(dim()) +
                 "-D grid");
