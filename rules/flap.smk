@@ -100,3 +100,49 @@ rule flap_loop_phase_I_plane:
         "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads 1 flap --reference {input.reference} --fit {input.fit}"
         " --plane {input.plane} {params.mesh} --out-dir results/validation/loop_hessenthaler"
         " --name with_phase_I_plane 2> {log} " + METRIC_MISSED_IS_A_RESULT
+
+
+# (ii) in 3-D (issue 49): fin-fsi flap, the flap's shell strip (E from (i)) as a zero-thickness
+# sheet in the junction of data/cases/cfd/hessenthaler/junction_flow.yaml (the fluid inside its
+# walls, the two parabolic inflows), the steady fixed point on the held sheet's time-mean load
+# (tools/fsi/validation/hessenthaler_phase1_fsi.hpp; docs/studies/hessenthaler_flap.md). Heavy
+# (h = 1 mm: 768 000 cells), not in CI; the grid study runs h = 2, 1.5 and 1 mm by name:
+#   snakemake -c1 results/validation/flap_phase1/summary.json          (h = 1 mm)
+#   snakemake -c1 results/validation/flap_phase1/grid_h2.0mm/summary.json
+_FLAP_JUNCTION = os.path.join(REPO, "data", "cases", "cfd", "hessenthaler", "junction_flow.yaml")
+_FLAP_CENTRELINE = os.path.join(REPO, "data", "reference", "hessenthaler2017", "phaseI_centreline.csv")
+_FLAP_MODULUS = (
+    "E=$(python3 -c 'import json, sys; print(next(m[\"value\"] for m in json.load(open(sys.argv[1]))[\"metrics\"]"
+    " if m[\"name\"] == \"youngs_modulus\"))' {input.modulus}) && "
+)
+
+
+rule flap_phase1_grid:
+    input:
+        exe=EXE("fin-fsi"),
+        flow=_FLAP_JUNCTION,
+        stl=os.path.join(REPO, "data", "cases", "cfd", "hessenthaler", "junction.stl"),
+        reference=_FLAP_REFERENCE,
+        centreline=_FLAP_CENTRELINE,
+        modulus=_FLAP_FIT,
+    output:
+        "results/validation/flap_phase1/grid_h{h}mm/summary.json",
+    log:
+        "results/logs/validation/flap_phase1_grid_h{h}mm.log",
+    wildcard_constraints:
+        h=r"[0-9]+\.[0-9]+",
+    threads: 1
+    shell:
+        _FLAP_MODULUS + "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads 1 flap --flow {input.flow}"
+        " --reference {input.reference} --centreline {input.centreline} --youngs-modulus $E --h $(python3 -c"
+        " 'print({wildcards.h} * 1e-3)') --out-dir results/validation/flap_phase1 --name grid_h{wildcards.h}mm"
+        " 2> {log} " + METRIC_MISSED_IS_A_RESULT
+
+
+rule flap_phase1:
+    input:
+        "results/validation/flap_phase1/grid_h1.0mm/summary.json",
+    output:
+        "results/validation/flap_phase1/summary.json",
+    shell:
+        "cp {input} {output}"

@@ -11,6 +11,9 @@
 //       [--periods P --output-periods 1] [--summary s.json]
 //   fin-fsi hessenthaler_plane --reference data/reference/hessenthaler2017.json --youngs-modulus E
 //       --out-dir DIR [--name N]   (issue 34: the Phase I flow, plane version only)
+//   fin-fsi flap --flow data/cases/cfd/hessenthaler/junction_flow.yaml --reference
+//       data/reference/hessenthaler2017.json --centreline phaseI_centreline.csv --youngs-modulus E
+//       [--h 0.002]   (issue 49: Phase I in 3-D, the steady fixed point)
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -265,6 +268,32 @@ struct HessenthalerPlaneCommand {
   }
 };
 
+// fin-fsi flap: the Hessenthaler (2017) Phase I experiment in 3-D, the flap as a sheet in the
+// junction of a fin-cfd case file (hessenthaler_phase1_fsi.hpp).
+struct FlapPhaseICommand {
+  fv::HessenthalerPhaseIOptions o;
+  std::string out_dir = "results/validation", name = "flap_phase1";
+  CLI::App* cmd = nullptr;
+
+  void add(CLI::App& app) {
+    cmd = app.add_subcommand("flap", "Hessenthaler 2017 Phase I in 3-D: the flap in the junction (issue 49)");
+    fv::add_hessenthaler_phase1_flags(*cmd, o);
+    cmd->add_option("--out-dir", out_dir, "directory that receives <name>/summary.json")->capture_default_str();
+    cmd->add_option("--name", name, "case name")->capture_default_str();
+  }
+  int run() {
+    o.progress = [](const std::string& line) { std::cerr << "fin-fsi flap: " << line << "\n"; };
+    finverse::Summary summary = fv::run_hessenthaler_phase1(o);
+    const auto path = std::filesystem::path(out_dir) / name / "summary.json";
+    std::filesystem::create_directories(path.parent_path());
+    summary.write(path);
+    for (const auto& m : summary.metrics())
+      std::cerr << "  " << m.name << " = " << m.value << " " << m.units << "\n";
+    std::cerr << "fin-fsi flap: wrote " << path.string() << "\n";
+    return summary.pass() ? 0 : 1;
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -280,6 +309,8 @@ int main(int argc, char** argv) {
   fin.add(app);
   HessenthalerPlaneCommand hessenthaler_plane;
   hessenthaler_plane.add(app);
+  FlapPhaseICommand flap;
+  flap.add(app);
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     if (turek_hron.th->parsed()) return turek_hron.run();
     if (pitching_plate.pp->parsed()) return pitching_plate.run();
@@ -288,6 +319,7 @@ int main(int argc, char** argv) {
       throw finverse::Error("fin-fsi " + app.get_subcommands().front()->get_name() +
                             " does not run on MPI ranks (fin-fsi fin does); run it without mpirun");
     if (hessenthaler_plane.hp->parsed()) return hessenthaler_plane.run();
+    if (flap.cmd->parsed()) return flap.run();
     return 2;
   });
 }

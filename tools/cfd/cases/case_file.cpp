@@ -333,7 +333,7 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
     }
     if (!b[sides[k]]) r.fail(b, at, "missing");
     const YAML::Node side = b[sides[k]];
-    r.only(side, at, {"type", "velocity", "profile", "ramp_time", "pipes"});
+    r.only(side, at, {"type", "velocity", "profile", "ramp_time", "pipes", "convection"});
     if (!side["type"]) r.fail(side, at + ".type", "missing");
     s.sides[k].type = side_type(r, side["type"], at + ".type");
     if (side["pipes"]) {
@@ -351,6 +351,13 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
       s.sides[k].parabolic = p == "parabolic";
     }
     if (side["ramp_time"]) s.sides[k].ramp_time = r.non_negative(side["ramp_time"], at + ".ramp_time");
+    if (side["convection"]) {
+      const std::string c = r.scalar<std::string>(side["convection"], at + ".convection", "mean or local");
+      if (c != "mean" && c != "local") r.fail(side["convection"], at + ".convection", "'" + c + "', expected mean or local");
+      if (s.sides[k].type != FlowBcType::ConvectiveOutlet)
+        r.fail(side["convection"], at + ".convection", "only a convective_outlet side has a convection speed");
+      s.sides[k].local_convection = c == "local";
+    }
   }
   if (root["initial"]) {
     r.only(root["initial"], "initial", {"velocity"});

@@ -285,17 +285,12 @@ StretchedGrid flow_case_grid(const FlowCaseSpec& s) {
                        axis(d[4], d[5], c[4], c[5], s.h, s.stretch_ratio));
 }
 
-FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(const StepStats&, double)>& progress,
-                             const std::function<void(const FlowSolver&)>& finished) {
-  if (!(s.h > 0)) throw Error(s.name + ": grid.h must be > 0");
-  if (!(s.t_end > 0)) throw Error(s.name + ": time.t_end must be > 0");
-  if (s.bodies.empty()) throw Error(s.name + ": no bodies");
-  const auto t0 = std::chrono::steady_clock::now();
-  const StretchedGrid grid = flow_case_grid(s);
+FlowBoundary flow_case_boundary(const FlowCaseSpec& s) {
   FlowBoundary b;
   for (int k = 0; k < 6; ++k) {
     const SideCondition& sc = s.sides[k];
     b[static_cast<Side>(k)].type = sc.type;
+    b[static_cast<Side>(k)].local_convection = sc.local_convection;
     if (sc.type == FlowBcType::Inlet) {
       const int normal = k / 2;
       auto& side = b[static_cast<Side>(k)];
@@ -308,6 +303,10 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
       }
     }
   }
+  return b;
+}
+
+FlowOptions flow_case_options(const FlowCaseSpec& s) {
   FlowOptions opt;
   opt.nu = s.nu;
   opt.cfl = s.cfl;
@@ -315,6 +314,18 @@ FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(con
   opt.helmholtz_rtol = s.helmholtz_rtol;
   opt.poisson.rtol = s.poisson_rtol;
   opt.viscous_wall_pressure = s.wall_momentum_balance;
+  return opt;
+}
+
+FlowCaseResult run_flow_case(const FlowCaseSpec& s, const std::function<void(const StepStats&, double)>& progress,
+                             const std::function<void(const FlowSolver&)>& finished) {
+  if (!(s.h > 0)) throw Error(s.name + ": grid.h must be > 0");
+  if (!(s.t_end > 0)) throw Error(s.name + ": time.t_end must be > 0");
+  if (s.bodies.empty()) throw Error(s.name + ": no bodies");
+  const auto t0 = std::chrono::steady_clock::now();
+  const StretchedGrid grid = flow_case_grid(s);
+  const FlowBoundary b = flow_case_boundary(s);
+  FlowOptions opt = flow_case_options(s);
   check_motion_span(s);
   FlowSolver solver;
   const bool sheets = std::any_of(s.bodies.begin(), s.bodies.end(), [](const CaseBody& c) { return c.sheet; });

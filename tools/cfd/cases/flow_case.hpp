@@ -37,6 +37,7 @@ struct SideCondition {
   bool parabolic = false;            // inlet: a parabola across the side instead of a uniform stream
   double ramp_time = 0;              // inlet: (1 - cos(pi t / ramp)) / 2 for t < ramp [s]
   std::vector<PipeInlet> pipes;      // inlet: parabolas on pipes' cross-sections (zero elsewhere)
+  bool local_convection = false;     // convective outlet: each face's own speed (convection: local)
 };
 
 struct CaseBody {
@@ -119,6 +120,12 @@ TriangulatedSurface merged_bodies(const std::vector<CaseBody>& bodies, std::vect
 // Runs the case; `progress` is called after every step with the first body's drag coefficient at
 // the latest force evaluation; `finished` (3-D closed bodies) with the solver at t_end, to sample
 // its fields.
+// The case's side conditions (inlets with their profiles and ramps, pipes) and solver options
+// (nu, CFL, dt_max, tolerances), as run_flow_case sets up its solver; for runs that drive a
+// FlowSolver themselves (fin-fsi flap).
+FlowBoundary flow_case_boundary(const FlowCaseSpec& spec);
+FlowOptions flow_case_options(const FlowCaseSpec& spec);
+
 FlowCaseResult run_flow_case(const FlowCaseSpec& spec,
                              const std::function<void(const StepStats&, double cx)>& progress = {},
                              const std::function<void(const FlowSolver&)>& finished = {});

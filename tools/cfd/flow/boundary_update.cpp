@@ -1,11 +1,14 @@
 // Boundary values of the new time level t^{n+1}: Dirichlet velocities of walls and inlets (with
 // their time ramps), the convective outlet advanced explicitly,
 //     u_b^{n+1} = u_b^n - dt U_c (u_b^n - u_P^n) / (h_P / 2),   U_c = mean outflow speed,
+// or with local_convection U_c = max(u_n, 0) on each face (Orlanski's local advection speed,
+// frozen where the flow comes back in; dt U_c / (h / 2) = 2 CFL <= 1 at the solver's CFL 0.5),
 // and the boundary face-normal velocities that enter continuity, with the outlet fluxes shifted
 // uniformly so that the net flux through the boundary is zero: the pressure-correction Poisson
 // problem with Neumann conditions is then compatible and the faces become exactly solenoidal.
 // Only the faces of fluid cells count: where a body crosses a side (the wall of a pipe whose fluid
 // is inside), the faces of its cells carry no flux.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -75,7 +78,13 @@ void FlowSolver::set_boundary_values(double t, double dt, bool initial) {
             v[m] = up;
           } else {
             const double half = 0.5 * grid_.axis(a).width(a == 0 ? i : a == 1 ? j : k);
-            v[m] = old[m] - dt * uc * (old[m] - up) / half;
+            double speed = uc;
+            if (b.local_convection) {
+              int f[3] = {i, j, k};
+              if (side_is_high(side)) ++f[a];
+              speed = std::max(0.0, (side_is_high(side) ? 1.0 : -1.0) * U_(a, f[0], f[1], f[2]));
+            }
+            v[m] = old[m] - dt * speed * (old[m] - up) / half;
           }
         } else {
           double x[3] = {grid_.xc(i), grid_.yc(j), grid_.zc(k)};

@@ -37,6 +37,10 @@ struct FlowSideBc {
   double speed = 1.0;
   double ramp_time = 0.0;     // > 0: (1 - cos(pi t / ramp_time)) / 2 for t < ramp_time
   VelocityFunction function;  // InletProfile::Function (also used for moving walls in tests)
+  // ConvectiveOutlet: advect with each face's own outflow speed max(u_n, 0) instead of the side's
+  // mean. Jets that reach the outlet (a pipe junction's) at many times the mean speed would
+  // otherwise meet a nearly frozen boundary value and reflect (boundary_update.cpp).
+  bool local_convection = false;
 };
 
 struct FlowBoundary {

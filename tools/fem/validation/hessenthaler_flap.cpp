@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <fstream>
 #include <vector>
 
@@ -75,6 +76,59 @@ FlapModel parse_flap_model(const std::string& name) {
 
 const char* to_string(FlapModel model) { return model == FlapModel::beam ? "beam" : "shell"; }
 
+namespace {
+
+// Station s along the flap -> rest position on the arc of curvature k (a straight line for k = 0),
+// offset c along the arc's normal (the cupping).
+Vec3 rest_position(double k, double s, double y, double c) {
+  const double x = std::abs(k * s) < 1e-12 ? s : std::sin(k * s) / k;
+  const double z = std::abs(k * s) < 1e-12 ? 0.5 * k * s * s : (1 - std::cos(k * s)) / k;
+  return Vec3(x - c * std::sin(k * s), y, z + c * std::cos(k * s));
+}
+
+void check_shape(const FlapMesh& mesh, const FlapShape& shape) {
+  if (mesh.along < 1 || (mesh.model == FlapModel::shell && mesh.across < 1))
+    throw InvalidInput("flap: the mesh needs at least one cell along and across");
+  if (!std::isfinite(shape.rest_curvature) || !std::isfinite(shape.rest_cupping) || !(shape.distal_softening < 1))
+    throw InvalidInput("flap: the rest curvatures must be finite and the distal softening below 1");
+  if (mesh.model == FlapModel::beam && shape.rest_cupping != 0)
+    throw InvalidInput("flap: a cupped rest shape needs the shell model");
+}
+
+}  // namespace
+
+FlapShellModel flap_shell_model(const HessenthalerFlap& flap, double E, const FlapMesh& mesh, const FlapShape& shape) {
+  if (!(E > 0) || !std::isfinite(E)) throw InvalidInput("flap: Young's modulus must be positive and finite");
+  check_shape({FlapModel::shell, mesh.along, mesh.across}, shape);
+  const double L = flap.length, b = flap.width;
+  FlapShellModel f;
+  Model& model = f.model;
+  const int stiff = model.add_material({"silicone", E, flap.poisson_ratio, flap.solid_density});
+  const int soft = model.add_material({"silicone_distal", E * (1 - shape.distal_softening), flap.poisson_ratio,
+                                       flap.solid_density});
+  const auto material_at = [&](double s) { return s > 0.5 * L && shape.distal_softening != 0 ? soft : stiff; };
+  f.grid = rectangle_mesh(L, b, mesh.along, mesh.across);
+  for (const Vec3& X : f.grid.nodes) {
+    const double y = X.y() - 0.5 * b;
+    model.add_node(rest_position(shape.rest_curvature, X.x(), X.y(), 0.5 * shape.rest_cupping * y * y));
+  }
+  const auto& X = model.reference_positions();
+  for (const auto& t : f.grid.triangles) {
+    const double centroid = (f.grid.nodes[t[0]].x() + f.grid.nodes[t[1]].x() + f.grid.nodes[t[2]].x()) / 3;
+    const auto& m = model.materials()[static_cast<std::size_t>(material_at(centroid))];
+    model.add_element(std::make_unique<CorotationalShell>(t[0], t[1], t[2], X[t[0]], X[t[1]], X[t[2]], m,
+                                                          flap.thickness));
+  }
+  f.rows.resize(static_cast<std::size_t>(mesh.along + 1));
+  for (int j = 0; j <= mesh.across; ++j) {
+    const double wj = (j == 0 || j == mesh.across) ? 0.5 : 1.0;
+    model.fix_node(f.grid.node(0, j));
+    for (int i = 0; i <= mesh.along; ++i)
+      f.rows[static_cast<std::size_t>(i)].push_back({f.grid.node(i, j), wj / mesh.across});
+  }
+  return f;
+}
+
 FlapDeflection flap_buoyancy_deflection(const HessenthalerFlap& flap, double E, const FlapMesh& mesh,
                                         int load_steps, SolverBackend backend) {
   return flap_deflection(flap, E, mesh, flap.buoyancy_per_length(), load_steps, backend);
@@ -92,21 +146,8 @@ FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const Fla
   for (const auto* profile : {&load.transverse, &load.along})
     for (double v : *profile)
       if (!std::isfinite(v)) throw InvalidInput("flap: the load profile must be finite");
-  if (mesh.along < 1 || (mesh.model == FlapModel::shell && mesh.across < 1))
-    throw InvalidInput("flap: the mesh needs at least one cell along and across");
-  if (!std::isfinite(shape.rest_curvature) || !std::isfinite(shape.rest_cupping) || !(shape.distal_softening < 1))
-    throw InvalidInput("flap: the rest curvatures must be finite and the distal softening below 1");
-  if (mesh.model == FlapModel::beam && shape.rest_cupping != 0)
-    throw InvalidInput("flap: a cupped rest shape needs the shell model");
+  check_shape(mesh, shape);
   const double L = flap.length, b = flap.width;
-  // Station s along the flap -> rest position on the arc of curvature k (a straight line for k = 0),
-  // offset c along the arc's normal (the cupping).
-  const double k = shape.rest_curvature;
-  const auto rest = [&](double s, double y, double c) {
-    const double x = std::abs(k * s) < 1e-12 ? s : std::sin(k * s) / k;
-    const double z = std::abs(k * s) < 1e-12 ? 0.5 * k * s * s : (1 - std::cos(k * s)) / k;
-    return Vec3(x - c * std::sin(k * s), y, z + c * std::cos(k * s));
-  };
   const auto profile_at = [&](const std::vector<double>& p, double s) {
     if (p.empty()) return 0.0;
     const int n = static_cast<int>(p.size());
@@ -116,18 +157,20 @@ FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const Fla
   const auto qz = [&](double s) { return load.uniform + profile_at(load.transverse, s); };
   const auto qx = [&](double s) { return profile_at(load.along, s); };
   // The flap along +x, its width along y, its thickness (and the buoyancy) along +z.
-  Model model;
-  const int stiff = model.add_material({"silicone", E, flap.poisson_ratio, flap.solid_density});
-  const int soft = model.add_material({"silicone_distal", E * (1 - shape.distal_softening), flap.poisson_ratio,
-                                       flap.solid_density});
-  const auto material_at = [&](double s) { return s > 0.5 * L && shape.distal_softening != 0 ? soft : stiff; };
+  std::optional<FlapShellModel> shell;
+  Model beam_model;
+  if (mesh.model == FlapModel::shell) shell = flap_shell_model(flap, E, mesh, shape);
+  Model& model = shell ? shell->model : beam_model;
   std::vector<std::pair<int, double>> tip, root;  // node, weight of the tip / clamp row's centre
   std::vector<std::vector<std::pair<int, double>>> stations(mesh.along + 1);  // the same per station
   const double ds = L / mesh.along;
   if (mesh.model == FlapModel::beam) {
-    for (int i = 0; i <= mesh.along; ++i) model.add_node(rest(ds * i, 0, 0));
+    const int stiff = model.add_material({"silicone", E, flap.poisson_ratio, flap.solid_density});
+    const int soft = model.add_material({"silicone_distal", E * (1 - shape.distal_softening), flap.poisson_ratio,
+                                         flap.solid_density});
+    for (int i = 0; i <= mesh.along; ++i) model.add_node(rest_position(shape.rest_curvature, ds * i, 0, 0));
     for (int i = 0; i < mesh.along; ++i)
-      model.add_beam(i, i + 1, material_at(ds * (i + 0.5)),
+      model.add_beam(i, i + 1, ds * (i + 0.5) > 0.5 * L && shape.distal_softening != 0 ? soft : stiff,
                      TaperedRectangle::uniform(b, flap.thickness), Vec3(0, 1, 0));
     model.fix_node(0);
     // Lumped: half of each element's load at either end (O(h^2) in the tip deflection).
@@ -140,31 +183,18 @@ FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const Fla
     root.push_back({0, 1.0});
     for (int i = 0; i <= mesh.along; ++i) stations[i].push_back({i, 1.0});
   } else {
-    const TriangleMesh tm = rectangle_mesh(L, b, mesh.along, mesh.across);
-    std::vector<int> id;
-    for (const Vec3& X : tm.nodes) {
-      const double y = X.y() - 0.5 * b;
-      id.push_back(model.add_node(rest(X.x(), X.y(), 0.5 * shape.rest_cupping * y * y)));
-    }
-    const auto& X = model.reference_positions();
-    for (const auto& t : tm.triangles) {
-      const double centroid = (tm.nodes[t[0]].x() + tm.nodes[t[1]].x() + tm.nodes[t[2]].x()) / 3;
-      const auto& m = model.materials()[static_cast<std::size_t>(material_at(centroid))];
-      model.add_element(std::make_unique<CorotationalShell>(id[t[0]], id[t[1]], id[t[2]], X[id[t[0]]], X[id[t[1]]],
-                                                            X[id[t[2]]], m, flap.thickness));
-    }
+    const TriangleMesh& tm = shell->grid;
+    stations = shell->rows;
     for (int j = 0; j <= mesh.across; ++j) {
       const double wj = (j == 0 || j == mesh.across) ? 0.5 : 1.0;
-      model.fix_node(id[tm.node(0, j)]);
-      for (int i = 0; i <= mesh.along; ++i) stations[i].push_back({id[tm.node(i, j)], wj / mesh.across});
       for (int i = 1; i <= mesh.along; ++i) {
         const double w = ds * (i == mesh.along ? 0.5 : 1.0) * wj / mesh.across, s = ds * i;
-        model.add_nodal_load(id[tm.node(i, j)], 2, qz(s) * w);
-        if (qx(s) != 0) model.add_nodal_load(id[tm.node(i, j)], 0, qx(s) * w);
+        model.add_nodal_load(tm.node(i, j), 2, qz(s) * w);
+        if (qx(s) != 0) model.add_nodal_load(tm.node(i, j), 0, qx(s) * w);
       }
-      tip.push_back({id[tm.node(mesh.along, j)], wj / mesh.across});
-      root.push_back({id[tm.node(0, j)], wj / mesh.across});
     }
+    tip = stations.back();
+    root = stations.front();
   }
   StaticOptions so;
   so.steps = load_steps;

@@ -15,7 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "fem/model.hpp"
 #include "fem/sparse_solver.hpp"
+#include "fem/validation/shell_meshes.hpp"
 
 namespace finverse::fem::validation {
 
@@ -73,6 +75,19 @@ struct FlapLoad {
   double uniform = 0;
   std::vector<double> transverse, along;
 };
+
+// The shell strip without loads, in the flap's frame (along +x from the clamp, width along y,
+// thickness and buoyancy along +z): model node n is grid node n (grid.node(i, j), i along, j
+// across), the clamp row i = 0 fixed; grid.triangles are the mid-surface's; rows[i] the nodes of
+// row i with the weights of the width's mean (the centreline station at i L / along).
+struct FlapShellModel {
+  Model model;
+  TriangleMesh grid;
+  std::vector<std::vector<std::pair<int, double>>> rows;
+};
+// Throws InvalidInput for a mesh without cells or a shape the shell cannot carry.
+FlapShellModel flap_shell_model(const HessenthalerFlap& flap, double youngs_modulus, const FlapMesh& mesh,
+                                const FlapShape& shape = {});
 
 // Static deflection under `load` of the flap `shape` (tip: the tip row's mean z minus the clamp
 // row's, so a curved rest shape's offset counts; tip_axial: tip x minus the length). Throws

@@ -112,4 +112,33 @@ void add_hessenthaler_plane_flags(CLI::App& command, HessenthalerPlaneOptions& o
   command.add_option("--flag-nx", o.mesh.nx, "Q9 elements along the flap")->capture_default_str();
 }
 
+void add_hessenthaler_phase1_flags(CLI::App& command, HessenthalerPhaseIOptions& o) {
+  command.add_option("--flow", o.flow_case, "fin-cfd case file of the junction (walls, inflows)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command.add_option("--reference", o.reference, "hessenthaler2017.json")->required()->check(CLI::ExistingFile);
+  command.add_option("--centreline", o.centreline, "the MRI centreline (phaseI_centreline.csv)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command.add_option("--youngs-modulus", o.youngs_modulus, "the flap's E [Pa] (fin-fit flap)")->required();
+  command.add_option("--h", o.h, "cell width [m] (default: the case file's grid.h)");
+  command.add_option("--flap-along", o.mesh.along, "shell cells along the flap")->capture_default_str();
+  command.add_option("--flap-across", o.mesh.across, "shell cells across the flap")->capture_default_str();
+  command.add_option("--develop-time", o.develop_time, "the flow's start with the flap held [s]")
+      ->capture_default_str();
+  command.add_option("--settle-time", o.settle_time, "the flow's settling before each window [s]")
+      ->capture_default_str();
+  command.add_option("--window-time", o.window_time, "the load's averaging window [s]")->capture_default_str();
+  command.add_option("--move-time", o.move_time, "the sheet's step between iterates, at least [s]")
+      ->capture_default_str();
+  command.add_option("--move-speed", o.move_speed, "the sheet's mean speed between iterates, at most [m/s]")
+      ->capture_default_str();
+  command.add_option("--omega", o.omega, "first relaxation factor of the load")->capture_default_str();
+  command.add_option("--acceleration", o.acceleration, "iqn-ils, aitken or constant")->capture_default_str();
+  command.add_option("--max-iterations", o.max_iterations, "fixed-point iterates")->capture_default_str();
+  command.add_option("--tolerance", o.tolerance, "converged: S(F) and S(f) closer than this [m]")
+      ->capture_default_str();
+  command.add_flag("--start-straight", o.start_straight, "start straight instead of the no-flow buoyancy shape");
+}
+
 }  // namespace finverse::fsi::validation

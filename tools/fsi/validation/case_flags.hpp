@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "fsi/validation/hessenthaler_phase1_fsi.hpp"
 #include "fsi/validation/hessenthaler_plane_fsi.hpp"
 #include "fsi/validation/pitching_plate_fsi.hpp"
 #include "fsi/validation/turek_hron_fsi.hpp"
@@ -14,5 +15,6 @@ namespace finverse::fsi::validation {
 void add_turek_hron_flags(CLI::App& command, TurekHronFsiOptions& o);
 void add_pitching_plate_flags(CLI::App& command, PitchingPlateOptions& o);
 void add_hessenthaler_plane_flags(CLI::App& command, HessenthalerPlaneOptions& o);
+void add_hessenthaler_phase1_flags(CLI::App& command, HessenthalerPhaseIOptions& o);
 
 }  // namespace finverse::fsi::validation

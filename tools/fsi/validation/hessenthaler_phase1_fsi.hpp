@@ -1,0 +1,64 @@
+// Issue 49: the Hessenthaler et al. (2017) Phase I experiment in 3-D. The flow is a fin-cfd case
+// file (data/cases/cfd/hessenthaler/junction_flow.yaml: the junction's walls with the fluid inside,
+// the two parabolic inflows and their ramp); the flap is the shell strip fin-fit flap fits
+// (fem/validation/hessenthaler_flap.hpp) with its fitted E, clamped at the junction's floor
+// (z = 0) along +z, its width along x, its net buoyancy along +y (gravity along -y). The flow sees
+// the flap's mid-surface as a zero-thickness sheet (cfd/flow/sheet_step.cpp) beside the walls.
+//
+// Phase I is a steady state, so the coupling is the steady partitioned fixed point on the flow's
+// time-mean load f per node, not a time-accurate run (its 2.4 s wet bending period would need many
+// periods to settle): the sheet held at S(f) (S: the static nonlinear structure under the net
+// buoyancy and f), the flow's load F averaged over a window, IQN-ILS on f (or Aitken, constant).
+// Every shape the flow sees is an equilibrium of the structure, and between iterates the sheet
+// moves in a smooth step through intermediate equilibria. The flap's inertia and the flow's
+// start-up do not enter the steady state; their time scales only set the windows
+// (docs/studies/hessenthaler_flap.md).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "core/summary.hpp"
+#include "fem/validation/hessenthaler_flap.hpp"
+
+namespace finverse::fsi::validation {
+
+struct HessenthalerPhaseIOptions {
+  std::filesystem::path flow_case;   // fin-cfd case file of the junction (walls, inflows)
+  std::filesystem::path reference;   // data/reference/hessenthaler2017.json
+  std::filesystem::path centreline;  // the 59 MRI points (phaseI_centreline.csv: x_mm, y_mm, z_mm)
+  double youngs_modulus = 0;         // [Pa], from fin-fit flap
+  double h = 0;                      // > 0: the grid's cell width instead of the case file's [m]
+  fem::validation::FlapMesh mesh{fem::validation::FlapModel::shell, 32, 4};
+  double develop_time = 1.2;  // the flow's start (inflow ramp 0.5 s) with the flap held [s]
+  double settle_time = 0.1;   // the flow's settling on a held sheet before each window [s]
+  double window_time = 0.2;   // the load's averaging window [s]
+  double move_time = 0.1;     // the sheet's step from one iterate to the next, at least [s]
+  double move_speed = 0.1;    // ... and no faster on average than this [m/s]
+  std::string acceleration = "iqn-ils";  // of the load's fixed point (acceleration_factory.hpp)
+  double omega = 0.05;        // first relaxation factor of the load (10 % of the first load flips
+                              // the flap: the tip's compliance is ~70 m/N)
+  int max_iterations = 15;
+  double tolerance = 0.25e-3;  // steady: S(F) and S(f) closer than this at every node [m]
+  bool start_straight = false;  // the start shape: straight, or (default) the no-flow buoyancy shape
+  std::function<void(const std::string&)> progress;
+};
+
+// Runs the fixed point and returns the summary (results/validation/flap_phase1/summary.json): tip
+// deflection against 16.41 mm (1 mm), centreline RMS against the MRI points (1 mm), the iterates'
+// history, grid, cost. A run that ends unconverged is graded (steady_state_reached = 0); a
+// failing flow step or structure solve throws.
+Summary run_hessenthaler_phase1(const HessenthalerPhaseIOptions& options);
+
+// The centreline's RMS distance along y from the measured points (z, y) [m] at their z, the
+// simulated centreline (z, y) [m] interpolated linearly in z (its z increasing from the clamp);
+// measured points beyond the simulated tip's z are compared with the tip.
+double centreline_rms(const std::vector<std::array<double, 2>>& simulated,
+                      const std::vector<std::array<double, 2>>& measured);
+
+// The MRI centreline file: rows x_mm, y_mm, z_mm after '#' comments and a header; returns (z, y)
+// in metres. Throws finverse::Error naming the file and line.
+std::vector<std::array<double, 2>> read_mri_centreline(const std::filesystem::path& path);
+
+}  // namespace finverse::fsi::validation
