@@ -133,10 +133,9 @@ void add_hessenthaler_phase1_flags(CLI::App& command, HessenthalerPhaseIOptions&
       ->capture_default_str();
   command.add_option("--move-speed", o.move_speed, "the sheet's mean speed between iterates, at most [m/s]")
       ->capture_default_str();
-  command.add_option("--omega", o.omega, "first relaxation factor of the load")->capture_default_str();
-  command.add_option("--acceleration", o.acceleration, "iqn-ils, aitken or constant")->capture_default_str();
-  command.add_option("--max-iterations", o.max_iterations, "fixed-point iterates")->capture_default_str();
-  command.add_option("--tolerance", o.tolerance, "converged: S(F) and S(f) closer than this [m]")
+  command.add_option("--omega", o.omega, "the first step's fraction of the way to the answer")->capture_default_str();
+  command.add_option("--max-iterations", o.max_iterations, "evaluations of the held flap")->capture_default_str();
+  command.add_option("--tolerance", o.tolerance, "converged: the answer's tip within this of the held tip [m]")
       ->capture_default_str();
   command.add_flag("--start-straight", o.start_straight, "start straight instead of the no-flow buoyancy shape");
 }

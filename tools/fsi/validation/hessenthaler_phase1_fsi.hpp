@@ -5,12 +5,13 @@
 // (z = 0) along +z, its width along x, its net buoyancy along +y (gravity along -y). The flow sees
 // the flap's mid-surface as a zero-thickness sheet (cfd/flow/sheet_step.cpp) beside the walls.
 //
-// Phase I is a steady state, so the coupling is the steady partitioned fixed point on the flow's
-// time-mean load f per node, not a time-accurate run (its 2.4 s wet bending period would need many
-// periods to settle): the sheet held at S(f) (S: the static nonlinear structure under the net
-// buoyancy and f), the flow's load F averaged over a window, IQN-ILS on f (or Aitken, constant).
-// Every shape the flow sees is an equilibrium of the structure, and between iterates the sheet
-// moves in a smooth step through intermediate equilibria. The flap's inertia and the flow's
+// Phase I is a steady state, so the coupling is a steady partitioned iteration on the flow's
+// time-mean load, not a time-accurate run (its 2.4 s wet bending period would need many periods to
+// settle): the sheet is held at a shape of the first bending mode with tip t (the structure under
+// its buoyancy and a tip load), the flow's load F averaged over a window, and the root of
+// tip(S(F)) - t found by regula falsi (S: the static nonlinear structure under the net buoyancy
+// and F). Every shape the flow sees is an equilibrium of the structure, and between iterates the
+// sheet moves in a smooth step through intermediate equilibria. The flap's inertia and the flow's
 // start-up do not enter the steady state; their time scales only set the windows
 // (docs/studies/hessenthaler_flap.md).
 #pragma once
@@ -31,16 +32,15 @@ struct HessenthalerPhaseIOptions {
   double youngs_modulus = 0;         // [Pa], from fin-fit flap
   double h = 0;                      // > 0: the grid's cell width instead of the case file's [m]
   fem::validation::FlapMesh mesh{fem::validation::FlapModel::shell, 32, 4};
-  double develop_time = 1.2;  // the flow's start (inflow ramp 0.5 s) with the flap held [s]
+  double develop_time = 2.0;  // the flow's start (inflow ramp 0.5 s) with the flap held [s]
   double settle_time = 0.1;   // the flow's settling on a held sheet before each window [s]
   double window_time = 0.2;   // the load's averaging window [s]
   double move_time = 0.1;     // the sheet's step from one iterate to the next, at least [s]
   double move_speed = 0.1;    // ... and no faster on average than this [m/s]
-  std::string acceleration = "iqn-ils";  // of the load's fixed point (acceleration_factory.hpp)
-  double omega = 0.05;        // first relaxation factor of the load (10 % of the first load flips
-                              // the flap: the tip's compliance is ~70 m/N)
+  double omega = 0.5;         // the first step: this fraction of the way to the structure's answer
   int max_iterations = 15;
-  double tolerance = 0.25e-3;  // steady: S(F) and S(f) closer than this at every node [m]
+  double tolerance = 0.1e-3;  // steady: the answer's tip within this of the held tip, or the root
+                              // bracketed this closely [m]
   bool start_straight = false;  // the start shape: straight, or (default) the no-flow buoyancy shape
   std::function<void(const std::string&)> progress;
 };
