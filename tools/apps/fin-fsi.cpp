@@ -242,6 +242,18 @@ struct FinCommand {
   }
 };
 
+// A validation run's summary to <out_dir>/<name>/summary.json, its metrics listed; exit 1 when a
+// graded metric misses (a result, not a failure).
+int write_case_summary(const finverse::Summary& summary, const std::string& out_dir, const std::string& name,
+                       const std::string& subcommand) {
+  const auto path = std::filesystem::path(out_dir) / name / "summary.json";
+  std::filesystem::create_directories(path.parent_path());
+  summary.write(path);
+  for (const auto& m : summary.metrics()) std::cerr << "  " << m.name << " = " << m.value << " " << m.units << "\n";
+  std::cerr << "fin-fsi " << subcommand << ": wrote " << path.string() << "\n";
+  return summary.pass() ? 0 : 1;
+}
+
 // fin-fsi hessenthaler_plane: the Hessenthaler (2017) Phase I flow as a 2-D section (a label,
 // not the 3-D experiment; hessenthaler_plane_fsi.hpp).
 struct HessenthalerPlaneCommand {
@@ -257,14 +269,7 @@ struct HessenthalerPlaneCommand {
   }
   int run() {
     o.progress = [](const std::string& line) { std::cerr << "fin-fsi hessenthaler_plane: " << line << "\n"; };
-    finverse::Summary summary = fv::run_hessenthaler_plane_fsi(o);
-    const auto path = std::filesystem::path(out_dir) / name / "summary.json";
-    std::filesystem::create_directories(path.parent_path());
-    summary.write(path);
-    for (const auto& m : summary.metrics())
-      std::cerr << "  " << m.name << " = " << m.value << " " << m.units << "\n";
-    std::cerr << "fin-fsi hessenthaler_plane: wrote " << path.string() << "\n";
-    return summary.pass() ? 0 : 1;
+    return write_case_summary(fv::run_hessenthaler_plane_fsi(o), out_dir, name, "hessenthaler_plane");
   }
 };
 
@@ -283,14 +288,7 @@ struct FlapPhaseICommand {
   }
   int run() {
     o.progress = [](const std::string& line) { std::cerr << "fin-fsi flap: " << line << "\n"; };
-    finverse::Summary summary = fv::run_hessenthaler_phase1(o);
-    const auto path = std::filesystem::path(out_dir) / name / "summary.json";
-    std::filesystem::create_directories(path.parent_path());
-    summary.write(path);
-    for (const auto& m : summary.metrics())
-      std::cerr << "  " << m.name << " = " << m.value << " " << m.units << "\n";
-    std::cerr << "fin-fsi flap: wrote " << path.string() << "\n";
-    return summary.pass() ? 0 : 1;
+    return write_case_summary(fv::run_hessenthaler_phase1(o), out_dir, name, "flap");
   }
 };
 

@@ -18,6 +18,7 @@
 #include "cfd/cases/case_file.hpp"
 #include "cfd/cases/flow_case.hpp"
 #include "cfd/flow/flow_solver.hpp"
+#include "core/cli.hpp"
 #include "core/error.hpp"
 #include "fem/static_solver.hpp"
 
@@ -467,6 +468,7 @@ Summary PhaseIRun::summary() const {
   s.info("structure_solves", static_cast<double>(structure_solves_));
   s.info("simulated_time", flow_.time(), "s");
   s.info("wall_seconds", seconds_since(t0_), "s");
+  s.set_timing(seconds_since(t0_), cli::threads_in_use());
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
   s.info("peak_memory", static_cast<double>(ru.ru_maxrss) / 1024.0, "MB");
