@@ -280,6 +280,30 @@ def pipe_cases():
     return c
 
 
+def flap_cases():
+    """fin-fsi flap (the Hessenthaler Phase I run in 3-D): a flow case with a sheet among its bodies,
+    an MRI centreline with a bad row, a modulus of zero."""
+    flow = "{repo}/data/cases/cfd/pipe_flow.yaml"
+    base = ("--threads 1 flap --reference {repo}/data/reference/hessenthaler2017.json --out-dir {w}/out "
+            "--centreline {repo}/data/reference/hessenthaler2017/phaseI_centreline.csv")
+
+    def bad_centreline(w, fmt):
+        with open(os.path.join(w, "c.csv"), "w") as f:
+            f.write("# MRI\nx_mm,y_mm,z_mm\n0,0,0.977\n0,one,6.8\n")
+    sheet = edited(flow, r"  - name: ball\n    shape: sphere",
+                   "  - name: ball\n    shape: plate\n    leading_edge: [0, 0, 0.02]\n    chord: 0.005\n"
+                   "    span: 0.005\n    incidence: 0\n  - name: ball2\n    shape: sphere", "sheet.yaml")
+    return [
+        case("fin-fsi", base + " --flow {w}/sheet.yaml --youngs-modulus 1.8e5", "sheet.yaml: body ball:",
+             ["{w}/out"], make=sheet, label="fin-fsi flap: a sheet in the flow case"),
+        case("fin-fsi", base.replace("--centreline {repo}/data/reference/hessenthaler2017/phaseI_centreline.csv",
+                                     "--centreline {w}/c.csv") + f" --flow {flow} --youngs-modulus 1.8e5",
+             "c.csv:4:", ["{w}/out"], make=bad_centreline, label="fin-fsi flap: a bad MRI row"),
+        case("fin-fsi", base + f" --flow {flow} --youngs-modulus 0", "--youngs-modulus", ["{w}/out"],
+             label="fin-fsi flap: modulus 0"),
+    ]
+
+
 def contract_cases():
     """fin-contract check on a mesh.h5 whose triangle names a vertex past the end."""
     def make(w, fmt):
@@ -442,7 +466,7 @@ def main():
     args = ap.parse_args()
     args.bin, args.repo, args.work = map(os.path.abspath, (args.bin, args.repo, args.work))
     args.fix = os.path.join(args.repo, "tests", "regression", "mesh", "tiny_case")
-    all_cases = cases() + camera_cases() + frame_cases() + surface_cases() + pipe_cases() + contract_cases()
+    all_cases = cases() + camera_cases() + frame_cases() + surface_cases() + pipe_cases() + flap_cases() + contract_cases()
     selected = [(i, k) for i, k in enumerate(all_cases) if not args.only or k["tool"] == args.only]
     kills = [(i, k) for i, k in enumerate(kill_cases()) if not args.only or k["tool"] == args.only]
     failed = 0
