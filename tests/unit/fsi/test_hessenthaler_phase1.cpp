@@ -70,6 +70,8 @@ TEST(HessenthalerPhaseI, TwoCoarseIteratesStartFromTheBuoyancyShape) {
   o.develop_time = 0.04;
   o.settle_time = 0.01;
   o.window_time = 0.02;
+  o.move_time = 0.02;  // the move between the two evaluations in a few steps
+  o.move_speed = 1.0;
   o.max_iterations = 2;
   Summary s = fsi::validation::run_hessenthaler_phase1(o);
   const auto flap = fem::validation::read_hessenthaler_flap(o.reference);
