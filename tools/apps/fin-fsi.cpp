@@ -11,9 +11,8 @@
 //       [--periods P --output-periods 1] [--summary s.json]
 //   fin-fsi hessenthaler_plane --reference data/reference/hessenthaler2017.json --youngs-modulus E
 //       --out-dir DIR [--name N]   (issue 34: the Phase I flow, plane version only)
-//   fin-fsi flap --flow data/cases/cfd/hessenthaler/junction_flow.yaml --reference
-//       data/reference/hessenthaler2017.json --centreline phaseI_centreline.csv --youngs-modulus E
-//       [--h 0.002]   (issue 49: Phase I in 3-D, the steady fixed point)
+//   fin-fsi flap --flow junction_flow.yaml --reference hessenthaler2017.json --centreline
+//       phaseI_centreline.csv --youngs-modulus E [--h 0.002]   (issue 49: Phase I in 3-D)
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -26,6 +25,7 @@
 #include "core/atomic_file.hpp"
 #include "core/cli.hpp"
 #include "flow_ranks_launch.hpp"
+#include "summary_command.hpp"
 #include "core/error.hpp"
 #include "core/hdf5_file.hpp"
 #include "core/provenance.hpp"
@@ -242,56 +242,6 @@ struct FinCommand {
   }
 };
 
-// A validation run's summary to <out_dir>/<name>/summary.json, its metrics listed; exit 1 when a
-// graded metric misses (a result, not a failure).
-int write_case_summary(const finverse::Summary& summary, const std::string& out_dir, const std::string& name,
-                       const std::string& subcommand) {
-  const auto path = std::filesystem::path(out_dir) / name / "summary.json";
-  std::filesystem::create_directories(path.parent_path());
-  summary.write(path);
-  for (const auto& m : summary.metrics()) std::cerr << "  " << m.name << " = " << m.value << " " << m.units << "\n";
-  std::cerr << "fin-fsi " << subcommand << ": wrote " << path.string() << "\n";
-  return summary.pass() ? 0 : 1;
-}
-
-// fin-fsi hessenthaler_plane: the Hessenthaler (2017) Phase I flow as a 2-D section (a label,
-// not the 3-D experiment; hessenthaler_plane_fsi.hpp).
-struct HessenthalerPlaneCommand {
-  fv::HessenthalerPlaneOptions o;
-  std::string out_dir = "results/validation", name = "loop_hessenthaler_phase_I_plane";
-  CLI::App* hp = nullptr;
-
-  void add(CLI::App& app) {
-    hp = app.add_subcommand("hessenthaler_plane", "Hessenthaler 2017 Phase I flow, plane version (issue 34)");
-    fv::add_hessenthaler_plane_flags(*hp, o);
-    hp->add_option("--out-dir", out_dir, "directory that receives <name>/summary.json")->capture_default_str();
-    hp->add_option("--name", name, "case name")->capture_default_str();
-  }
-  int run() {
-    o.progress = [](const std::string& line) { std::cerr << "fin-fsi hessenthaler_plane: " << line << "\n"; };
-    return write_case_summary(fv::run_hessenthaler_plane_fsi(o), out_dir, name, "hessenthaler_plane");
-  }
-};
-
-// fin-fsi flap: the Hessenthaler (2017) Phase I experiment in 3-D, the flap as a sheet in the
-// junction of a fin-cfd case file (hessenthaler_phase1_fsi.hpp).
-struct FlapPhaseICommand {
-  fv::HessenthalerPhaseIOptions o;
-  std::string out_dir = "results/validation", name = "flap_phase1";
-  CLI::App* cmd = nullptr;
-
-  void add(CLI::App& app) {
-    cmd = app.add_subcommand("flap", "Hessenthaler 2017 Phase I in 3-D: the flap in the junction (issue 49)");
-    fv::add_hessenthaler_phase1_flags(*cmd, o);
-    cmd->add_option("--out-dir", out_dir, "directory that receives <name>/summary.json")->capture_default_str();
-    cmd->add_option("--name", name, "case name")->capture_default_str();
-  }
-  int run() {
-    o.progress = [](const std::string& line) { std::cerr << "fin-fsi flap: " << line << "\n"; };
-    return write_case_summary(fv::run_hessenthaler_phase1(o), out_dir, name, "flap");
-  }
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -305,10 +255,15 @@ int main(int argc, char** argv) {
   pitching_plate.add(app);
   FinCommand fin;
   fin.add(app);
-  HessenthalerPlaneCommand hessenthaler_plane;
-  hessenthaler_plane.add(app);
-  FlapPhaseICommand flap;
-  flap.add(app);
+  // hessenthaler_plane: the Phase I flow as a 2-D section (a label, not the 3-D experiment).
+  SummaryCommand<fv::HessenthalerPlaneOptions> hessenthaler_plane;
+  hessenthaler_plane.add(app, "hessenthaler_plane", "Hessenthaler 2017 Phase I flow, plane version (issue 34)",
+                         "loop_hessenthaler_phase_I_plane", fv::add_hessenthaler_plane_flags,
+                         fv::run_hessenthaler_plane_fsi);
+  // flap: Phase I in 3-D, the flap as a sheet in the junction of a case file.
+  SummaryCommand<fv::HessenthalerPhaseIOptions> flap;
+  flap.add(app, "flap", "Hessenthaler 2017 Phase I in 3-D: the flap in the junction (issue 49)", "flap_phase1",
+           fv::add_hessenthaler_phase1_flags, fv::run_hessenthaler_phase1);
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     if (turek_hron.th->parsed()) return turek_hron.run();
     if (pitching_plate.pp->parsed()) return pitching_plate.run();
@@ -316,7 +271,7 @@ int main(int argc, char** argv) {
     if (finverse::cli::mpi_launch_size() > 1)
       throw finverse::Error("fin-fsi " + app.get_subcommands().front()->get_name() +
                             " does not run on MPI ranks (fin-fsi fin does); run it without mpirun");
-    if (hessenthaler_plane.hp->parsed()) return hessenthaler_plane.run();
+    if (hessenthaler_plane.cmd->parsed()) return hessenthaler_plane.run();
     if (flap.cmd->parsed()) return flap.run();
     return 2;
   });

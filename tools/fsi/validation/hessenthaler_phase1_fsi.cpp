@@ -7,10 +7,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <limits>
-#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -20,6 +18,7 @@
 #include "cfd/flow/flow_solver.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/printf_format.hpp"
 #include "fem/static_solver.hpp"
 
 namespace finverse::fsi::validation {
@@ -415,11 +414,7 @@ class PhaseIRun {
     for (std::size_t i = 0; i < rows_.size(); ++i) c.push_back(row_centre(x, i));
     return c;
   }
-  static std::string num(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.4g", v);
-    return b;
-  }
+  static std::string num(double v) { return printf_format("%.4g", v); }
   void say(const std::string& line) const {
     if (o_.progress) o_.progress(line);
   }

@@ -1,19 +1,10 @@
 // Issue 49: the Hessenthaler et al. (2017) Phase I experiment in 3-D. The flow is a fin-cfd case
-// file (data/cases/cfd/hessenthaler/junction_flow.yaml: the junction's walls with the fluid inside,
-// the two parabolic inflows and their ramp); the flap is the shell strip fin-fit flap fits
-// (fem/validation/hessenthaler_flap.hpp) with its fitted E, clamped at the junction's floor
-// (z = 0) along +z, its width along x, its net buoyancy along +y (gravity along -y). The flow sees
-// the flap's mid-surface as a zero-thickness sheet (cfd/flow/sheet_step.cpp) beside the walls.
-//
-// Phase I is a steady state, so the coupling is a steady partitioned iteration on the flow's
-// time-mean load, not a time-accurate run (its 2.4 s wet bending period would need many periods to
-// settle): the sheet is held at a shape of the first bending mode with tip t (the structure under
-// its buoyancy and a tip load), the flow's load F averaged over a window, and the root of
-// tip(S(F)) - t found by regula falsi (S: the static nonlinear structure under the net buoyancy
-// and F). Every shape the flow sees is an equilibrium of the structure, and between iterates the
-// sheet moves in a smooth step through intermediate equilibria. The flap's inertia and the flow's
-// start-up do not enter the steady state; their time scales only set the windows
-// (docs/studies/hessenthaler_flap.md).
+// file (the junction's walls, fluid inside, two parabolic inflows); the flap is fin-fit flap's shell
+// strip, clamped at the floor (z = 0) along +z, width along x, net buoyancy along +y, seen by the
+// flow as a zero-thickness sheet. Phase I is steady, so instead of a time-accurate run (several
+// 2.4 s wet periods) the steady state is the root of tip(S(F(t))) - t: the sheet held at a
+// first-mode shape of tip t, F the flow's time-mean load on it, S the static structure.
+// Methods tried and why they failed: docs/studies/hessenthaler_flap.md, "Phase I in 3-D".
 #pragma once
 
 #include <filesystem>
