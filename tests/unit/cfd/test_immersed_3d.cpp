@@ -101,6 +101,35 @@ TEST(GhostCells3D, BodyTooCloseToTheBoundaryIsAnError) {
   EXPECT_THROW(GhostCellSet(g2, SurfaceGeometry(icosphere({0.5, 0.5, 0.5}, 0.3, 2))), Error);
 }
 
+// A box whose +x face lies 0.01 (a tenth of a spacing) short of the next fluid centres, its other
+// faces 0.07 short of theirs: only the +x face's fluid neighbours are listed as near the wall,
+// each with its lower face along x, and every listed face borders a ghost.
+TEST(GhostCells3D, FluidCentresWithinHalfASpacingOfTheWallAreListed) {
+  const StretchedGrid g(Axis::uniform(0, 1, 10), Axis::uniform(0, 1, 10), Axis::uniform(0, 1, 10));
+  const GhostCellSet ib(g, SurfaceGeometry(box_surface({0.32, 0.32, 0.32}, {0.64, 0.68, 0.68})));
+  const auto listed = [&](int i, int j, int k, int axis, int side) {
+    const auto& w = ib.near_wall_faces();
+    return std::any_of(w.begin(), w.end(), [&](const NearWallFace& f) {
+      return f.cell == std::array<int, 3>{i, j, k} && f.axis == axis && f.side == side;
+    });
+  };
+  for (int j = 3; j <= 6; ++j)
+    for (int k = 3; k <= 6; ++k) {
+      ASSERT_EQ(ib.kind(6, j, k), CellKind::Fluid);
+      EXPECT_TRUE(listed(6, j, k, 0, -1)) << j << " " << k;
+    }
+  EXPECT_FALSE(listed(2, 4, 4, 0, 1));
+  EXPECT_FALSE(listed(4, 2, 4, 1, 1));
+  EXPECT_FALSE(listed(4, 7, 4, 1, -1));
+  EXPECT_FALSE(listed(4, 4, 7, 2, -1));
+  for (const NearWallFace& f : ib.near_wall_faces()) {
+    std::array<int, 3> n = f.cell;
+    n[static_cast<std::size_t>(f.axis)] += f.side;
+    EXPECT_EQ(ib.kind(f.cell[0], f.cell[1], f.cell[2]), CellKind::Fluid);
+    EXPECT_EQ(ib.kind(n[0], n[1], n[2]), CellKind::Ghost);
+  }
+}
+
 TEST(SurfaceTraction3D, LinearPressureGivesTheBuoyancyForce) {
   // p = p0 + g . x: the extrapolated wall pressure is exact, and -sum p n dA = -g V (divergence
   // theorem, the sub-triangle centroid rule is exact for linear p); the fluid at rest has no shear.

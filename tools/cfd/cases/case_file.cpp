@@ -378,7 +378,7 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
   if (const YAML::Node sv = root["solver"]) {
     r.only(sv, "solver",
            {"helmholtz_rtol", "poisson_rtol", "wall_momentum_balance", "cut_cells", "kernel", "marker_spacing",
-            "band_correction"});
+            "band_correction", "near_wall_closed_faces"});
     if (sv["kernel"]) {
       const std::string k = r.scalar<std::string>(sv["kernel"], "solver.kernel", "roma3, peskin4, smooth3 or smooth4");
       try {
@@ -393,6 +393,9 @@ FlowCaseSpec flow_case(const Reader& r, YAML::Node root, bool coarse) {
     if (sv["cut_cells"]) s.cut_cells = r.scalar<bool>(sv["cut_cells"], "solver.cut_cells", "true or false");
     if (sv["helmholtz_rtol"]) s.helmholtz_rtol = r.positive(sv["helmholtz_rtol"], "solver.helmholtz_rtol");
     if (sv["poisson_rtol"]) s.poisson_rtol = r.positive(sv["poisson_rtol"], "solver.poisson_rtol");
+    if (sv["near_wall_closed_faces"])
+      s.near_wall_closed_faces =
+          r.scalar<bool>(sv["near_wall_closed_faces"], "solver.near_wall_closed_faces", "true or false");
     if (sv["wall_momentum_balance"])
       s.wall_momentum_balance =
           r.scalar<bool>(sv["wall_momentum_balance"], "solver.wall_momentum_balance", "true or false");

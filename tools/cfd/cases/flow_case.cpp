@@ -314,6 +314,7 @@ FlowOptions flow_case_options(const FlowCaseSpec& s) {
   opt.helmholtz_rtol = s.helmholtz_rtol;
   opt.poisson.rtol = s.poisson_rtol;
   opt.viscous_wall_pressure = s.wall_momentum_balance;
+  opt.near_wall_closed_faces = s.near_wall_closed_faces;
   return opt;
 }
 

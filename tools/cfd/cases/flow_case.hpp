@@ -77,6 +77,7 @@ struct FlowCaseSpec {
   double dt_max = 0;  // [s]; 0: cfl h / reference_speed
   double helmholtz_rtol = 1e-8, poisson_rtol = 1e-7;
   bool wall_momentum_balance = false;  // dp/dn from the wall's momentum balance instead of 0
+  bool near_wall_closed_faces = false; // FlowOptions::near_wall_closed_faces
   bool cut_cells = true;               // 2-D: the cut-cell mass balance of the fixed body (else staircase)
   int force_every = 10;                // steps between force evaluations (and the last step)
   double reference_speed = 1;          // U of the coefficients [m/s]

@@ -116,6 +116,7 @@ Summary flow_case_summary(const FlowCaseSpec& s, const FlowCaseResult& r) {
                       {"dt_max", s.dt_max},
                       {"bodies", bodies},
                       {"wall_momentum_balance", s.wall_momentum_balance},
+                      {"near_wall_closed_faces", s.near_wall_closed_faces},
                       {"reference_speed", s.reference_speed},
                       {"reference_area", s.reference_area}};
   return sum;

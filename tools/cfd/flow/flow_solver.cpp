@@ -460,6 +460,19 @@ void FlowSolver::cell_gradient(const Field& q, int d, Field& out) const {
     const double dl = dist[static_cast<std::size_t>(m)], dr = dist[static_cast<std::size_t>(m) + 1];
     for (int i = 0; i < nx; ++i) o[i] = 0.5 * ((a[i] - a[i - stride]) / dl + (a[i + stride] - a[i]) / dr);
   });
+  // A fluid centre within half a spacing of the wall: its closed face counts as zero gradient
+  // (ghost_cells.hpp, near_wall_faces), its other face as computed (zero where closed too). Not
+  // with the cut-cell balance: its pressure equation sees the faces' open fractions, not a closed
+  // face, and the moving fin's loads rest on that form (cut_cell_balance.md).
+  if (!opt_.near_wall_closed_faces || !ib_ || cut_) return;
+  for (const NearWallFace& w : ib_->near_wall_faces()) {
+    const auto [i, j, k] = w.cell;
+    const int m = w.cell[static_cast<std::size_t>(d)];
+    if (w.axis != d || m == 0 || m == n - 1) continue;
+    int f[3] = {i, j, k};
+    if (w.side < 0) ++f[d];  // the closed face is the lower one: the other is the upper
+    out(i, j, k) = masked_face(d, f[0], f[1], f[2]) ? 0.0 : 0.5 * face_gradient(q, d, f[0], f[1], f[2]);
+  }
 }
 
 double FlowSolver::divergence(const FaceField& U, int i, int j, int k) const {

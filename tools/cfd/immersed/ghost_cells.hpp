@@ -75,6 +75,15 @@ struct GhostCell {
   double probe_length() const { return probe >= 0 ? probe : 2 * std::abs(boundary.distance); }  // |I - G|
 };
 
+// A fluid cell's closed face toward a ghost cell where the wall crosses the cell between its
+// centre and that face (ghost_cells_3d.cpp, near_wall_faces): side -1 the cell's lower face along
+// axis, +1 its upper face.
+struct NearWallFace {
+  std::array<int, 3> cell{};
+  int axis = 0;
+  int side = 0;
+};
+
 class GhostCellSet {
  public:
   // Classifies the cells of a 2-D grid against the body. Throws finverse::Error when an image point
@@ -101,6 +110,10 @@ class GhostCellSet {
   bool solid(int i, int j) const { return kind(i, j) != CellKind::Fluid; }
   bool solid(int i, int j, int k) const { return kind(i, j, k) != CellKind::Fluid; }
   const std::vector<GhostCell>& ghosts() const { return ghosts_; }
+  // 3-D: the closed faces of fluid cells whose centre lies within half a spacing of the wall
+  // (2-D: none). Without the cut-cell balance the flow's cell-centred gradients count these faces'
+  // gradients as zero (FlowSolver::cell_gradient; docs/studies/pipe_flow.md, "Fluid centres at the wall").
+  const std::vector<NearWallFace>& near_wall_faces() const { return near_wall_; }
 
   // Bilinear (3-D: trilinear) interpolation of a cell-centred field at the ghost cell's image point.
   double image_value(const Field& q, const GhostCell& g) const;
@@ -121,6 +134,8 @@ class GhostCellSet {
   // n) substituted for solid nodes and `self`.
   PointStencil stencil(const std::array<double, 3>& x, const std::array<double, 3>& b, const std::array<double, 3>& n,
                        BoundaryCondition bc, std::array<int, 3> self = {-1, -1, -1}) const;
+  // 3-D: fills near_wall_ from the classified cells and the ghosts' tangent planes.
+  void find_near_wall_faces();
 
   // Ghost values that impose the conditions with the substituted stencils, by Gauss-Seidel sweeps
   // over the ghost cells (they couple where one ghost cell's image stencil holds another):
@@ -141,6 +156,7 @@ class GhostCellSet {
   StretchedGrid grid_;
   std::vector<CellKind> kind_;
   std::vector<GhostCell> ghosts_;
+  std::vector<NearWallFace> near_wall_;
 };
 
 }  // namespace finverse::cfd
