@@ -108,12 +108,13 @@ rule flap_loop_phase_I_plane:
 # walls, the two parabolic inflows), the steady state as a root search on the tip with the held
 # sheet's time-mean load (tools/fsi/validation/hessenthaler_phase1_fsi.hpp;
 # docs/studies/hessenthaler_flap.md). Heavy, not in CI: one run per grid, h in mm (2.0: 102 400
-# cells, 7 min on one core; 1.25: 393 216 cells, 38 min beside other jobs; h = 1.43, 1.67 and 1.11
-# mm blew up at fluid cells a few hundredths of a cell inside the pipes' walls, see the study), and
-# the grid study over FLAP_PHASE1_GRIDS (config flap_phase1_grids):
+# cells, 7 min on one core; 1.43: 275 968 cells, 41 min beside other jobs; the junction's
+# near_wall_closed_faces keeps the walls' near cells stable, pipe_flow.md), each writing the flow
+# on z = 10 and 30 mm (flow_planes.h5), and the grid study over FLAP_PHASE1_GRIDS (config
+# flap_phase1_grids):
 #   snakemake -c2 results/validation/flap_phase1/summary.json
 #   snakemake -c1 results/validation/flap_phase1/grid_h2.0mm/summary.json
-FLAP_PHASE1_GRIDS = config.get("flap_phase1_grids", ["2.0", "1.25"])
+FLAP_PHASE1_GRIDS = config.get("flap_phase1_grids", ["2.0", "1.67", "1.43", "1.25"])
 _FLAP_JUNCTION = os.path.join(REPO, "data", "cases", "cfd", "hessenthaler", "junction_flow.yaml")
 _FLAP_CENTRELINE = os.path.join(REPO, "data", "reference", "hessenthaler2017", "phaseI_centreline.csv")
 
@@ -127,7 +128,8 @@ rule flap_phase1_grid:
         centreline=_FLAP_CENTRELINE,
         modulus=_FLAP_FIT,
     output:
-        "results/validation/flap_phase1/grid_h{h}mm/summary.json",
+        summary="results/validation/flap_phase1/grid_h{h}mm/summary.json",
+        planes="results/validation/flap_phase1/grid_h{h}mm/flow_planes.h5",
     log:
         "results/logs/validation/flap_phase1_grid_h{h}mm.log",
     wildcard_constraints:
@@ -138,7 +140,8 @@ rule flap_phase1_grid:
         "[\"metrics\"] if m[\"name\"] == \"youngs_modulus\"))' {input.modulus}) &&"
         " OMP_WAIT_POLICY=PASSIVE {input.exe} --threads 1 flap --flow {input.flow} --reference {input.reference}"
         " --centreline {input.centreline} --youngs-modulus $E --h $(/usr/bin/python3 -c 'print({wildcards.h} * 1e-3)')"
-        " --out-dir results/validation/flap_phase1 --name grid_h{wildcards.h}mm 2> {log} " + METRIC_MISSED_IS_A_RESULT
+        " --planes {output.planes} --out-dir results/validation/flap_phase1 --name grid_h{wildcards.h}mm 2> {log} "
+        + METRIC_MISSED_IS_A_RESULT
 
 
 rule flap_phase1:
@@ -150,3 +153,22 @@ rule flap_phase1:
     shell:
         "/usr/bin/python3 {input.script} " + " ".join(f"--grid {{input.grids[{i}]}}" for i in range(len(FLAP_PHASE1_GRIDS)))
         + " --out {output} " + METRIC_MISSED_IS_A_RESULT
+
+
+# The flap's report page (deliverable 5): centrelines, the flow on z = 10 and 30 mm from the finest
+# grid's flow_planes.h5, the grid study, the finest grid's decision trail (flap_phase1_report.py):
+#   snakemake -c2 results/validation/flap_phase1/report/index.html
+_FLAP_FINEST = min(FLAP_PHASE1_GRIDS, key=float)
+
+
+rule flap_phase1_report:
+    input:
+        script=os.path.join(SCRIPTS, "flap_phase1_report.py"),
+        study="results/validation/flap_phase1/summary.json",
+        planes=f"results/validation/flap_phase1/grid_h{_FLAP_FINEST}mm/flow_planes.h5",
+        centreline=_FLAP_CENTRELINE,
+    output:
+        "results/validation/flap_phase1/report/index.html",
+    shell:
+        "/usr/bin/python3 {input.script} --study {input.study} --planes {input.planes} --centreline {input.centreline}"
+        " --out {output}"

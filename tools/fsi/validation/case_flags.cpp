@@ -138,6 +138,8 @@ void add_hessenthaler_phase1_flags(CLI::App& command, HessenthalerPhaseIOptions&
   command.add_option("--tolerance", o.tolerance, "converged: the answer's tip within this of the held tip [m]")
       ->capture_default_str();
   command.add_flag("--start-straight", o.start_straight, "start straight instead of the no-flow buoyancy shape");
+  command.add_option("--planes", o.planes_file,
+                     "write the flow at the end on the planes z = 10 and 30 mm above the clamp (flow_planes.h5)");
 }
 
 }  // namespace finverse::fsi::validation

@@ -1,6 +1,7 @@
 // The Hessenthaler (2017) Phase I experiment in 3-D: the steady partitioned fixed point on the
 // time-mean load; see hessenthaler_phase1_fsi.hpp.
 #include "fsi/validation/hessenthaler_phase1_fsi.hpp"
+#include "fsi/validation/flow_planes.hpp"
 
 #include <sys/resource.h>
 
@@ -117,6 +118,12 @@ class PhaseIRun {
     set_up();
     develop();
     couple();
+    if (!o_.planes_file.empty()) {
+      std::vector<FlowPlane> planes;
+      for (double z : o_.plane_z) planes.push_back(sample_flow_plane(flow_, z));
+      write_flow_planes(o_.planes_file, planes);
+      say("wrote " + o_.planes_file.string());
+    }
     return summary();
   }
 

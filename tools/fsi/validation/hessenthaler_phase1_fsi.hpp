@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/summary.hpp"
 #include "fem/validation/hessenthaler_flap.hpp"
@@ -33,6 +34,10 @@ struct HessenthalerPhaseIOptions {
   double tolerance = 0.1e-3;  // steady: the answer's tip within this of the held tip, or the root
                               // bracketed this closely [m]
   bool start_straight = false;  // the start shape: straight, or (default) the no-flow buoyancy shape
+  // Where to write the flow at the end (the held flap at the root) on the planes plane_z above the
+  // clamp (flow_planes.hpp); empty: not written.
+  std::filesystem::path planes_file;
+  std::vector<double> plane_z{0.010, 0.030};  // [m]
   std::function<void(const std::string&)> progress;
 };
 
