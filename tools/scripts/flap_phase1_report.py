@@ -51,10 +51,13 @@ def read_inputs(a):
     except (KeyError, TypeError) as e:
         fail(f"--study {a.study}: {e}; expected flap_phase1_study.py's summary listing fin-fsi flap summaries")
     try:
-        mri = np.genfromtxt(a.centreline, delimiter=",", comments="#", names=True)
-        mri_zy = np.column_stack([mri["z_mm"], mri["y_mm"]])
-    except (OSError, ValueError) as e:
-        fail(f"--centreline {a.centreline}: {e}; expected columns x_mm, y_mm, z_mm")
+        with open(a.centreline) as f:
+            lines = [ln for ln in f if ln.strip() and not ln.startswith("#")]
+        header = [c.strip() for c in lines[0].split(",")]
+        rows = np.array([[float(c) for c in ln.split(",")] for ln in lines[1:]])
+        mri_zy = np.column_stack([rows[:, header.index("z_mm")], rows[:, header.index("y_mm")]])
+    except (OSError, ValueError, IndexError) as e:
+        fail(f"--centreline {a.centreline}: {str(e).splitlines()[0]}; expected columns x_mm, y_mm, z_mm")
     planes = []
     try:
         with h5py.File(a.planes, "r") as f:
@@ -74,9 +77,8 @@ def centreline_figure(grids, mri_zy, path):
         ax.plot(zy[:, 1], zy[:, 0], "-", label=f"fin-fsi, h = {g['parameters']['h_m'] * 1e3:.3g} mm")
     ax.set_xlabel("y [mm] (deflection, the faster inlet's side +)")
     ax.set_ylabel("z [mm] above the clamp")
-    ax.set_aspect("equal")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left")
     ax.set_title("Phase I centreline")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -90,7 +92,7 @@ def planes_figure(planes, path):
         X, Y = np.meshgrid(p["x"] * 1e3, p["y"] * 1e3)
         m = ax.pcolormesh(X, Y, p["w"], cmap="RdBu_r", vmin=-wmax, vmax=wmax, shading="nearest")
         step = max(1, len(p["x"]) // 16)
-        ax.quiver(X[::step, ::step], Y[::step, ::step], p["u"][::step, ::step], p["v"][::step, ::step], scale=4)
+        ax.quiver(X[::step, ::step], Y[::step, ::step], p["u"][::step, ::step], p["v"][::step, ::step])
         t = np.linspace(0, 2 * np.pi, 200)
         ax.plot(OUTLET_RADIUS_MM * np.cos(t), OUTLET_RADIUS_MM * np.sin(t), "k-", lw=0.8)
         ax.set_aspect("equal")
@@ -111,7 +113,7 @@ def table(header, rows):
 
 def page(study, grids, planes):
     verdict = {True: "met", False: "missed", None: "reported"}
-    goals = [(m["name"], f"{m['value']:.4g} {m['units']}", m.get("tolerance", ""), verdict[m["pass"]])
+    goals = [(m["name"], f"{m['value']:.4g} {m['units']}", "" if m.get("tolerance") is None else m["tolerance"], verdict[m["pass"]])
              for m in study["metrics"] if m["pass"] is not None or m["name"].startswith("tip_")]
     cost = [(f"{g['parameters']['h_m'] * 1e3:.3g}", int(m["cells"]["value"]), int(m["flow_steps"]["value"]),
              f"{m['wall_seconds']['value']:.0f}", f"{m['peak_memory']['value']:.0f}",
@@ -129,7 +131,7 @@ table{{border-collapse:collapse;margin:1em 0}}</style></head><body>
 and compared with the MRI. Method and choices: docs/studies/hessenthaler_flap.md ("Phase I in 3-D").</p>
 <h2>Goals</h2>{table(["metric", "value", "tolerance", "verdict"], goals)}
 <h2>Centreline</h2><img src="centrelines.png" alt="centrelines">
-<h2>The flow across the outlet pipe</h2><p>Finest grid, at the end of the run (the flap held at the
+<h2>The flow across the outlet pipe</h2><p>The grid of flow_planes.h5 (the rule takes the finest), at the end of its run (the flap held at the
 steady state's root); the outlet pipe's wall drawn in black.</p><img src="planes.png" alt="planes" width="100%">
 <h2>Grids and cost (2 cores, one run per core)</h2>
 {table(["h [mm]", "cells", "flow steps", "wall [s]", "memory [MB]", "tip [mm]", "centreline RMS [mm]"], cost)}
