@@ -111,7 +111,7 @@ def table(header, rows):
     return f"<table><tr>{head}</tr>{body}</table>"
 
 
-def page(study, grids, planes):
+def page(study, grids):
     verdict = {True: "met", False: "missed", None: "reported"}
     goals = [(m["name"], f"{m['value']:.4g} {m['units']}", "" if m.get("tolerance") is None else m["tolerance"], verdict[m["pass"]])
              for m in study["metrics"] if m["pass"] is not None or m["name"].startswith("tip_")]
@@ -159,7 +159,7 @@ def main():
     planes_figure(planes, os.path.join(out_dir, "planes.png"))
     tmp = a.out + ".tmp"
     with open(tmp, "w") as f:
-        f.write(page(study, grids, planes))
+        f.write(page(study, grids))
     os.replace(tmp, a.out)
 
 
