@@ -12,7 +12,7 @@
 //   fin-fsi hessenthaler_plane --reference data/reference/hessenthaler2017.json --youngs-modulus E
 //       --out-dir DIR [--name N]   (issue 34: the Phase I flow, plane version only)
 //   fin-fsi flap --flow junction_flow.yaml --reference hessenthaler2017.json --centreline
-//       phaseI_centreline.csv --youngs-modulus E [--h 0.002]   (issue 49: Phase I in 3-D)
+//       phaseI_centreline.csv --youngs-modulus E [--h 0.002] [--loads flap_loads.h5]   (issue 49: 3-D)
 #include <filesystem>
 #include <fstream>
 #include <functional>

@@ -1,5 +1,5 @@
 // The Hessenthaler (2017) Phase I run in 3-D (fsi/validation/hessenthaler_phase1_fsi.hpp): the MRI
-// centreline file and the centreline RMS, and two iterates on a coarse junction whose first held
+// centreline file (fem/validation/hessenthaler_flap.hpp) and the centreline RMS, and two iterates on a coarse junction whose first held
 // shape is the structure's own no-flow buoyancy deflection, carried into the flow's frame (clamp
 // at the origin, the flap along +z, its buoyancy along +y).
 #include <cmath>
@@ -10,6 +10,7 @@
 
 #include "../scratch_dir.hpp"
 #include "core/error.hpp"
+#include "core/hdf5_file.hpp"
 #include "fem/validation/hessenthaler_flap.hpp"
 #include "fsi/validation/hessenthaler_phase1_fsi.hpp"
 
@@ -25,7 +26,7 @@ double phase1_metric(const Summary& s, const std::string& name) {
 }
 
 TEST(HessenthalerPhaseI, TheMriCentrelineHas59PointsFromTheClampToTheTip) {
-  const auto c = fsi::validation::read_mri_centreline(FINVERSE_HESSENTHALER_CENTRELINE);
+  const auto c = fem::validation::read_mri_centreline(FINVERSE_HESSENTHALER_CENTRELINE);
   ASSERT_EQ(c.size(), 59u);
   EXPECT_NEAR(c.front()[0], 0.977e-3, 1e-12);
   EXPECT_NEAR(c.front()[1], 0.0, 1e-12);
@@ -52,9 +53,9 @@ TEST(HessenthalerPhaseI, ABadCentrelineFileNamesItsLine) {
   finverse::test::ScratchDir dir;
   std::ofstream(dir / "c.csv") << "# comment\nx_mm,y_mm,z_mm\n0,1,2\n0,one,3\n";
   try {
-    fsi::validation::read_mri_centreline(dir / "c.csv");
+    fem::validation::read_mri_centreline(dir / "c.csv");
     ADD_FAILURE() << "a bad row was read";
-  } catch (const Error& e) {
+  } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("c.csv:4:"), std::string::npos) << e.what();
   }
 }
@@ -73,6 +74,8 @@ TEST(HessenthalerPhaseI, TwoCoarseIteratesStartFromTheBuoyancyShape) {
   o.move_time = 0.02;  // the move between the two evaluations in a few steps
   o.move_speed = 1.0;
   o.max_iterations = 2;
+  finverse::test::ScratchDir dir;
+  o.loads_file = dir / "flap_loads.h5";
   Summary s = fsi::validation::run_hessenthaler_phase1(o);
   const auto flap = fem::validation::read_hessenthaler_flap(o.reference);
   const double buoyancy = fem::validation::flap_buoyancy_deflection(flap, o.youngs_modulus, o.mesh).tip;
@@ -82,6 +85,13 @@ TEST(HessenthalerPhaseI, TwoCoarseIteratesStartFromTheBuoyancyShape) {
   EXPECT_EQ(phase1_metric(s, "steady_state_reached"), 0);
   EXPECT_GT(phase1_metric(s, "flow_steps"), 10);
   EXPECT_EQ(s.parameters().at("centreline_zy_m").size(), 9u);
+  // The loads file holds both evaluations, 3 per node of the 8 x 2 strip, the first at the held tip.
+  auto f = h5::File::open_read(o.loads_file);
+  EXPECT_EQ(f.attr_string(".", "schema").value_or(""), "finverse/flap-loads");
+  const auto tips = f.read_f64("tip_held");
+  ASSERT_EQ(tips.size(), 2u);
+  EXPECT_NEAR(tips(0), buoyancy, 1e-9);
+  EXPECT_EQ(f.read_f64("nodal_load").shape, (std::vector<std::size_t>{2, 3 * 9 * 3}));
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <memory>
 #include <optional>
 #include <fstream>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -68,6 +70,33 @@ HessenthalerFlap read_hessenthaler_flap(const std::filesystem::path& reference) 
   return f;
 }
 
+std::vector<std::array<double, 2>> zero_flow_centreline(const std::filesystem::path& reference, int points,
+                                                        double z_first) {
+  std::ifstream in(reference);
+  if (!in) throw InvalidInput("cannot open reference file " + reference.string());
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  const std::string key = "zero_flow_centreline_fit";
+  if (j.is_discarded() || !j.contains(key) || !j[key].contains("p") || !j[key]["p"].is_array())
+    throw InvalidInput(reference.string() + ": missing " + key + " (scale_mm, length_mm, p)");
+  const double scale = positive(j, {key, "scale_mm"}, reference) * 1e-3;
+  const double length = positive(j, {key, "length_mm"}, reference) * 1e-3;
+  std::vector<double> p;
+  for (const auto& v : j[key]["p"]) {
+    if (!v.is_number()) throw InvalidInput(reference.string() + ": " + key + ".p must hold numbers");
+    p.push_back(v.get<double>());
+  }
+  if (points < 2 || !(z_first >= 0 && z_first < length))
+    throw InvalidInput("zero-flow centreline: at least two points from a z below the fit's length");
+  std::vector<std::array<double, 2>> out;
+  for (int k = 0; k < points; ++k) {
+    const double z = z_first + (length - z_first) * k / (points - 1), s = z / length;
+    double y = 0, sp = s;
+    for (double c : p) y += c * sp, sp *= s;
+    out.push_back({z, scale * y});
+  }
+  return out;
+}
+
 FlapModel parse_flap_model(const std::string& name) {
   if (name == "beam") return FlapModel::beam;
   if (name == "shell") return FlapModel::shell;
@@ -96,6 +125,33 @@ void check_shape(const FlapMesh& mesh, const FlapShape& shape) {
 }
 
 }  // namespace
+
+std::vector<std::array<double, 2>> read_mri_centreline(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InvalidInput(path.string() + ": cannot be read (the MRI centreline, x_mm,y_mm,z_mm)");
+  std::vector<std::array<double, 2>> out;
+  std::string line;
+  int number = 0;
+  bool header = false;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      if (line.rfind("x_mm,y_mm,z_mm", 0) != 0)
+        throw InvalidInput(path.string() + ":" + std::to_string(number) + ": expected the header x_mm,y_mm,z_mm");
+      header = true;
+      continue;
+    }
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream row(line);
+    double x = 0, y = 0, z = 0;
+    if (!(row >> x >> y >> z) || !std::isfinite(y) || !std::isfinite(z))
+      throw InvalidInput(path.string() + ":" + std::to_string(number) + ": expected three numbers x_mm,y_mm,z_mm");
+    out.push_back({z * 1e-3, y * 1e-3});
+  }
+  if (out.size() < 2) throw InvalidInput(path.string() + ": fewer than two centreline points");
+  return out;
+}
 
 FlapShellModel flap_shell_model(const HessenthalerFlap& flap, double E, const FlapMesh& mesh, const FlapShape& shape) {
   if (!(E > 0) || !std::isfinite(E)) throw InvalidInput("flap: Young's modulus must be positive and finite");
@@ -136,7 +192,7 @@ FlapDeflection flap_buoyancy_deflection(const HessenthalerFlap& flap, double E, 
 
 FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const FlapMesh& mesh, double q,
                                int load_steps, SolverBackend backend) {
-  return flap_deflection(flap, E, mesh, FlapLoad{q, {}, {}}, FlapShape{}, load_steps, backend);
+  return flap_deflection(flap, E, mesh, FlapLoad{q, {}, {}, {}}, FlapShape{}, load_steps, backend);
 }
 
 FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const FlapMesh& mesh, const FlapLoad& load,
@@ -146,6 +202,8 @@ FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const Fla
   for (const auto* profile : {&load.transverse, &load.along})
     for (double v : *profile)
       if (!std::isfinite(v)) throw InvalidInput("flap: the load profile must be finite");
+  for (double v : load.nodal)
+    if (!std::isfinite(v)) throw InvalidInput("flap: the nodal load must be finite");
   check_shape(mesh, shape);
   const double L = flap.length, b = flap.width;
   const auto profile_at = [&](const std::vector<double>& p, double s) {
@@ -165,6 +223,7 @@ FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const Fla
   std::vector<std::vector<std::pair<int, double>>> stations(mesh.along + 1);  // the same per station
   const double ds = L / mesh.along;
   if (mesh.model == FlapModel::beam) {
+    if (!load.nodal.empty()) throw InvalidInput("flap: a nodal load needs the shell model");
     const int stiff = model.add_material({"silicone", E, flap.poisson_ratio, flap.solid_density});
     const int soft = model.add_material({"silicone_distal", E * (1 - shape.distal_softening), flap.poisson_ratio,
                                          flap.solid_density});
@@ -195,6 +254,11 @@ FlapDeflection flap_deflection(const HessenthalerFlap& flap, double E, const Fla
     }
     tip = stations.back();
     root = stations.front();
+    if (!load.nodal.empty() && load.nodal.size() != 3 * tm.nodes.size())
+      throw InvalidInput("flap: the nodal load has " + std::to_string(load.nodal.size()) + " entries for " +
+                         std::to_string(tm.nodes.size()) + " shell nodes (3 per node)");
+    for (std::size_t k = 0; k < load.nodal.size(); ++k)
+      if (load.nodal[k] != 0) model.add_nodal_load(static_cast<int>(k / 3), static_cast<int>(k % 3), load.nodal[k]);
   }
   StaticOptions so;
   so.steps = load_steps;

@@ -41,6 +41,16 @@ struct HessenthalerFlap {
 // Reads hessenthaler2017.json (data/reference). Throws InvalidInput naming the file and the key.
 HessenthalerFlap read_hessenthaler_flap(const std::filesystem::path& reference);
 
+// The MRI centreline file (phaseI_centreline.csv): rows x_mm, y_mm, z_mm after '#' comments and a
+// header; returns (z, y) in metres. Throws InvalidInput naming the file and line.
+std::vector<std::array<double, 2>> read_mri_centreline(const std::filesystem::path& path);
+
+// The published zero-flow centreline fit (hessenthaler2017.json: zero_flow_centreline_fit),
+// y = scale sum_i p_i (z / length)^(i + 1), sampled at `points` z evenly from `z_first` to its
+// length: (z, y) [m]. Throws InvalidInput naming the file and key.
+std::vector<std::array<double, 2>> zero_flow_centreline(const std::filesystem::path& reference, int points,
+                                                        double z_first);
+
 enum class FlapModel { beam, shell };
 FlapModel parse_flap_model(const std::string& name);  // "beam" | "shell"; InvalidInput otherwise
 const char* to_string(FlapModel model);
@@ -70,10 +80,13 @@ struct FlapShape {
 };
 
 // Dead loads per unit length [N/m]: `uniform` along +z, plus profiles piecewise constant on equal
-// stations from the clamp to the tip, along +z (transverse) and along +x (the clamp's axis).
+// stations from the clamp to the tip, along +z (transverse) and along +x (the clamp's axis);
+// nodal: the shell's nodes' dead loads [N], 3 per node in the flap's frame (e.g. a 3-D flow's time
+// mean on the same strip; empty: none).
 struct FlapLoad {
   double uniform = 0;
   std::vector<double> transverse, along;
+  std::vector<double> nodal;
 };
 
 // The shell strip without loads, in the flap's frame (along +x from the clamp, width along y,

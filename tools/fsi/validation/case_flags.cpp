@@ -140,6 +140,12 @@ void add_hessenthaler_phase1_flags(CLI::App& command, HessenthalerPhaseIOptions&
   command.add_flag("--start-straight", o.start_straight, "start straight instead of the no-flow buoyancy shape");
   command.add_option("--planes", o.planes_file,
                      "write the flow at the end on the planes z = 10 and 30 mm above the clamp (flow_planes.h5)");
+  command.add_option("--loads", o.loads_file,
+                     "write every evaluation's held tip and mean nodal load (flap_loads.h5, for fin-loop flap --phase1)");
+  command.add_option("--viscosity-factor", o.viscosity_factor, "the case's viscosity times this (a flow-side error)")
+      ->capture_default_str();
+  command.add_option("--inflow-factor", o.inflow_factor, "every inflow's speed times this (a flow-side error)")
+      ->capture_default_str();
 }
 
 }  // namespace finverse::fsi::validation

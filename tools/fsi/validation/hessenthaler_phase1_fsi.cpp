@@ -19,39 +19,13 @@
 #include "cfd/flow/flow_solver.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/hdf5_file.hpp"
 #include "core/printf_format.hpp"
 #include "fem/static_solver.hpp"
 
 namespace finverse::fsi::validation {
 
 namespace fv = fem::validation;
-
-std::vector<std::array<double, 2>> read_mri_centreline(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path.string() + ": cannot be read (the MRI centreline, x_mm,y_mm,z_mm)");
-  std::vector<std::array<double, 2>> out;
-  std::string line;
-  int number = 0;
-  bool header = false;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      if (line.rfind("x_mm,y_mm,z_mm", 0) != 0)
-        throw Error(path.string() + ":" + std::to_string(number) + ": expected the header x_mm,y_mm,z_mm");
-      header = true;
-      continue;
-    }
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream row(line);
-    double x = 0, y = 0, z = 0;
-    if (!(row >> x >> y >> z) || !std::isfinite(y) || !std::isfinite(z))
-      throw Error(path.string() + ":" + std::to_string(number) + ": expected three numbers x_mm,y_mm,z_mm");
-    out.push_back({z * 1e-3, y * 1e-3});
-  }
-  if (out.size() < 2) throw Error(path.string() + ": fewer than two centreline points");
-  return out;
-}
 
 double centreline_rms(const std::vector<std::array<double, 2>>& sim, const std::vector<std::array<double, 2>>& measured) {
   if (sim.size() < 2) throw Error("centreline_rms: the simulated centreline needs two points");
@@ -124,6 +98,7 @@ class PhaseIRun {
       write_flow_planes(o_.planes_file, planes);
       say("wrote " + o_.planes_file.string());
     }
+    if (!o_.loads_file.empty()) write_loads();
     return summary();
   }
 
@@ -134,7 +109,7 @@ class PhaseIRun {
     if (!(o_.youngs_modulus > 0)) throw Error("flap phase I: --youngs-modulus must be > 0 (fin-fit flap)");
     if (!(o_.window_time > 0) || !(o_.move_speed > 0) || o_.max_iterations < 1 || !(o_.omega > 0))
       throw Error("flap phase I: --window-time, --move-speed and --omega must be > 0, --max-iterations >= 1");
-    measured_ = read_mri_centreline(o_.centreline);
+    measured_ = fv::read_mri_centreline(o_.centreline);
     const cfd::cases::CaseFile c = cfd::cases::read_case_file(o_.flow_case, false);
     if (c.kind != "flow") throw Error(o_.flow_case.string() + ": expected case: flow (the junction's walls and inflows)");
     spec_ = c.flow;
@@ -146,6 +121,13 @@ class PhaseIRun {
     if (o_.h > 0) {
       spec_.h = o_.h;
       spec_.dt_max = 0;
+    }
+    if (!(o_.viscosity_factor > 0) || !(o_.inflow_factor > 0))
+      throw Error("flap phase I: --viscosity-factor and --inflow-factor must be > 0");
+    spec_.nu *= o_.viscosity_factor;
+    for (auto& side : spec_.sides) {
+      for (double& v : side.velocity) v *= o_.inflow_factor;
+      for (auto& pipe : side.pipes) pipe.speed *= o_.inflow_factor;
     }
     grid_.emplace(cfd::cases::flow_case_grid(spec_));
     const cfd::FlowOptions flow_options = cfd::cases::flow_case_options(spec_);
@@ -427,6 +409,7 @@ class PhaseIRun {
   }
 
   Summary summary() const;
+  void write_loads() const;
 
   const HessenthalerPhaseIOptions& o_;
   std::chrono::steady_clock::time_point t0_;
@@ -486,6 +469,8 @@ Summary PhaseIRun::summary() const {
                    {"window_time_s", o_.window_time}, {"move_time_s", o_.move_time},
                    {"move_speed_m_s", o_.move_speed}, {"first_step", o_.omega},
                    {"max_iterations", o_.max_iterations}, {"tolerance_m", o_.tolerance}};
+  p["viscosity_factor"] = o_.viscosity_factor;
+  p["inflow_factor"] = o_.inflow_factor;
   p["start"] = o_.start_straight ? "straight" : "no-flow buoyancy shape";
   p["geometry"] = {
       "the flap's mid-surface, a zero-thickness sheet, clamped with its centre at the origin on the junction's "
@@ -503,6 +488,37 @@ Summary PhaseIRun::summary() const {
   for (const auto& zy : line) c.push_back(zy);
   p["centreline_zy_m"] = c;
   return s;
+}
+
+// Every evaluation's held tip and mean nodal load in the structure's frame: what fin-loop flap
+// needs to rebuild the flow's load near the root as a function of the tip.
+void PhaseIRun::write_loads() const {
+  const std::size_t m = windows_.size();
+  std::vector<double> tips, loads;
+  for (const Window& w : windows_) {
+    tips.push_back(w.tip_in);
+    for (std::size_t i = 0; i < n_; ++i) {
+      const auto k = static_cast<Eigen::Index>(3 * i);
+      const fem::Vec3 f = force_to_flap({w.load[k] / w.span, w.load[k + 1] / w.span, w.load[k + 2] / w.span});
+      for (int d = 0; d < 3; ++d) loads.push_back(f[d]);
+    }
+  }
+  if (o_.loads_file.has_parent_path()) std::filesystem::create_directories(o_.loads_file.parent_path());
+  auto file = h5::File::create(o_.loads_file);
+  file.set_attr(".", "schema", std::string("finverse/flap-loads"));
+  file.set_attr(".", "schema_version", std::int64_t{1});
+  file.set_attr(".", "youngs_modulus_pa", o_.youngs_modulus);
+  file.set_attr(".", "h_m", spec_.h);
+  file.set_attr(".", "viscosity_factor", o_.viscosity_factor);
+  file.set_attr(".", "inflow_factor", o_.inflow_factor);
+  file.set_attr(".", "flap_along", std::int64_t{o_.mesh.along});
+  file.set_attr(".", "flap_across", std::int64_t{o_.mesh.across});
+  file.set_attr(".", "tip_at_root_m", tip(x_));
+  file.set_attr(".", "converged", std::int64_t{converged_ ? 1 : 0});
+  file.write("tip_held", NdArray<double>({m}, tips), h5::WriteOptions{"m", false});
+  file.write("nodal_load", NdArray<double>({m, 3 * n_}, loads), h5::WriteOptions{"N", true});
+  file.commit();
+  say("wrote " + o_.loads_file.string());
 }
 
 }  // namespace

@@ -38,6 +38,12 @@ struct HessenthalerPhaseIOptions {
   // clamp (flow_planes.hpp); empty: not written.
   std::filesystem::path planes_file;
   std::vector<double> plane_z{0.010, 0.030};  // [m]
+  // Where to write every evaluation's held tip and time-mean nodal load (flap_loads.h5, the
+  // structure's frame), fin-loop flap's 3-D Phase I frame; empty: not written.
+  std::filesystem::path loads_file;
+  // Flow-side perturbations for fin-loop flap's flow candidates: the case's viscosity and every
+  // inflow's speed times these.
+  double viscosity_factor = 1, inflow_factor = 1;
   std::function<void(const std::string&)> progress;
 };
 
@@ -53,8 +59,5 @@ Summary run_hessenthaler_phase1(const HessenthalerPhaseIOptions& options);
 double centreline_rms(const std::vector<std::array<double, 2>>& simulated,
                       const std::vector<std::array<double, 2>>& measured);
 
-// The MRI centreline file: rows x_mm, y_mm, z_mm after '#' comments and a header; returns (z, y)
-// in metres. Throws finverse::Error naming the file and line.
-std::vector<std::array<double, 2>> read_mri_centreline(const std::filesystem::path& path);
 
 }  // namespace finverse::fsi::validation
