@@ -17,6 +17,7 @@ folder. Cases needing a bad file write it with `make` (a function of the scratch
 """
 import argparse
 import math
+import json
 import os
 import re
 import shutil
@@ -301,6 +302,28 @@ def flap_cases():
              "c.csv:4:", ["{w}/out"], make=bad_centreline, label="fin-fsi flap: a bad MRI row"),
         case("fin-fsi", base + f" --flow {flow} --youngs-modulus 0", "--youngs-modulus", ["{w}/out"],
              label="fin-fsi flap: modulus 0"),
+        case("fin-fsi", base + f" --flow {flow} --youngs-modulus 1.8e5 --viscosity-factor 0", "--viscosity-factor",
+             ["{w}/out"], label="fin-fsi flap: viscosity factor 0"),
+    ] + flap_loop_cases()
+
+
+def flap_loop_cases():
+    """fin-loop flap with the 3-D Phase I frame: a loads file that is not there, no MRI centreline,
+    a perturbed run without the base run."""
+    fit = written("fit.json", json.dumps({
+        "schema": "finverse/summary", "schema_version": 1, "kind": "validation", "name": "fit", "description": "fit",
+        "pass": True, "timing": {"wall_s": 1.0, "threads": 1}, "metrics": [{"name": "youngs_modulus", "value": 1.83e5, "units": "Pa", "kind": "info",
+                                   "reference": None, "source": "", "error": None, "tolerance": None, "pass": None}]}))
+    base = ("--threads 1 flap --reference {repo}/data/reference/hessenthaler2017.json --fit {w}/fit.json "
+            "--out-dir {w}/out --name loop")
+    mri = " --centreline {repo}/data/reference/hessenthaler2017/phaseI_centreline.csv"
+    return [
+        case("fin-loop", base + " --phase1 {w}/none.h5" + mri, "none.h5", ["{w}/out"], make=fit,
+             label="fin-loop flap: a missing 3-D loads file"),
+        case("fin-loop", base + " --phase1 {w}/none.h5", "--centreline", ["{w}/out"], make=fit,
+             label="fin-loop flap: --phase1 without --centreline"),
+        case("fin-loop", base + " --phase1-viscosity {w}/none.h5" + mri, "--phase1", ["{w}/out"], make=fit,
+             label="fin-loop flap: a perturbed run without the base run"),
     ]
 
 

@@ -7,6 +7,8 @@
 //       [--parameters E_membrane,nu] [--frequency f] [--fit-drive K] [--drive-harmonics H]
 //   fin-loop flap --reference hessenthaler2017.json --fit fit/summary.json [--plane plane/summary.json]
 //       --out-dir DIR [--name N]   (issue 34 validation 2 (iii): the Hessenthaler flap's tips)
+//   fin-loop flap ... --phase1 flap_loads.h5 --centreline phaseI_centreline.csv
+//       [--phase1-viscosity v/flap_loads.h5] [--phase1-inflow u/flap_loads.h5]   (issue 49: centrelines)
 // Its own executable rather than a mode of fin-fit: it reads a prediction (fsi.h5 or a fin-fem
 // response) that fin-fit never sees, writes its own stage files (residual.h5, loop.h5), and
 // links the candidate effects and the residual analysis that the fit itself does not need; the
@@ -21,6 +23,7 @@
 
 #include "core/cli.hpp"
 #include "core/summary.hpp"
+#include "loop/errors.hpp"
 #include "loop/flap_loop.hpp"
 #include "loop/io/file_loop.hpp"
 
@@ -93,11 +96,15 @@ int main(int argc, char** argv) {
   tr->add_flag("--no-base-refit", no_base_refit, "rank at the fit's values without first refitting the base");
 
   finverse::loop::FlapLoopOptions fo;
-  std::string plane, out_dir = "results/validation";
+  std::string plane, phase1, phase1_viscosity, phase1_inflow, centreline, out_dir = "results/validation";
   auto* fl = app.add_subcommand("flap", "the tracer on the Hessenthaler (2017) flap's measured tips (issue 34)");
   fl->add_option("--reference", fo.reference, "hessenthaler2017.json")->required();
   fl->add_option("--fit", fo.fit_summary, "fin-fit flap's summary.json (E; its metrics are carried)")->required();
   fl->add_option("--plane", plane, "fin-fsi hessenthaler_plane's summary.json: its mean flow load as Phase I's");
+  fl->add_option("--phase1", phase1, "fin-fsi flap --loads of the 3-D Phase I run: centreline frames (issue 49)");
+  fl->add_option("--phase1-viscosity", phase1_viscosity, "the same run with --viscosity-factor: viscosity_error");
+  fl->add_option("--phase1-inflow", phase1_inflow, "the same run with --inflow-factor: inflow_error");
+  fl->add_option("--centreline", centreline, "the MRI centreline (phaseI_centreline.csv), with --phase1");
   fl->add_option("--along", fo.mesh.along, "shell cells along the flap")->capture_default_str();
   fl->add_option("--across", fo.mesh.across, "shell cells across the flap")->capture_default_str();
   fl->add_option("--alpha", fo.alpha, "family-wise level of the score test")->capture_default_str();
@@ -107,6 +114,12 @@ int main(int argc, char** argv) {
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     if (*fl) {
       if (!plane.empty()) fo.plane_summary = plane;
+      if (!phase1.empty()) fo.phase1_loads = phase1;
+      if (!phase1_viscosity.empty()) fo.phase1_viscosity = phase1_viscosity;
+      if (!phase1_inflow.empty()) fo.phase1_inflow = phase1_inflow;
+      if (!centreline.empty()) fo.centreline = centreline;
+      if ((fo.phase1_viscosity || fo.phase1_inflow) && !fo.phase1_loads)
+        throw finverse::loop::InvalidInput("fin-loop flap: --phase1-viscosity and --phase1-inflow need --phase1");
       fo.progress = [](const std::string& line) { std::cerr << "fin-loop flap: " << line << "\n"; };
       const finverse::Summary summary = finverse::loop::run_flap_loop(fo);
       const auto path = std::filesystem::path(out_dir) / fo.name / "summary.json";

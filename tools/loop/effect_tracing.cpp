@@ -62,7 +62,7 @@ ModelState state_of(const TracedModel& model, const Eigen::VectorXd& all, const 
   const Eigen::VectorXd train = pick_frames(all, split.training, split.rows_per_frame);
   const Eigen::VectorXd held = pick_frames(all, split.held_out, split.rows_per_frame);
   s.rss = train.squaredNorm();
-  s.training_rows = train.size();
+  s.training_rows = train.size() * model.data_per_point() / 3;  // data, not rows
   s.parameters = parameters;
   s.bic = bic(s.rss, s.training_rows, parameters);
   s.held_out_rms = rms_rows(held);
@@ -82,7 +82,7 @@ fit::ParameterSpace extended(const fit::ParameterSpace& space, const std::vector
 void score_candidates(const TracedModel& model, const std::vector<std::string>& effects,
                       const Eigen::VectorXd& parameters, const std::vector<std::string>& remaining,
                       const Eigen::VectorXd& r, const Eigen::MatrixXd& basis, int fitted,
-                      const fit::ResidualLayout* layout,
+                      const fit::ResidualLayout* layout, double in_span_tolerance,
                       const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& training,
                       const std::string& step_name, TraceStep& step,
                       const std::function<void(const std::string&)>& say) {
@@ -97,14 +97,22 @@ void score_candidates(const TracedModel& model, const std::vector<std::string>& 
         Eigen::VectorXd p(parameters.size() + dirs[j].parameters.size());
         p << parameters, dirs[j].parameters;
         ++step.evaluations;
-        s.col(static_cast<Eigen::Index>(j)) = (training(model.residuals(with, p)) - r) / dirs[j].step;
+        const Eigen::VectorXd plus = training(model.residuals(with, p));
+        if (!dirs[j].central) {
+          s.col(static_cast<Eigen::Index>(j)) = (plus - r) / dirs[j].step;
+          continue;
+        }
+        p.tail(dirs[j].parameters.size()) = 2 * model.effect_off(c) - dirs[j].parameters;
+        ++step.evaluations;
+        s.col(static_cast<Eigen::Index>(j)) = (plus - training(model.residuals(with, p))) / (2 * dirs[j].step);
       }
     } catch (const std::exception& e) {
       // A model that fails with the candidate on is reported, and the candidate not ranked.
       failure = e.what();
       s.setZero();
     }
-    step.scores.push_back({c, score_test(r, basis, fitted, s, 1e-8, layout), failure});
+    const double data = static_cast<double>(r.size()) * model.data_per_point() / 3.0;
+    step.scores.push_back({c, score_test(r, basis, fitted, s, in_span_tolerance, layout, data), failure});
     if (!failure.empty()) say("step " + step_name + ": " + c + " failed: " + failure);
     const ScoreResult& score = step.scores.back().score;
     std::ostringstream line;
@@ -198,12 +206,16 @@ TraceResult trace_effects(const TracedModel& model, const TraceOptions& options)
       out.stop_reason = "no candidate left";
       break;
     }
+    if (current.training_rows <= out.space.size()) {
+      out.stop_reason = "no residual degree of freedom left to test a candidate";
+      break;
+    }
     TraceStep step;
     step.before = current;
     const Eigen::VectorXd r = pick_frames(all, split.training, split.rows_per_frame);
     const Eigen::MatrixXd basis = orthonormal_basis(jacobian);
     score_candidates(
-        model, effects, out.parameters, remaining, r, basis, out.space.size(), layout,
+        model, effects, out.parameters, remaining, r, basis, out.space.size(), layout, options.in_span_tolerance,
         [&](const Eigen::VectorXd& all_c) { return pick_frames(all_c, split.training, split.rows_per_frame); },
         std::to_string(out.steps.size() + 1), step, say);
     std::stable_sort(step.scores.begin(), step.scores.end(), [](const auto& a, const auto& b) {

@@ -37,6 +37,9 @@ struct TraceOptions {
   bool refit_base = true;            // refit the base parameters before the first ranking
   double alpha = 0.01;               // family-wise level of the score test (Bonferroni over candidates)
   int max_effects = 3;
+  // A candidate whose sensitivity lies within this fraction of span(J) scores 0 (score_test.hpp):
+  // what finite differences cannot tell from the fitted parameters' directions.
+  double in_span_tolerance = 1e-8;
   fit::LmOptions lm;                 // refits; lm.fd_step also for the base Jacobian
   std::function<void(const std::string&)> progress;  // one line per stage (base refit, score, refit)
 };

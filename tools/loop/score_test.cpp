@@ -81,14 +81,16 @@ void robust_score(const Eigen::VectorXd& r, const Eigen::VectorXd& explained, co
 }  // namespace
 
 ScoreResult score_test(const Eigen::VectorXd& r, const Eigen::MatrixXd& basis, int fitted_parameters,
-                       const Eigen::MatrixXd& s, double in_span_tolerance, const fit::ResidualLayout* layout) {
+                       const Eigen::MatrixXd& s, double in_span_tolerance, const fit::ResidualLayout* layout,
+                       double data) {
   const Eigen::Index m = r.size();
+  const double m_data = data > 0 ? data : static_cast<double>(m);
   if (basis.rows() != m || s.rows() != m)
     throw InvalidInput("score test: the residual (" + std::to_string(m) + "), the Jacobian (" +
                        std::to_string(basis.rows()) + ") and the candidate's sensitivity (" +
                        std::to_string(s.rows()) + ") must have the same rows");
-  if (m <= fitted_parameters)
-    throw InvalidInput("score test: " + std::to_string(m) + " residuals cannot test beyond " +
+  if (m_data <= fitted_parameters)
+    throw InvalidInput("score test: " + std::to_string(static_cast<long>(m_data)) + " residuals cannot test beyond " +
                        std::to_string(fitted_parameters) + " fitted parameters");
   ScoreResult out;
   out.degrees_of_freedom = static_cast<int>(s.cols());
@@ -102,7 +104,7 @@ ScoreResult score_test(const Eigen::VectorXd& r, const Eigen::MatrixXd& basis, i
     else kept += p * p;
   }
   out.projected_fraction = total > 0 ? std::sqrt(kept / total) : 0.0;
-  const double s2 = r.squaredNorm() / static_cast<double>(m - fitted_parameters);
+  const double s2 = r.squaredNorm() / (m_data - fitted_parameters);
   if (kept == 0 || !(s2 > 0)) return out;
   const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(perp);
   const Eigen::VectorXd coef = cod.solve(r);  // least-squares fit of r by S_perp

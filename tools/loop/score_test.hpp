@@ -39,10 +39,11 @@ Eigen::MatrixXd orthonormal_basis(const Eigen::MatrixXd& jacobian, double tolera
 
 // q from s.cols(). Columns whose projection is below in_span_tolerance times their norm count
 // as inside span(J). layout (optional): where each residual sits; a systematic residual then gives
-// the robust statistic. Throws InvalidInput on row counts that differ or m <= n.
+// the robust statistic. data (> 0): the data among r's rows (structural zeros left out) for s^2;
+// 0: every row. Throws InvalidInput on row counts that differ or m <= n.
 ScoreResult score_test(const Eigen::VectorXd& r, const Eigen::MatrixXd& basis, int fitted_parameters,
                        const Eigen::MatrixXd& s, double in_span_tolerance = 1e-8,
-                       const fit::ResidualLayout* layout = nullptr);
+                       const fit::ResidualLayout* layout = nullptr, double data = 0);
 
 // Upper tail of chi^2 with q degrees of freedom at x.
 double chi2_tail(double x, int q);

@@ -16,9 +16,13 @@ namespace finverse::loop {
 
 // One perturbation of a candidate for its score test: the candidate's parameters (physical) set
 // to `parameters`, the sensitivity being (r(parameters) - r(off)) / step.
+// central: (r(parameters) - r(2 off - parameters)) / (2 step) instead, one more model run: a
+// model whose candidates lie in span(J) to first order (the flap's density against E) would
+// otherwise score on the one-sided difference's curvature term alone.
 struct ScoreDirection {
   Eigen::VectorXd parameters;
   double step = 1;
+  bool central = false;
 };
 
 class TracedModel {
@@ -47,6 +51,10 @@ class TracedModel {
   // score test can estimate how the residual is correlated (fit/correlated_residual.hpp). Empty
   // (the default): the residual's rows are taken as independent.
   virtual Eigen::Matrix3Xd frame_points() const { return {}; }
+  // Data each 3-row point carries: 3 (a tracked position), or 1 where only one coordinate is
+  // measured and the other two rows are structural zeros (the flap's centreline), so that the
+  // score test's variance and the BIC count data, not rows.
+  virtual int data_per_point() const { return 3; }
   // RMS over the trailing edge of a residual vector as residuals() returns it (default: all rows).
   virtual double trailing_edge_rms(const Eigen::VectorXd& r) const;
   // Per node, the RMS over frames of |residual| [m] (the report's residual maps). Default: one

@@ -39,10 +39,10 @@ TEST(FlapVariant, ProfileEqualToUniformLoadIsTheUniformLoad) {
   const fv::HessenthalerFlap flap;
   const double q = flap.buoyancy_per_length();
   const auto uniform = fv::flap_deflection(flap, 2e5, kShell, q);
-  const auto profile = fv::flap_deflection(flap, 2e5, kShell, fv::FlapLoad{0, std::vector<double>(4, q), {}}, {});
+  const auto profile = fv::flap_deflection(flap, 2e5, kShell, fv::FlapLoad{0, std::vector<double>(4, q), {}, {}}, {});
   EXPECT_NEAR(profile.tip, uniform.tip, 1e-9);
   // An axial pull along +x straightens the bent flap.
-  const auto pulled = fv::flap_deflection(flap, 2e5, kShell, fv::FlapLoad{q, {}, std::vector<double>(4, 2 * q)}, {});
+  const auto pulled = fv::flap_deflection(flap, 2e5, kShell, fv::FlapLoad{q, {}, std::vector<double>(4, 2 * q), {}}, {});
   EXPECT_LT(pulled.tip, uniform.tip);
 }
 
@@ -52,13 +52,13 @@ TEST(FlapVariant, SofteningBendsMoreAndCuppingStiffens) {
   const double plain = fv::flap_deflection(flap, 2e5, kShell, q).tip;
   fv::FlapShape soft;
   soft.distal_softening = 0.5;
-  EXPECT_GT(fv::flap_deflection(flap, 2e5, kShell, fv::FlapLoad{q, {}, {}}, soft).tip, plain);
+  EXPECT_GT(fv::flap_deflection(flap, 2e5, kShell, fv::FlapLoad{q, {}, {}, {}}, soft).tip, plain);
   fv::FlapShape cup;
   cup.rest_cupping = 40;
   const fv::FlapMesh across{fv::FlapModel::shell, 8, 4};
-  EXPECT_LT(fv::flap_deflection(flap, 2e5, across, fv::FlapLoad{q, {}, {}}, cup).tip,
+  EXPECT_LT(fv::flap_deflection(flap, 2e5, across, fv::FlapLoad{q, {}, {}, {}}, cup).tip,
             fv::flap_deflection(flap, 2e5, across, q).tip);
-  EXPECT_THROW(fv::flap_deflection(flap, 2e5, {fv::FlapModel::beam, 8, 1}, fv::FlapLoad{q, {}, {}}, cup),
+  EXPECT_THROW(fv::flap_deflection(flap, 2e5, {fv::FlapModel::beam, 8, 1}, fv::FlapLoad{q, {}, {}, {}}, cup),
                fem::InvalidInput);
 }
 
@@ -68,7 +68,7 @@ TEST(FlapTracing, OneDatumTiesEveryCandidateAndAddsNothing) {
   setup.youngs_modulus = 2.8e5;  // stiffer than the data: a residual to explain
   setup.refit_modulus = false;
   setup.candidates = {"density_error", "precurved_rest_shape", "modulus_offset"};
-  setup.frames = {{"no_flow", 0.0295, {}, {}}};
+  setup.frames = {{"no_flow", 0.0295, {}, {}, {}, {}}};
   const loop::FlapTracedModel model(setup);
   loop::TraceOptions o;
   o.refit_base = false;
