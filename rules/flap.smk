@@ -130,6 +130,7 @@ rule flap_phase1_grid:
     output:
         summary="results/validation/flap_phase1/grid_h{h}mm/summary.json",
         planes="results/validation/flap_phase1/grid_h{h}mm/flow_planes.h5",
+        loads="results/validation/flap_phase1/grid_h{h}mm/flap_loads.h5",
     log:
         "results/logs/validation/flap_phase1_grid_h{h}mm.log",
     wildcard_constraints:
@@ -140,7 +141,64 @@ rule flap_phase1_grid:
         "[\"metrics\"] if m[\"name\"] == \"youngs_modulus\"))' {input.modulus}) &&"
         " OMP_WAIT_POLICY=PASSIVE {input.exe} --threads 1 flap --flow {input.flow} --reference {input.reference}"
         " --centreline {input.centreline} --youngs-modulus $E --h $(/usr/bin/python3 -c 'print({wildcards.h} * 1e-3)')"
-        " --planes {output.planes} --out-dir results/validation/flap_phase1 --name grid_h{wildcards.h}mm 2> {log} "
+        " --planes {output.planes} --loads {output.loads} --out-dir results/validation/flap_phase1"
+        " --name grid_h{wildcards.h}mm 2> {log} "
+        + METRIC_MISSED_IS_A_RESULT
+
+
+# (iii) in 3-D (issue 49, deliverable 4): the loop on the 59 MRI points. fin-fsi flap again on the
+# loop's grid (config flap_phase1_loop_grid, 2.0 mm: ~7 min on one core each) with the viscosity
+# x 1.2 and the inflows x 1.1, whose loads give the flow-side candidates; then fin-loop flap with
+# the centreline frames (tools/loop/flap_flow_load.hpp):
+#   snakemake -c2 results/validation/flap_phase1/loop/summary.json
+FLAP_PHASE1_LOOP_GRID = str(config.get("flap_phase1_loop_grid", "2.0"))
+_FLAP_FLOW_ERRORS = {"viscosity": "--viscosity-factor 1.2", "inflow": "--inflow-factor 1.1"}
+
+
+rule flap_phase1_flow_error:
+    input:
+        exe=EXE("fin-fsi"),
+        flow=_FLAP_JUNCTION,
+        reference=_FLAP_REFERENCE,
+        centreline=_FLAP_CENTRELINE,
+        modulus=_FLAP_FIT,
+    output:
+        summary="results/validation/flap_phase1/loop/{error}/summary.json",
+        loads="results/validation/flap_phase1/loop/{error}/flap_loads.h5",
+    log:
+        "results/logs/validation/flap_phase1_loop_{error}.log",
+    wildcard_constraints:
+        error="viscosity|inflow",
+    threads: 1
+    params:
+        factor=lambda w: _FLAP_FLOW_ERRORS[w.error],
+    shell:
+        "E=$(/usr/bin/python3 -c 'import json, sys; print(next(m[\"value\"] for m in json.load(open(sys.argv[1]))"
+        "[\"metrics\"] if m[\"name\"] == \"youngs_modulus\"))' {input.modulus}) &&"
+        " OMP_WAIT_POLICY=PASSIVE {input.exe} --threads 1 flap --flow {input.flow} --reference {input.reference}"
+        " --centreline {input.centreline} --youngs-modulus $E --h $(/usr/bin/python3 -c 'print(" + FLAP_PHASE1_LOOP_GRID
+        + " * 1e-3)') {params.factor} --loads {output.loads} --out-dir results/validation/flap_phase1/loop"
+        " --name {wildcards.error} 2> {log} " + METRIC_MISSED_IS_A_RESULT
+
+
+rule flap_phase1_loop:
+    input:
+        exe=EXE("fin-loop"),
+        reference=_FLAP_REFERENCE,
+        centreline=_FLAP_CENTRELINE,
+        fit=_FLAP_FIT,
+        base=f"results/validation/flap_phase1/grid_h{FLAP_PHASE1_LOOP_GRID}mm/flap_loads.h5",
+        viscosity="results/validation/flap_phase1/loop/viscosity/flap_loads.h5",
+        inflow="results/validation/flap_phase1/loop/inflow/flap_loads.h5",
+    output:
+        "results/validation/flap_phase1/loop/summary.json",
+    log:
+        "results/logs/validation/flap_phase1_loop.log",
+    threads: 1
+    shell:
+        "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads 1 flap --reference {input.reference} --fit {input.fit}"
+        " --phase1 {input.base} --phase1-viscosity {input.viscosity} --phase1-inflow {input.inflow}"
+        " --centreline {input.centreline} --out-dir results/validation/flap_phase1 --name loop 2> {log} "
         + METRIC_MISSED_IS_A_RESULT
 
 
@@ -148,11 +206,12 @@ rule flap_phase1:
     input:
         script=os.path.join(SCRIPTS, "flap_phase1_study.py"),
         grids=expand("results/validation/flap_phase1/grid_h{h}mm/summary.json", h=FLAP_PHASE1_GRIDS),
+        loop="results/validation/flap_phase1/loop/summary.json",
     output:
         "results/validation/flap_phase1/summary.json",
     shell:
         "/usr/bin/python3 {input.script} " + " ".join(f"--grid {{input.grids[{i}]}}" for i in range(len(FLAP_PHASE1_GRIDS)))
-        + " --out {output} " + METRIC_MISSED_IS_A_RESULT
+        + " --loop {input.loop} --out {output} " + METRIC_MISSED_IS_A_RESULT
 
 
 # The flap's report page (deliverable 5): centrelines, the flow on z = 10 and 30 mm from the finest
@@ -167,8 +226,9 @@ rule flap_phase1_report:
         study="results/validation/flap_phase1/summary.json",
         planes=f"results/validation/flap_phase1/grid_h{_FLAP_FINEST}mm/flow_planes.h5",
         centreline=_FLAP_CENTRELINE,
+        loop="results/validation/flap_phase1/loop/summary.json",
     output:
         "results/validation/flap_phase1/report/index.html",
     shell:
         "/usr/bin/python3 {input.script} --study {input.study} --planes {input.planes} --centreline {input.centreline}"
-        " --out {output}"
+        " --loop {input.loop} --out {output}"

@@ -3,12 +3,15 @@
 Phase I centrelines, the flow on two cross-sections of the outlet pipe (z = 10 and 30 mm above the
 clamp, the finest grid's flow_planes.h5 from `fin-fsi flap --planes`), the grid study's verdicts
 and costs, and the decision trail of the finest grid's steady-state search (each held tip, the
-structure's answer and the load that gave it). Reads the grid study's summary
-(flap_phase1_study.py) and the grid summaries it lists; writes index.html and its figures.
+structure's answer and the load that gave it), and with --loop the loop on the MRI centreline (fin-loop
+flap --phase1: each run's fit, the candidates' scores, what was added or refused and why). Reads the
+grid study's summary (flap_phase1_study.py) and the grid summaries it lists; writes index.html and
+its figures.
 
     flap_phase1_report.py --study results/validation/flap_phase1/summary.json \
         --planes results/validation/flap_phase1/grid_h1.43mm/flow_planes.h5 \
         --centreline data/reference/hessenthaler2017/phaseI_centreline.csv \
+        --loop results/validation/flap_phase1/loop/summary.json \
         --out results/validation/flap_phase1/report/index.html
 
 Exit 2 with one line naming the input when one is missing or malformed.
@@ -69,12 +72,17 @@ def read_inputs(a):
     return study, sorted(grids, key=lambda g: -g["parameters"]["h_m"]), mri_zy, sorted(planes, key=lambda p: p["z"])
 
 
-def centreline_figure(grids, mri_zy, path):
+def centreline_figure(grids, mri_zy, loop, path):
     fig, ax = plt.subplots(figsize=(5, 6))
     ax.plot(mri_zy[:, 1], mri_zy[:, 0], "ko", ms=3, label="MRI (59 points)")
     for g in grids:
         zy = np.array(g["parameters"]["centreline_zy_m"]) * 1e3
         ax.plot(zy[:, 1], zy[:, 0], "-", label=f"fin-fsi, h = {g['parameters']['h_m'] * 1e3:.3g} mm")
+    if loop:
+        f = loop["parameters"]["runs"]["phase_I"]["frames"][1]
+        z = np.array(f["measured_zy_m"])[:, 0] * 1e3
+        ax.plot(np.array(f["model_y_before_m"]) * 1e3, z, "k--", lw=1, label="loop model, before")
+        ax.plot(np.array(f["model_y_after_m"]) * 1e3, z, "k:", lw=1.5, label="loop model, after")
     ax.set_xlabel("y [mm] (deflection, the faster inlet's side +)")
     ax.set_ylabel("z [mm] above the clamp")
     ax.grid(alpha=0.3)
@@ -111,7 +119,38 @@ def table(header, rows):
     return f"<table><tr>{head}</tr>{body}</table>"
 
 
-def page(study, grids):
+def loop_section(loop):
+    """The loop's decision trail: per run, the modulus, each frame's RMS before and after, what the
+    tracer added or the loop refused and why; the Phase I run's scores and closures."""
+    if not loop:
+        return "<h2>The loop on the MRI centreline</h2><p>Not run (no --loop).</p>"
+    runs = loop["parameters"]["runs"]
+    rows = []
+    for name, r in runs.items():
+        frames = "; ".join(f"{f['frame']} ({f['role']}) {f['rms_before_m'] * 1e3:.3f} → {f['rms_after_m'] * 1e3:.3f}"
+                           for f in r["frames"])
+        rows.append((name, f"{r['youngs_modulus_start_Pa'] / 1e3:.1f} → {r['youngs_modulus_after_Pa'] / 1e3:.1f}",
+                     frames, ", ".join(r["added"]) or "nothing", r["tracer_stop_reason"]))
+    runs_table = table(["run", "E [kPa]", "RMS [mm] per frame, before → after", "added", "tracer's stop"], rows)
+    p1 = runs.get("phase_I", {})
+    scores = [(c["candidate"], f"{c['statistic']:.3g}", f"{c['p_value']:.2g}", f"{c['projected_fraction']:.2g}")
+              for c in p1.get("scores", [])]
+    closures = [(c["candidate"], f"{c.get('value', float('nan')):.4g} {c.get('unit', '')}",
+                 "yes" if c.get("at_bound") else "no", f"{c.get('training_rms_m', float('nan')) * 1e3:.3f}")
+                for c in p1.get("closures", [])]
+    return f"""<h2>The loop on the MRI centreline</h2>
+<p><code>fin-loop flap --phase1</code>: frames are the zero-flow centreline (the paper's fit, sampled) and the 59 MRI
+points of Phase I, the flap in the 3-D run's load, which is linear in the tip about the root; the flow-side
+candidates from the runs with the viscosity and the inflows perturbed. Runs: E held at the tensile test's value
+(uniaxial), E fitted to the no-flow centreline (fitted), and E held there while the Phase I residual is traced
+(phase_I).</p>{runs_table}
+<h3>Phase I run: the candidates' scores (first step)</h3>
+{table(["candidate", "score", "p", "fraction off span(J)"], scores)}
+<h3>Phase I run: each candidate alone, refitted to the Phase I points</h3>
+{table(["candidate", "value", "at a bound", "RMS [mm]"], closures)}"""
+
+
+def page(study, grids, loop):
     verdict = {True: "met", False: "missed", None: "reported"}
     goals = [(m["name"], f"{m['value']:.4g} {m['units']}", "" if m.get("tolerance") is None else m["tolerance"], verdict[m["pass"]])
              for m in study["metrics"] if m["pass"] is not None or m["name"].startswith("tip_")]
@@ -141,6 +180,7 @@ window and asks the static structure for its answer; the steady state is the roo
 (secant steps, then regula falsi). Time-accurate coupling, fixed points on the load (Aitken, IQN-ILS)
 and filtered relaxation were tried first and failed (the study lists why).</p>
 {table(["evaluation", "window [s]", "tip held [mm]", "answer [mm]", "F_y [N]", "F_y std [N]"], trail)}
+{loop_section(loop)}
 </body></html>
 """
 
@@ -150,16 +190,20 @@ def main():
     p.add_argument("--study", required=True)
     p.add_argument("--planes", required=True)
     p.add_argument("--centreline", required=True)
+    p.add_argument("--loop", help="fin-loop flap --phase1's summary (the loop on the MRI centreline)")
     p.add_argument("--out", required=True)
     a = p.parse_args()
     study, grids, mri_zy, planes = read_inputs(a)
+    loop = load_json(a.loop, "--loop") if a.loop else None
+    if loop and "phase_I" not in loop.get("parameters", {}).get("runs", {}):
+        fail(f"--loop {a.loop}: expected fin-loop flap --phase1's summary (runs.phase_I)")
     out_dir = os.path.dirname(os.path.abspath(a.out))
     os.makedirs(out_dir, exist_ok=True)
-    centreline_figure(grids, mri_zy, os.path.join(out_dir, "centrelines.png"))
+    centreline_figure(grids, mri_zy, loop, os.path.join(out_dir, "centrelines.png"))
     planes_figure(planes, os.path.join(out_dir, "planes.png"))
     tmp = a.out + ".tmp"
     with open(tmp, "w") as f:
-        f.write(page(study, grids))
+        f.write(page(study, grids, loop))
     os.replace(tmp, a.out)
 
 
