@@ -283,7 +283,8 @@ def pipe_cases():
 
 def flap_cases():
     """fin-fsi flap (the Hessenthaler Phase I run in 3-D): a flow case with a sheet among its bodies,
-    an MRI centreline with a bad row, a modulus of zero."""
+    an MRI centreline with a bad row, a modulus of zero, a flow factor of zero, a flap too wide for
+    the junction (it sticks through the outlet pipe's wall)."""
     flow = "{repo}/data/cases/cfd/pipe_flow.yaml"
     base = ("--threads 1 flap --reference {repo}/data/reference/hessenthaler2017.json --out-dir {w}/out "
             "--centreline {repo}/data/reference/hessenthaler2017/phaseI_centreline.csv")
@@ -304,6 +305,11 @@ def flap_cases():
              label="fin-fsi flap: modulus 0"),
         case("fin-fsi", base + f" --flow {flow} --youngs-modulus 1.8e5 --viscosity-factor 0", "--viscosity-factor",
              ["{w}/out"], label="fin-fsi flap: viscosity factor 0"),
+        case("fin-fsi", base.replace("{repo}/data/reference/hessenthaler2017.json", "{w}/wide.json")
+             + " --flow {repo}/data/cases/cfd/hessenthaler/junction_flow.yaml --h 0.004 --youngs-modulus 1.8e5",
+             "wide.json: the flap (65 x 74 mm) sticks through", ["{w}/out"],
+             make=edited("{repo}/data/reference/hessenthaler2017.json", r'"width": 11.0', '"width": 74.0', "wide.json"),
+             label="fin-fsi flap: a flap through the junction's wall"),
     ] + flap_loop_cases()
 
 

@@ -142,7 +142,9 @@ class PhaseIRun {
     std::vector<cfd::Vec3> rest;
     for (const fem::Vec3& p : shell.model.reference_positions()) rest.push_back(to_flow(p, flap_.width));
     x_ = stack(rest);
+    check_inside_walls(x_, "at rest");
     if (!o_.start_straight) x_ = solve_structure(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(3 * n_)));
+    check_inside_walls(x_, "in its start shape");
     final_ = x_;
     cfd::SheetForcingOptions so = spec_.sheet;
     // The load less the inertia of the fluid band the kernel moves with the sheet: the steady load
@@ -156,6 +158,31 @@ class PhaseIRun {
         std::to_string(grid_->nz()) + " cells, h " + num(spec_.h * 1e3) + " mm, flap " +
         std::to_string(o_.mesh.along) + " x " + std::to_string(o_.mesh.across) + " shell cells, " +
         std::to_string(flow_.sheet()->size()) + " markers; start tip " + num(tip(x_) * 1e3) + " mm");
+  }
+
+  // A flap that sticks through a wall (the reference's geometry too big for the junction): a node
+  // beyond the clamp row in a solid cell deeper than the ghost layer.
+  void check_inside_walls(const Eigen::VectorXd& x, const char* when) const {
+    const cfd::GhostCellSet* walls = flow_.immersed();
+    if (!walls) return;
+    const auto cell = [&](int d, double v) {
+      const auto& f = grid_->axis(d).faces();
+      return static_cast<int>(std::upper_bound(f.begin(), f.end(), v) - f.begin()) - 1;
+    };
+    std::vector<bool> clamp(n_, false);
+    for (const auto& [node, w] : rows_.front()) clamp[static_cast<std::size_t>(node)] = true;
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (clamp[i]) continue;
+      const auto k = static_cast<Eigen::Index>(3 * i);
+      const int c[3] = {cell(0, x[k]), cell(1, x[k + 1]), cell(2, x[k + 2])};
+      const bool inside = c[0] >= 0 && c[0] < grid_->nx() && c[1] >= 0 && c[1] < grid_->ny() && c[2] >= 0 &&
+                          c[2] < grid_->nz();
+      if (!inside || walls->kind(c[0], c[1], c[2]) == cfd::CellKind::Solid)
+        throw Error(o_.reference.string() + ": the flap (" + num(flap_.length * 1e3) + " x " +
+                    num(flap_.width * 1e3) + " mm) sticks through the walls of " + o_.flow_case.string() + " " +
+                    when + ": its node at (" + num(x[k] * 1e3) + ", " + num(x[k + 1] * 1e3) + ", " +
+                    num(x[k + 2] * 1e3) + ") mm is in the solid");
+    }
   }
 
   // The flow's start: the inflow ramps up with the flap held at its start shape.
