@@ -139,27 +139,36 @@ HeldOutSplit held_out_split(const std::vector<double>& times, double period) {
   return s;
 }
 
-TraceResult trace_effects(const TracedModel& model, const TraceOptions& options) {
-  auto say = [&](const std::string& line) {
-    if (options.progress) options.progress(line);
-  };
+namespace {
+
+// The training and held-out frames, and the rows of a frame's block from a residual `all`.
+Split split_frames(const TracedModel& model, const std::vector<int>& held_out, const Eigen::VectorXd& all) {
   const int nf = model.frame_count();
   Split split;
-  std::set<int> held(options.held_out_frames.begin(), options.held_out_frames.end());
+  std::set<int> held(held_out.begin(), held_out.end());
   for (int k : held)
     if (k < 0 || k >= nf) throw InvalidInput("trace: held-out frame " + std::to_string(k) + " out of range");
   for (int k = 0; k < nf; ++k) (held.count(k) ? split.held_out : split.training).push_back(k);
   if (split.training.empty()) throw InvalidInput("trace: every frame is held out; nothing left to fit");
+  if (all.size() % nf != 0 || (all.size() / nf) % 3 != 0)
+    throw InvalidInput("trace: the model's residual is not frame_count() blocks of 3-vectors");
+  split.rows_per_frame = all.size() / nf;
+  return split;
+}
 
+}  // namespace
+
+TraceResult trace_effects(const TracedModel& model, const TraceOptions& options) {
+  auto say = [&](const std::string& line) {
+    if (options.progress) options.progress(line);
+  };
   TraceResult out;
   out.space = model.base_space();
   out.parameters = model.base_start();
   std::vector<std::string> effects;
   Eigen::VectorXd all = model.residuals(effects, out.parameters);
   ++out.evaluations;
-  if (all.size() % nf != 0 || (all.size() / nf) % 3 != 0)
-    throw InvalidInput("trace: the model's residual is not frame_count() blocks of 3-vectors");
-  split.rows_per_frame = all.size() / nf;
+  const Split split = split_frames(model, options.held_out_frames, all);
   // Where each residual sits, for the score test's correlation (empty: taken as independent).
   const Eigen::Matrix3Xd points = model.frame_points();
   if (points.cols() > 0 && 3 * points.cols() != split.rows_per_frame)
