@@ -1,5 +1,6 @@
 // The add-refit-test loop over candidate effects (effect_tracing.hpp).
 #include "loop/effect_tracing.hpp"
+#include "loop/training_residual.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,35 +15,6 @@
 
 namespace finverse::loop {
 namespace {
-
-// The training rows of the traced model's residual as a fit::ResidualFunction for the polish.
-class TrainingResidual : public fit::ResidualFunction {
- public:
-  TrainingResidual(const TracedModel& model, std::vector<std::string> effects, int n, std::vector<int> frames,
-                   long rows_per_frame)
-      : model_(model), effects_(std::move(effects)), n_(n), frames_(std::move(frames)), rows_(rows_per_frame) {
-    sqrt_w_ = Eigen::VectorXd::Ones(residual_count() / 3);
-  }
-  int parameter_count() const override { return n_; }
-  int residual_count() const override { return static_cast<int>(rows_ * static_cast<long>(frames_.size())); }
-  Eigen::VectorXd residuals(const Eigen::VectorXd& physical) const override {
-    return pick(model_.residuals(effects_, physical));
-  }
-  const Eigen::VectorXd& sqrt_weights() const override { return sqrt_w_; }
-  Eigen::VectorXd pick(const Eigen::VectorXd& all) const {
-    Eigen::VectorXd r(residual_count());
-    for (std::size_t j = 0; j < frames_.size(); ++j) r.segment(j * rows_, rows_) = all.segment(frames_[j] * rows_, rows_);
-    return r;
-  }
-
- private:
-  const TracedModel& model_;
-  std::vector<std::string> effects_;
-  int n_;
-  std::vector<int> frames_;
-  long rows_;
-  Eigen::VectorXd sqrt_w_;
-};
 
 struct Split {
   std::vector<int> training, held_out;

@@ -14,6 +14,7 @@
 #include "loop/errors.hpp"
 #include "loop/flap_flow_load.hpp"
 #include "loop/flap_traced_model.hpp"
+#include "loop/training_residual.hpp"
 
 namespace finverse::loop {
 
@@ -22,35 +23,6 @@ namespace fv = fem::validation;
 namespace {
 
 constexpr const char* kSource = "Hessenthaler et al. 2017 (hessenthaler2017.json)";
-
-// The training frames' residual of the model with `effects` on, for one refit (rows: a frame's
-// block, 3 per tip or centreline point).
-class FrameResidual : public fit::ResidualFunction {
- public:
-  FrameResidual(const FlapTracedModel& model, std::vector<std::string> effects, int n, std::vector<int> frames,
-                int rows)
-      : model_(model), effects_(std::move(effects)), n_(n), frames_(std::move(frames)), rows_(rows) {
-    w_ = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(frames_.size()) * rows_ / 3);
-  }
-  int parameter_count() const override { return n_; }
-  int residual_count() const override { return rows_ * static_cast<int>(frames_.size()); }
-  Eigen::VectorXd residuals(const Eigen::VectorXd& p) const override {
-    const Eigen::VectorXd all = model_.residuals(effects_, p);
-    Eigen::VectorXd r(residual_count());
-    for (std::size_t j = 0; j < frames_.size(); ++j)
-      r.segment(static_cast<Eigen::Index>(j) * rows_, rows_) = all.segment(static_cast<Eigen::Index>(frames_[j]) * rows_, rows_);
-    return r;
-  }
-  const Eigen::VectorXd& sqrt_weights() const override { return w_; }
-
- private:
-  const FlapTracedModel& model_;
-  std::vector<std::string> effects_;
-  int n_;
-  std::vector<int> frames_;
-  int rows_;
-  Eigen::VectorXd w_;
-};
 
 std::vector<double> scaled(const nlohmann::json& j, const char* key, double factor, const std::string& where) {
   if (!j.contains(key) || !j[key].is_array()) throw InvalidInput(where + ": expected the array " + key);
@@ -220,7 +192,7 @@ nlohmann::json run_one(const RunSpec& spec, const FlapTraceSetup& base_setup, co
     Eigen::VectorXd p0(nb + 1);
     if (nb) p0(0) = tr.parameters(0);
     p0(nb) = model.effect_off(c)(0);
-    const FrameResidual f(model, {c}, nb + 1, training, 3 * points);
+    const TrainingResidual f(model, {c}, nb + 1, training, 3L * points);
     fit::LmOptions lm = to.lm;
     nlohmann::json row = {{"candidate", c}, {"parameter", params.back().name}, {"unit", params.back().unit}};
     try {
