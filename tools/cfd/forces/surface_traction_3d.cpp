@@ -1,6 +1,7 @@
 // Surface traction and per-triangle forces on an immersed triangulated body; see
 // surface_traction_3d.hpp.
 #include "cfd/forces/surface_traction_3d.hpp"
+#include "cfd/parallel/rank_share.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -132,18 +133,6 @@ SurfaceTraction3D::SurfaceTraction3D(const StretchedGrid& grid, const GhostCellS
         }
         o.probe = 0;
         for (int d = 0; d < 3; ++d) o.probe = std::max(o.probe, grid.axis(d).width_at(o.point[static_cast<std::size_t>(d)]));
-        Vec3 p1, p2, b1 = o.point, b2 = o.point;
-        for (std::size_t d = 0; d < 3; ++d) {
-          p1[d] = o.point[d] + o.probe * n[d];
-          p2[d] = o.point[d] + 2 * o.probe * n[d];
-        }
-        const double f1 = place(p1, b1), f2 = place(p2, b2);
-        o.velocity1 = ghosts.stencil(p1, b1, n, BoundaryCondition::Dirichlet);
-        o.velocity2 = ghosts.stencil(p2, b2, n, BoundaryCondition::Dirichlet);
-        if (f1 != 1) o.velocity1 = scaled(o.velocity1, f1);
-        if (f2 != 1) o.velocity2 = scaled(o.velocity2, f2);
-        o.pressure1 = ghosts.stencil(p1, b1, n, BoundaryCondition::None);
-        o.pressure2 = ghosts.stencil(p2, b2, n, BoundaryCondition::None);
         samples_.push_back(o);
       };
       // Centroids of the m^2 sub-triangles: m(m+1)/2 upright, m(m-1)/2 inverted.
@@ -154,6 +143,23 @@ SurfaceTraction3D::SurfaceTraction3D(const StretchedGrid& grid, const GhostCellS
         }
     }
   }
+  // The probes' stencils, the costly part (a least-squares fit each), one sample per item; over the
+  // ranks of a whole-flow run each rank computes its share (rank_share.hpp).
+  shared_for_each(samples_, [&](SurfaceSample3D& o) {
+    const Vec3& n = o.normal;
+    Vec3 p1, p2, b1 = o.point, b2 = o.point;
+    for (std::size_t d = 0; d < 3; ++d) {
+      p1[d] = o.point[d] + o.probe * n[d];
+      p2[d] = o.point[d] + 2 * o.probe * n[d];
+    }
+    const double f1 = place(p1, b1), f2 = place(p2, b2);
+    o.velocity1 = ghosts.stencil(p1, b1, n, BoundaryCondition::Dirichlet);
+    o.velocity2 = ghosts.stencil(p2, b2, n, BoundaryCondition::Dirichlet);
+    if (f1 != 1) o.velocity1 = scaled(o.velocity1, f1);
+    if (f2 != 1) o.velocity2 = scaled(o.velocity2, f2);
+    o.pressure1 = ghosts.stencil(p1, b1, n, BoundaryCondition::None);
+    o.pressure2 = ghosts.stencil(p2, b2, n, BoundaryCondition::None);
+  });
 }
 
 SurfaceForces SurfaceTraction3D::evaluate(const Field& u, const Field& v, const Field& w, const Field& p, double nu,

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "cfd/immersed/ghost_cells.hpp"
+#include "cfd/parallel/rank_share.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {
@@ -111,15 +112,22 @@ void mark_solid(const StretchedGrid& grid, const SurfaceGeometry& body, const st
   const auto inside = [&](int i, int j, int k) {
     return body.closest({grid.xc(i), grid.yc(j), grid.zc(k)}).distance < 0;
   };
-  std::vector<std::size_t> near;
+  // The centres near the surface, each by its closest point (shared over whole-flow ranks).
+  struct NearCentre {
+    std::size_t q;
+    bool solid;
+  };
+  std::vector<NearCentre> near;
   for (std::size_t q = 0; q < total; ++q)
-    if (done[q]) near.push_back(q);
-  const long nn = static_cast<long>(near.size());
-#pragma omp parallel for schedule(dynamic, 64)
-  for (long p = 0; p < nn; ++p) {
+    if (done[q]) near.push_back({q, false});
+  shared_for_each(near, [&](NearCentre& c) {
     int i, j, k;
-    const std::size_t c = global(near[static_cast<std::size_t>(p)], i, j, k);
-    if (inside(i, j, k)) kind[c] = CellKind::Solid;
+    global(c.q, i, j, k);
+    c.solid = inside(i, j, k);
+  });
+  for (const NearCentre& c : near) {
+    int i, j, k;
+    if (c.solid) kind[global(c.q, i, j, k)] = CellKind::Solid;
   }
   // The far regions, each by a flood fill from its first centre.
   std::vector<std::size_t> stack;
@@ -188,45 +196,35 @@ GhostCellSet::GhostCellSet(const StretchedGrid& grid, const SurfaceGeometry& bod
         g.k = k;
         ghosts_.push_back(g);
       }
-  // Probes and stencils (after the classification is complete), one ghost per thread iteration;
-  // the first error is rethrown outside the parallel region.
-  std::string error;
-  const long n = static_cast<long>(ghosts_.size());
-#pragma omp parallel for schedule(dynamic, 16)
-  for (long m = 0; m < n; ++m) {
-    GhostCell& g = ghosts_[static_cast<std::size_t>(m)];
-    try {
-      const Vec3 x{grid.xc(g.i), grid.yc(g.j), grid.zc(g.k)};
-      const SurfaceHit h = body.closest(x);
-      g.intercept = h.point;
-      g.normal = h.normal;
-      g.triangle = h.triangle;
-      g.barycentric = h.barycentric;
-      g.boundary.point = {h.point[0], h.point[1]};
-      g.boundary.normal = {h.normal[0], h.normal[1]};
-      g.boundary.distance = std::min(h.distance, 0.0);
-      for (std::size_t d = 0; d < 3; ++d) g.image_point[d] = 2 * h.point[d] - x[d];
-      g.image = {g.image_point[0], g.image_point[1]};
-      int c0[3];
-      for (int d = 0; d < 3; ++d) {
-        c0[d] = lower_centre3(grid.axis(d), g.image_point[static_cast<std::size_t>(d)]);
-        if (c0[d] < 0)
-          throw Error("immersed boundary: the image point of ghost cell (" + std::to_string(g.i) + ", " +
-                      std::to_string(g.j) + ", " + std::to_string(g.k) +
-                      ") lies outside the grid (body too close to the domain boundary)");
-      }
-      g.stencil = {c0[0], c0[1]};
-      g.stencil_all_fluid = true;
-      for (int q = 0; q < 8; ++q)
-        g.stencil_all_fluid = g.stencil_all_fluid && fluid(c0[0] + (q & 1), c0[1] + ((q >> 1) & 1), c0[2] + ((q >> 2) & 1));
-      g.dirichlet = stencil(g.image_point, g.intercept, g.normal, BoundaryCondition::Dirichlet, {g.i, g.j, g.k});
-      g.neumann = stencil(g.image_point, g.intercept, g.normal, BoundaryCondition::Neumann, {g.i, g.j, g.k});
-    } catch (const std::exception& e) {
-#pragma omp critical(ghost_cells_3d_error)
-      if (error.empty()) error = e.what();
+  // Probes and stencils (after the classification is complete), one ghost per item; over the ranks
+  // of a whole-flow run each rank computes its share (rank_share.hpp).
+  shared_for_each(ghosts_, [&](GhostCell& g) {
+    const Vec3 x{grid.xc(g.i), grid.yc(g.j), grid.zc(g.k)};
+    const SurfaceHit h = body.closest(x);
+    g.intercept = h.point;
+    g.normal = h.normal;
+    g.triangle = h.triangle;
+    g.barycentric = h.barycentric;
+    g.boundary.point = {h.point[0], h.point[1]};
+    g.boundary.normal = {h.normal[0], h.normal[1]};
+    g.boundary.distance = std::min(h.distance, 0.0);
+    for (std::size_t d = 0; d < 3; ++d) g.image_point[d] = 2 * h.point[d] - x[d];
+    g.image = {g.image_point[0], g.image_point[1]};
+    int c0[3];
+    for (int d = 0; d < 3; ++d) {
+      c0[d] = lower_centre3(grid.axis(d), g.image_point[static_cast<std::size_t>(d)]);
+      if (c0[d] < 0)
+        throw Error("immersed boundary: the image point of ghost cell (" + std::to_string(g.i) + ", " +
+                    std::to_string(g.j) + ", " + std::to_string(g.k) +
+                    ") lies outside the grid (body too close to the domain boundary)");
     }
-  }
-  if (!error.empty()) throw Error(error);
+    g.stencil = {c0[0], c0[1]};
+    g.stencil_all_fluid = true;
+    for (int q = 0; q < 8; ++q)
+      g.stencil_all_fluid = g.stencil_all_fluid && fluid(c0[0] + (q & 1), c0[1] + ((q >> 1) & 1), c0[2] + ((q >> 2) & 1));
+    g.dirichlet = stencil(g.image_point, g.intercept, g.normal, BoundaryCondition::Dirichlet, {g.i, g.j, g.k});
+    g.neumann = stencil(g.image_point, g.intercept, g.normal, BoundaryCondition::Neumann, {g.i, g.j, g.k});
+  });
   find_near_wall_faces();
 }
 

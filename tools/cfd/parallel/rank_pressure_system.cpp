@@ -7,6 +7,7 @@
 #include <string>
 #include <thread>
 
+#include "cfd/parallel/mpi_rank_share.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -67,11 +68,13 @@ FlowRanks::FlowRanks() {
   MPI_Comm_dup(MPI_COMM_WORLD, &failures_);
   active_ = true;
   install_flow_pressure_system([] { return std::make_shared<RankPressureSystem>(MPI_COMM_WORLD); });
+  install_rank_share(std::make_shared<MpiRankShare>(MPI_COMM_WORLD));
 }
 
 FlowRanks::~FlowRanks() {
   if (!active_) return;
   install_flow_pressure_system({});
+  install_rank_share(nullptr);
   MPI_Comm_free(&failures_);
   MPI_Finalize();
 }
@@ -101,7 +104,8 @@ int run_on_flow_ranks(const std::string& tool, const std::function<int()>& body)
   FlowRanks ranks;
   if (!ranks.active()) return body();
   log::info("the pressure solve over " + std::to_string(ranks.size()) +
-            " MPI ranks, every rank holding the whole flow; rank 0 writes the files");
+            " MPI ranks, every rank holding the whole flow (the immersed surface's ghost cells built in shares); "
+            "rank 0 writes the files");
   try {
     const int rc = body();
     char line[200];
