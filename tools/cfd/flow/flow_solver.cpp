@@ -32,6 +32,7 @@ void FlowSolver::setup(const StretchedGrid& grid, const FlowBoundary& boundary, 
       const Side side = static_cast<Side>(s);
       bc[side] = s < 2 * dim() ? bnd_.component_type(side, c) : BcType::Neumann;
     }
+    helmholtz_[static_cast<std::size_t>(c)].set_system_solver(make_flow_momentum_system());  // the ranks', when installed
     helmholtz_[static_cast<std::size_t>(c)].setup(grid, beta_, bc);
   }
   poisson_.set_system_solver(make_flow_pressure_system());  // the MPI ranks' solve, when installed

@@ -5,12 +5,32 @@
 #include "cfd/flow/helmholtz_pcg.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace finverse::cfd {
 
+namespace {
+HelmholtzSystemFactory& flow_momentum_factory() {
+  static HelmholtzSystemFactory factory;
+  return factory;
+}
+}  // namespace
+
+void install_flow_momentum_system(HelmholtzSystemFactory factory) { flow_momentum_factory() = std::move(factory); }
+
+std::shared_ptr<HelmholtzSystemSolver> make_flow_momentum_system() {
+  const HelmholtzSystemFactory& f = flow_momentum_factory();
+  return f ? f() : nullptr;
+}
+
 void HelmholtzSolver::setup(const StretchedGrid& grid, const FaceCoefficients& beta, const BoundaryConditions& bc) {
   op_.setup(grid, beta, bc);
-  work_ = {op_.make_field(), op_.make_field(), op_.make_field(), op_.make_field()};
+  if (system_) {
+    work_ = {};
+    system_->setup(op_, beta, bc);
+  } else {
+    work_ = {op_.make_field(), op_.make_field(), op_.make_field(), op_.make_field()};
+  }
 }
 
 void add_mass(const PoissonOperator& op, double mass, double stiffness, const Field& x, Field& out) {
@@ -59,6 +79,7 @@ struct HelmholtzOps {
 
 HelmholtzStats HelmholtzSolver::solve(double mass, double stiffness, const Field& b, Field& x, double rtol,
                                       int max_iterations) {
+  if (system_) return system_->solve(op_, mass, stiffness, b, x, rtol, max_iterations);
   HelmholtzOps ops{*this, mass, stiffness};
   return helmholtz_pcg(ops, b, x, rtol, max_iterations, work_);
 }

@@ -12,6 +12,10 @@
 // counts measured: docs/studies/momentum_solver.md.
 #pragma once
 
+#include <functional>
+#include <memory>
+#include <utility>
+
 #include "cfd/poisson/poisson_boundary.hpp"
 #include "cfd/poisson/face_coefficients.hpp"
 #include "cfd/grid/field.hpp"
@@ -30,8 +34,27 @@ struct HelmholtzWork {
   Field r, z, d, q;
 };
 
+// A solver of the momentum system that takes the Jacobi-PCG's place: the MPI ranks' one
+// (cfd/parallel/rank_momentum_system.hpp). It sees every operator HelmholtzSolver builds and leaves
+// x as helmholtz_pcg does, ghosts included (filled from the initial guess).
+class HelmholtzSystemSolver {
+ public:
+  virtual ~HelmholtzSystemSolver() = default;
+  virtual void setup(const PoissonOperator& op, const FaceCoefficients& beta, const BoundaryConditions& bc) = 0;
+  virtual HelmholtzStats solve(const PoissonOperator& op, double mass, double stiffness, const Field& b, Field& x,
+                               double rtol, int max_iterations) = 0;
+};
+
+// The process's flow solvers take their momentum system solver from this factory once one is
+// installed (FlowRanks under an MPI launcher); empty, the default: the threaded Jacobi-PCG.
+using HelmholtzSystemFactory = std::function<std::shared_ptr<HelmholtzSystemSolver>()>;
+void install_flow_momentum_system(HelmholtzSystemFactory factory);
+std::shared_ptr<HelmholtzSystemSolver> make_flow_momentum_system();
+
 class HelmholtzSolver {
  public:
+  // Solve with `system` instead of the threaded Jacobi-PCG (null: that); takes effect at the next setup().
+  void set_system_solver(std::shared_ptr<HelmholtzSystemSolver> system) { system_ = std::move(system); }
   void setup(const StretchedGrid& grid, const FaceCoefficients& beta, const BoundaryConditions& bc);
 
   const PoissonOperator& op() const { return op_; }
@@ -45,6 +68,7 @@ class HelmholtzSolver {
  private:
   PoissonOperator op_;
   HelmholtzWork work_;
+  std::shared_ptr<HelmholtzSystemSolver> system_;
 };
 
 }  // namespace finverse::cfd

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "cfd/parallel/mpi_rank_share.hpp"
+#include "cfd/parallel/rank_momentum_system.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -68,12 +69,14 @@ FlowRanks::FlowRanks() {
   MPI_Comm_dup(MPI_COMM_WORLD, &failures_);
   active_ = true;
   install_flow_pressure_system([] { return std::make_shared<RankPressureSystem>(MPI_COMM_WORLD); });
+  install_flow_momentum_system([] { return std::make_shared<RankMomentumSystem>(MPI_COMM_WORLD); });
   install_rank_share(std::make_shared<MpiRankShare>(MPI_COMM_WORLD));
 }
 
 FlowRanks::~FlowRanks() {
   if (!active_) return;
   install_flow_pressure_system({});
+  install_flow_momentum_system({});
   install_rank_share(nullptr);
   MPI_Comm_free(&failures_);
   MPI_Finalize();
@@ -104,8 +107,8 @@ int run_on_flow_ranks(const std::string& tool, const std::function<int()>& body)
   FlowRanks ranks;
   if (!ranks.active()) return body();
   log::info("the pressure solve over " + std::to_string(ranks.size()) +
-            " MPI ranks, every rank holding the whole flow (the immersed surface's ghost cells built in shares); "
-            "rank 0 writes the files");
+            " MPI ranks, every rank holding the whole flow (the momentum solves on the ranks too where no "
+            "closed body's ghost rows join them, the closed surface's set-up in shares); rank 0 writes the files");
   try {
     const int rc = body();
     char line[200];

@@ -37,9 +37,9 @@ class RankPressureSystem : public PoissonSystemSolver {
 };
 
 // MPI for a run of whole-flow ranks: initialised when an MPI launcher started the process on more
-// than one rank, with RankPressureSystem installed for every flow solver the process sets up and
-// the rank share (mpi_rank_share.hpp) for the loops built in shares, the immersed surface's ghost
-// cells; uninstalled and finalised at the end. Nothing at all without a launcher.
+// than one rank, with RankPressureSystem and RankMomentumSystem installed for every flow solver the
+// process sets up and the rank share (mpi_rank_share.hpp) for the loops built in shares, the closed
+// surface's set-up; uninstalled and finalised at the end. Nothing at all without a launcher.
 class FlowRanks {
  public:
   FlowRanks();
