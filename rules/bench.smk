@@ -28,15 +28,50 @@ rule bench_poisson:
         " OMP_WAIT_POLICY=PASSIVE {input.ours} {params.sizes} --threads {threads} --peer {output.peer} --json {output.json}"
         " " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
 
-register_bench("scaling", "the pressure solve on MPI ranks against the threaded solver on the same cores; "
-               "a strong/weak scaling model for 8-512 ranks (issue 48)")
+register_bench("scaling", "the pressure solve and the fin's flow step on MPI ranks against the threaded solver on "
+               "the same cores; a strong/weak scaling model for 8-512 ranks (issue 48)")
 
-# Issue 48's scaling benchmark, the distributed part so far (docs/studies/flow_mpi.md): 1 and 2
-# ranks of fin-poisson-ranks, each against the threaded solver with as many threads, then the
-# file and the model (tools/scripts/scaling_bench.py).
+# The whole flow step on ranks: fin-cfd fin on the tiny case's fin (h = c/20, 161 280 cells) as the
+# closed body and as the sheet, threaded on 1 and 2 threads and on 1 and 2 ranks (1 rank through
+# the ranks' path, FINVERSE_FLOW_RANKS_ON_ONE=1). Every run takes both cores so that none times
+# beside another; the records' solver_seconds / (steps x cells) is the cost per cell-step.
+_SCALING_FLOW_RUNS = {"threads1": "OMP_NUM_THREADS=1 {exe} --threads 1",
+                      "threads2": "{exe} --threads 2",
+                      "ranks1": "OMP_NUM_THREADS=1 FINVERSE_FLOW_RANKS_ON_ONE=1 " + MPIRUN + " -np 1 {exe} --threads 1",
+                      "ranks2": "OMP_NUM_THREADS=1 " + MPIRUN + " -np 2 {exe} --threads 1"}
+_TINY_FIN = os.path.join(REPO, "tests", "regression", "mesh", "tiny_case")
+
+rule bench_scaling_flow:
+    input:
+        exe=EXE("fin-cfd"),
+        mesh=os.path.join(_TINY_FIN, "mesh.h5"),
+        motion=os.path.join(_TINY_FIN, "motion.h5"),
+    output:
+        summary="results/bench/scaling/flow_{surface}_{mode}.json",
+        loads=temp("results/bench/scaling/flow_{surface}_{mode}.h5"),
+    wildcard_constraints:
+        surface="closed|sheet",
+        mode="|".join(_SCALING_FLOW_RUNS),
+    params:
+        launch=lambda wc, input: _SCALING_FLOW_RUNS[wc.mode].format(exe=input.exe),
+    log:
+        "results/logs/bench/scaling_flow_{surface}_{mode}.log",
+    threads: 2
+    resources:
+        mem_mb=2000,
+    shell:
+        "OMP_WAIT_POLICY=PASSIVE {params.launch} fin --surface {wildcards.surface} --mesh {input.mesh}"
+        " --motion {input.motion} --cells-per-chord 20 --upstream 1.5 --downstream 3 --lateral 1.5 --spanwise 1.5"
+        " --stretch-ratio 1.2 --out {output.loads} --summary {output.summary} > {log} 2>&1"
+
+# Issue 48's scaling benchmark (docs/studies/flow_mpi.md): 1 and 2 ranks of fin-poisson-ranks, each
+# against the threaded solver with as many threads, the flow step's runs above, then the file and
+# the model (tools/scripts/scaling_bench.py).
 rule bench_scaling:
     input:
         exe=EXE("fin-poisson-ranks"),
+        flow=expand("results/bench/scaling/flow_{surface}_{mode}.json", surface=["closed", "sheet"],
+                    mode=list(_SCALING_FLOW_RUNS)),
     output:
         json="results/bench/scaling.json",
         ranks1="results/bench/scaling/ranks1.json",
@@ -51,7 +86,8 @@ rule bench_scaling:
     shell:
         "(OMP_WAIT_POLICY=PASSIVE {MPIRUN} -np 1 {input.exe} -n {params.n} --json {output.ranks1} && "
         " OMP_WAIT_POLICY=PASSIVE {MPIRUN} -np 2 {input.exe} -n {params.n} --json {output.ranks2} && "
-        " /usr/bin/python3 {SCRIPTS}/scaling_bench.py --record {output.ranks1} --record {output.ranks2} --out {output.json}"
+        " /usr/bin/python3 {SCRIPTS}/scaling_bench.py --record {output.ranks1} --record {output.ranks2}"
+        " $(for f in {input.flow}; do echo --flow-record $f; done) --out {output.json}"
         " " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
 
 # DFG 2D-2 (Re 100) wall time against OpenFOAM (pimpleFoam on an O-grid) on the same cores: each

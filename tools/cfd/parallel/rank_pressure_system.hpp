@@ -39,7 +39,8 @@ class RankPressureSystem : public PoissonSystemSolver {
 // MPI for a run of whole-flow ranks: initialised when an MPI launcher started the process on more
 // than one rank, with RankPressureSystem and RankMomentumSystem installed for every flow solver the
 // process sets up and the rank share (mpi_rank_share.hpp) for the loops built in shares, the closed
-// surface's set-up; uninstalled and finalised at the end. Nothing at all without a launcher.
+// surface's set-up; uninstalled and finalised at the end. Nothing at all without a launcher, unless
+// FINVERSE_FLOW_RANKS_ON_ONE=1 asks for the ranks' path on one rank (the scaling benchmark).
 class FlowRanks {
  public:
   FlowRanks();
