@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""results/bench/scaling.json from fin-poisson-ranks records (issue 48's scaling benchmark, the
-part distributed today: the pressure solve; docs/studies/flow_mpi.md).
+"""results/bench/scaling.json from fin-poisson-ranks records and fin-cfd fin summaries (issue 48's
+scaling benchmark: the pressure solve and the fin's flow step; docs/studies/flow_mpi.md).
 
     scaling_bench.py --record ranks1.json --record ranks2.json \
         --flow-record flow_sheet_threads1.json ... --out results/bench/scaling.json
@@ -20,7 +20,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from summary import write_summary  # noqa: E402
+from summary import load, write_summary  # noqa: E402
 
 # Model assumptions (written into the file): one network, per message latency and bandwidth.
 LATENCY_S = 2e-6
@@ -105,11 +105,10 @@ def read_flow_records(paths):
         m = FLOW_RECORD.search(path)
         if not m:
             fail(f"--flow-record {path}: expected a name flow_<closed|sheet>_<threads1|threads2|ranks1|ranks2>.json")
+        values = {x["name"]: x["value"] for x in load(path)["metrics"]}
         try:
-            with open(path) as f:
-                values = {x["name"]: x["value"] for x in json.load(f)["metrics"]}
             cost = values["solver_seconds"] / (values["steps"] * values["cells"])
-        except (OSError, ValueError, KeyError, TypeError, ZeroDivisionError) as e:
+        except (KeyError, TypeError, ZeroDivisionError) as e:
             fail(f"--flow-record {path}: {e}; expected fin-cfd fin's summary with solver_seconds, steps and cells")
         out.setdefault(m.group(1), {})[m.group(2)] = cost
     return out
