@@ -12,11 +12,11 @@ path). Reported: two ranks against two threads, halo and reduction bytes per ite
 and a strong- and weak-scaling model of the pressure solve for 8-512 ranks from the measured cost
 per cell-iteration and traffic, with its assumptions.
 """
-import re
 import argparse
 import json
 import math
 import os
+import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
