@@ -34,11 +34,14 @@ register_bench("scaling", "the pressure solve and the fin's flow step on MPI ran
 # The whole flow step on ranks: fin-cfd fin on the tiny case's fin (h = c/20, 161 280 cells) as the
 # closed body and as the sheet, threaded on 1 and 2 threads and on 1 and 2 ranks (1 rank through
 # the ranks' path, FINVERSE_FLOW_RANKS_ON_ONE=1). Every run takes both cores so that none times
-# beside another; the records' solver_seconds / (steps x cells) is the cost per cell-step.
+# beside another; the records' solver_seconds / (steps x cells) is the cost per cell-step. Each run
+# is repeated (_SCALING_FLOW_REPEATS) and the fastest kept: on an idle machine single 40-step runs
+# of the same command differed by up to 27 % (docs/studies/flow_mpi.md, session 57).
 _SCALING_FLOW_RUNS = {"threads1": "OMP_NUM_THREADS=1 {exe} --threads 1",
                       "threads2": "{exe} --threads 2",
                       "ranks1": "OMP_NUM_THREADS=1 FINVERSE_FLOW_RANKS_ON_ONE=1 " + MPIRUN + " -np 1 {exe} --threads 1",
                       "ranks2": "OMP_NUM_THREADS=1 " + MPIRUN + " -np 2 {exe} --threads 1"}
+_SCALING_FLOW_REPEATS = 3
 _TINY_FIN = os.path.join(REPO, "tests", "regression", "mesh", "tiny_case")
 
 rule bench_scaling_flow:
@@ -47,15 +50,16 @@ rule bench_scaling_flow:
         mesh=os.path.join(_TINY_FIN, "mesh.h5"),
         motion=os.path.join(_TINY_FIN, "motion.h5"),
     output:
-        summary="results/bench/scaling/flow_{surface}_{mode}.json",
-        loads=temp("results/bench/scaling/flow_{surface}_{mode}.h5"),
+        summary="results/bench/scaling/flow_{surface}_{mode}_{rep}.json",
+        loads=temp("results/bench/scaling/flow_{surface}_{mode}_{rep}.h5"),
     wildcard_constraints:
         surface="closed|sheet",
         mode="|".join(_SCALING_FLOW_RUNS),
+        rep=r"\d+",
     params:
         launch=lambda wc, input: _SCALING_FLOW_RUNS[wc.mode].format(exe=input.exe),
     log:
-        "results/logs/bench/scaling_flow_{surface}_{mode}.log",
+        "results/logs/bench/scaling_flow_{surface}_{mode}_{rep}.log",
     threads: 2
     resources:
         mem_mb=2000,
@@ -70,8 +74,8 @@ rule bench_scaling_flow:
 rule bench_scaling:
     input:
         exe=EXE("fin-poisson-ranks"),
-        flow=expand("results/bench/scaling/flow_{surface}_{mode}.json", surface=["closed", "sheet"],
-                    mode=list(_SCALING_FLOW_RUNS)),
+        flow=expand("results/bench/scaling/flow_{surface}_{mode}_{rep}.json", surface=["closed", "sheet"],
+                    mode=list(_SCALING_FLOW_RUNS), rep=range(1, _SCALING_FLOW_REPEATS + 1)),
     output:
         json="results/bench/scaling.json",
         ranks1="results/bench/scaling/ranks1.json",
