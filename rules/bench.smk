@@ -387,7 +387,8 @@ rule bench_fit_fin_rate:
 # every arm restarts from it for 0.5 s (fin-fsi --restart --restart-new-coupling). The coarse variant
 # runs the same chain on a short start (a smoke test; its numbers are not the benchmark's).
 # Numbers and commands: docs/studies/fsi_restart_cost_conservation.md.
-register_bench("fsi", "coupled FSI: Aitken vs IQN-ILS iterations on Turek-Hron FSI2/FSI3, coupled vs rigid-flag step cost")
+register_bench("fsi", "coupled FSI: Aitken vs IQN-ILS iterations on Turek-Hron FSI2/FSI3, coupled vs rigid-flag step "
+               "cost, the fin's fsi stage step against its flow's step")
 
 # case -> (fin-fsi flags, limit-cycle time [s], restart length [s]; full, then coarse).
 _FSI_BENCH = {
@@ -450,6 +451,66 @@ rule bench_fsi_restart:
         " --reference {input.reference} --summary {output.summary} " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
 
 
+# The fin's pair (issue 50, Deliver 2; docs/studies/fsi_step_cost.md): the pipeline's fsi stage as it
+# runs (config fsi.flags) on the case's reconstruction with the truth's materials, one thread, and
+# the flow alone (fin-cfd fin) on the same grid, box and step: its cost per coupled step over the
+# flow's per step. Only fin-cfd fin's flags are passed on to the flow run.
+_FIN_FLOW_FLAGS = {"--cells-per-chord", "--cfl", "--periods", "--output-periods", "--motion-harmonics", "--upstream",
+                   "--downstream", "--lateral", "--spanwise", "--stretch-ratio", "--core-margin", "--wake",
+                   "--reynolds", "--speed"}
+
+
+def _fin_flow_flags(flags):
+    words, out = flags.split(), []
+    for n, w in enumerate(words):
+        if w in _FIN_FLOW_FLAGS and n + 1 < len(words):
+            out += [w, words[n + 1]]
+    return " ".join(out)
+
+
+rule bench_fsi_fin_coupled:
+    input:
+        exe=EXE("fin-fsi"),
+        mesh=f"results/{config['case']}/mesh.h5",
+        motion=f"results/{config['case']}/motion.h5",
+        materials=os.path.join(REPO, config["truth"]["materials"]),
+    output:
+        summary="results/bench/fsi/fin_coupled/summary.json",
+        fsi=temp("results/bench/fsi/fin_coupled/fsi.h5"),
+    log:
+        "results/logs/bench/fsi_fin_coupled.log",
+    threads: 1
+    resources:
+        mem_mb=2000,
+    params:
+        flags=config["fsi"]["flags"],
+    shell:
+        "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads 1 fin --mesh {input.mesh} --motion {input.motion}"
+        " --materials {input.materials} {params.flags} --out {output.fsi} --summary {output.summary} > {log} 2>&1"
+
+
+rule bench_fsi_fin_flow:
+    input:
+        exe=EXE("fin-cfd"),
+        mesh=f"results/{config['case']}/mesh.h5",
+        motion=f"results/{config['case']}/motion.h5",
+    output:
+        summary="results/bench/fsi/fin_flow/summary.json",
+        loads=temp("results/bench/fsi/fin_flow/loads.h5"),
+    log:
+        "results/logs/bench/fsi_fin_flow.log",
+    threads: 1
+    resources:
+        mem_mb=2000,
+    params:
+        flags=_fin_flow_flags(config["fsi"]["flags"]),
+        reynolds=config["fin"]["reynolds"],
+    shell:
+        "(OMP_WAIT_POLICY=PASSIVE {input.exe} --threads 1 fin --mesh {input.mesh} --motion {input.motion}"
+        " --reynolds {params.reynolds} {params.flags} --out {output.loads} --summary {output.summary} "
+        + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
+
+
 rule bench_fsi:
     input:
         exe=EXE("fin-fsi-bench"),
@@ -458,6 +519,8 @@ rule bench_fsi:
         fsi2_iqn="results/bench/fsi/fsi2_iqn-ils/summary.json",
         fsi2_aitken="results/bench/fsi/fsi2_aitken/summary.json",
         fsi3_rigid="results/bench/fsi/fsi3_rigid/summary.json",
+        fin_coupled="results/bench/fsi/fin_coupled/summary.json",
+        fin_flow="results/bench/fsi/fin_flow/summary.json",
     output:
         json="results/bench/fsi.json",
     log:
@@ -468,7 +531,7 @@ rule bench_fsi:
     shell:
         "({input.exe} --fsi3-iqn-ils {input.fsi3_iqn} --fsi3-aitken {input.fsi3_aitken}"
         " --fsi2-iqn-ils {input.fsi2_iqn} --fsi2-aitken {input.fsi2_aitken} --fsi3-rigid {input.fsi3_rigid}"
-        " --out {output.json} " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
+        " --fin-coupled {input.fin_coupled} --fin-flow {input.fin_flow} --out {output.json} " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
 
 # Wall time per pipeline stage (issue 33, "Benchmark"): the benchmark file of every stage rule
 # (PIPELINE_STAGES, common.smk) in one summary, with the slowest stage named. It covers the case of

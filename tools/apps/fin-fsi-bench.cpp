@@ -4,7 +4,7 @@
 // fsi_bench.hpp. Exit 0 when every goal is met, 1 when one is missed, 2 on error.
 //
 //   fin-fsi-bench --fsi3-iqn-ils a.json --fsi3-aitken b.json --fsi2-iqn-ils c.json
-//       --fsi2-aitken d.json --fsi3-rigid e.json --out results/bench/fsi.json
+//       --fsi2-aitken d.json --fsi3-rigid e.json [--fin-coupled f.json --fin-flow g.json] --out results/bench/fsi.json
 #include <iostream>
 #include <string>
 
@@ -28,6 +28,12 @@ int main(int argc, char** argv) {
   app.add_option("--fsi3-rigid", in.fsi3_rigid, "... the FSI3 flow with the flag held rigid")
       ->required()
       ->check(CLI::ExistingFile);
+  auto* fin_coupled = app.add_option("--fin-coupled", in.fin_coupled, "fin-fsi fin's summary.json (the fsi stage's run)")
+                          ->check(CLI::ExistingFile);
+  auto* fin_flow = app.add_option("--fin-flow", in.fin_flow, "fin-cfd fin's summary.json on the same grid (the flow alone)")
+                       ->check(CLI::ExistingFile);
+  fin_coupled->needs(fin_flow);
+  fin_flow->needs(fin_coupled);
   app.add_option("--out", out, "fsi.json to write")->required();
   return finverse::cli::run(app, standard, argc, argv, [&]() -> int {
     const finverse::Summary b = finverse::fsi::validation::fsi_bench(in);

@@ -20,6 +20,7 @@ CoupledRun::CoupledRun(cfd::FlowSolver& flow, fem::CoupledStructure& structure, 
   if (options_.steps < 1) throw Error(options_.name + ": the run is shorter than one time step");
   if (!(options_.dt > 0)) throw Error(options_.name + ": the coupling time step must be > 0");
   if (options_.checkpoint_every < 0) throw Error(options_.name + ": expected checkpoint_every >= 0");
+  flow_.warm_start_repeated_steps(options_.warm_start_repeats);
 }
 
 long CoupledRun::restart(CoupledCase& c) {

@@ -39,6 +39,10 @@ struct CoupledRunOptions {
   std::filesystem::path restart;
   std::set<std::string> may_differ;
   std::function<void(const std::string&)> progress;
+  // Each coupling iteration after a step's first starts the flow's momentum and pressure solves
+  // from the previous iteration's solutions (cfd::FlowSolver::warm_start_repeated_steps); false:
+  // from the step's start, as every iteration did before (docs/studies/fsi_step_cost.md).
+  bool warm_start_repeats = true;
 };
 
 // What a case adds to the run.

@@ -61,6 +61,8 @@ void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
                   "nested (0: the failure ends the run)")
       ->capture_default_str()
       ->check(CLI::Range(0, 10));
+  command.add_flag("--cold-repeats", o.cold_repeats,
+                   "every coupling iteration's flow solves start from the step's start, not the last iteration's");
   command.add_option(
       "--checkpoint", o.checkpoint,
       "checkpoint file, replaced atomically (default with --checkpoint-every: <out stem>.checkpoint.h5 beside --out)");

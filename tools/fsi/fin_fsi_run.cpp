@@ -620,6 +620,7 @@ FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
                    "max_iterations",     "strict",  "structure_tolerance", "structure_max_iterations",
                    "structure_halvings", "substeps"};
   ro.progress = o.progress;
+  ro.warm_start_repeats = !o.cold_repeats;
   FinFsiResult& res = s.result;
   CoupledRun run(flow, structure, step, coupling, output, res.config, ro);
   FinCase fin(s, o, step, structure, flow, output);

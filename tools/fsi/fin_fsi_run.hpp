@@ -71,6 +71,8 @@ struct FinFsiOptions {
   // A structure sub-step whose Newton solve fails is retried as two halves, up to this many times
   // nested (fem::CoupledStructureOptions::max_halvings; docs/studies/default_case.md).
   int structure_halvings = 3;
+  // Every coupling iteration's flow solves start from the step's start (CoupledRunOptions).
+  bool cold_repeats = false;
   // Rayleigh damping C = a_M M + a_K K of the structure; < 0: the materials file's.
   double rayleigh_mass = -1, rayleigh_stiffness = -1;
   // Checkpoints (coupled_run.hpp): to `checkpoint` every checkpoint_every steps (0: only after the

@@ -114,6 +114,15 @@ void FlowSolver::immerse(const std::vector<SolidRegion>& regions, const Velocity
 }
 
 void FlowSolver::setup_pressure_operator() {
+  // restore() re-places a moving body at the step's start, and the step places it again at its
+  // end before any pressure solve: the operator of the start's placement is built only if a solve
+  // asks for it (solve_pressure_correction). In a coupling every iteration restores, and the
+  // build was half of the pressure set-ups (docs/studies/fsi_step_cost.md).
+  if (defer_pressure_setup_) {
+    pressure_stale_ = true;
+    return;
+  }
+  pressure_stale_ = false;
   if (cut_) {
     poisson_.setup(grid_, cut_->aperture, bnd_.pressure_conditions(), opt_.poisson);
     return;
@@ -324,7 +333,9 @@ StepStats FlowSolver::step() {
   predict_momentum(dt);
   if (sheet_) force_sheet(dt, std::move(*sheet_next));
   face_predictor(dt, coupling_time(dt));
+  if (repeating_) copy_interior(solved_phi_, phi_);  // (after the face predictor, which reads phi^n)
   PoissonSolveStats ps = solve_pressure_correction(dt);
+  if (warm_start_repeats_) copy_interior(phi_, solved_phi_);
   update_velocity(dt);
   // A sheet's further forcing and projection passes (SheetForcingOptions::projections): the
   // pressure increments add up in p, the face velocities carry the earlier corrections.
@@ -341,6 +352,8 @@ StepStats FlowSolver::step() {
   time_ = t_new;
   dt_old_ = dt;
   ++step_;
+  solved_step_ = warm_start_repeats_ ? step_ : -1;
+  repeating_ = false;
   check_health(dt);
   StepStats st;
   st.step = step_;
@@ -631,6 +644,14 @@ std::vector<StateArray> FlowSolver::state() const {
   return s;
 }
 
+void FlowSolver::warm_start_repeated_steps(bool on) {
+  warm_start_repeats_ = on;
+  repeating_ = false;
+  solved_step_ = -1;
+  for (int c = 0; c < dim(); ++c) solved_ustar_[static_cast<std::size_t>(c)] = on ? Field(grid_) : Field();
+  solved_phi_ = on ? Field(grid_) : Field();
+}
+
 void FlowSolver::restore(const std::vector<StateArray>& s) {
   const std::vector<StateArray> expected = state();
   if (s.size() != expected.size()) throw Error("flow solver restore: checkpoint does not match this set-up");
@@ -638,6 +659,7 @@ void FlowSolver::restore(const std::vector<StateArray>& s) {
     if (s[a].name != expected[a].name || s[a].values.size() != expected[a].values.size())
       throw Error("flow solver restore: array '" + expected[a].name + "' missing or of the wrong size");
   step_ = static_cast<long>(s[0].values[0]);
+  repeating_ = warm_start_repeats_ && solved_step_ == step_ + 1;
   time_ = s[0].values[1];
   dt_old_ = s[0].values[2];
   std::size_t a = 1;
@@ -654,6 +676,11 @@ void FlowSolver::restore(const std::vector<StateArray>& s) {
   // next step is dropped (a coupling iteration sets its own after restoring).
   next_polygon_.reset();
   next_surface_.reset();
+  // (a placement that throws must not leave the set-ups deferred)
+  struct Deferred {
+    bool& on;
+    ~Deferred() { on = false; }
+  } deferred{defer_pressure_setup_ = true};
   if (moving_) {
     place_body(time_);
     fresh_.clear();

@@ -116,7 +116,7 @@ void FlowSolver::predict_momentum(double dt) {
       rhs_(i, j, k) = V * explicit_part + half_nu * (-A_un(i, j, k) + rhs_(i, j, k) + bterm_(i, j, k));
     });
     Field& us = ustar_[C];
-    copy_interior(un, us);
+    copy_interior(repeating_ ? solved_ustar_[C] : un, us);
     const HelmholtzStats st =
         ib_ ? ib_momentum_.solve(hs, *ib_, 1.0 / dt, half_nu, rhs_, ib_wall_[C], 0.0, us, opt_.helmholtz_rtol,
                                  opt_.helmholtz_max_iterations)
@@ -129,6 +129,7 @@ void FlowSolver::predict_momentum(double dt) {
                   std::to_string(c) + " did not converge (relative residual " + std::to_string(st.relative_residual) +
                   " after " + std::to_string(st.iterations) + " iterations)");
     last_helmholtz_iterations_ += st.iterations;
+    if (warm_start_repeats_) copy_interior(us, solved_ustar_[C]);
   }
 }
 

@@ -43,10 +43,21 @@ void GhostCellSet::classify(const std::vector<SolidRegion>& kinds_from, const st
   if (regions.empty() || kinds_from.empty()) throw Error("immersed boundary: no solid region given");
   const int nx = grid.nx(), ny = grid.ny();
   kind_.assign(grid.cells(), CellKind::Fluid);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      for (const SolidRegion& r : kinds_from)
-        if (r.contains(grid.xc(i), grid.yc(j))) kind_[static_cast<std::size_t>(i + nx * j)] = CellKind::Solid;
+  // The crossing-number test is O(vertices) per cell; a centre outside a polygon's bounding box
+  // (widened by a round-off margin) is outside it, so only the box's cells are tested. Every
+  // coupling iteration of a moving body re-classifies (docs/studies/fsi_step_cost.md).
+  for (const SolidRegion& r : kinds_from) {
+    const std::array<double, 4> b = r.polygon.bounds();
+    const double margin = 1e-9 * std::max(b[2] - b[0], b[3] - b[1]);
+    const auto in_box = [&](double x, double y) {
+      return x >= b[0] - margin && x <= b[2] + margin && y >= b[1] - margin && y <= b[3] + margin;
+    };
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const double x = grid.xc(i), y = grid.yc(j);
+        if (in_box(x, y) ? r.contains(x, y) : r.outside) kind_[static_cast<std::size_t>(i + nx * j)] = CellKind::Solid;
+      }
+  }
   const auto closest = [&](double x, double y) {
     SurfacePoint best = regions.front().closest(x, y);
     for (std::size_t r = 1; r < regions.size(); ++r) {

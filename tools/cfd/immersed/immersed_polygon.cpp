@@ -39,6 +39,17 @@ Polygon Polygon::circle(double cx, double cy, double r, int n) {
 
 double Polygon::area() const { return polygon_signed_area(v_); }
 
+std::array<double, 4> Polygon::bounds() const {
+  std::array<double, 4> b{v_[0][0], v_[0][1], v_[0][0], v_[0][1]};
+  for (const auto& p : v_) {
+    b[0] = std::min(b[0], p[0]);
+    b[1] = std::min(b[1], p[1]);
+    b[2] = std::max(b[2], p[0]);
+    b[3] = std::max(b[3], p[1]);
+  }
+  return b;
+}
+
 bool Polygon::contains(double x, double y) const {
   bool in = false;
   for (std::size_t k = 0, l = v_.size() - 1; k < v_.size(); l = k++) {

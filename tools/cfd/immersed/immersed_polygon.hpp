@@ -32,6 +32,7 @@ class Polygon {
   static Polygon circle(double cx, double cy, double r, int n);
 
   bool contains(double x, double y) const;  // crossing-number test
+  std::array<double, 4> bounds() const;     // x_min, y_min, x_max, y_max of the vertices
   SurfacePoint closest(double x, double y) const;
   double area() const;
   const std::vector<std::array<double, 2>>& vertices() const { return v_; }

@@ -61,6 +61,8 @@ void add_turek_hron_flags(CLI::App& command, TurekHronFsiOptions& o) {
       ->capture_default_str();
   command.add_flag("--hold-flag-rigid", o.hold_flag_rigid,
                    "benchmark: from --restart on, the flow alone with the flag frozen (wall time per step)");
+  command.add_flag("--cold-repeats", o.cold_repeats,
+                   "every coupling iteration's flow solves start from the step's start, not the last iteration's");
 }
 
 void add_pitching_plate_flags(CLI::App& command, PitchingPlateOptions& o) {

@@ -502,6 +502,7 @@ TurekHronFsiRun run_turek_hron_fsi(const TurekHronFsiOptions& opt) {
     ro.may_differ.insert({"acceleration", "omega0", "relative_tolerance", "absolute_tolerance", "max_iterations",
                           "accept_at_cap", "divergence_iterations"});
   ro.progress = opt.progress;
+  ro.warm_start_repeats = !opt.cold_repeats;
   CoupledRun coupled(flow, structure, step, coupling, output, config, ro);
   FlagCase flag_case(run, step, structure, output, flag, X0, dt, opt.output_every);
   run.first_step = coupled.restart(flag_case);

@@ -104,6 +104,8 @@ struct TurekHronFsiOptions {
   // Benchmark: from the restart on, step the flow alone with the flag frozen in its shape (no
   // structure, no coupling); the summary holds only the wall time per step.
   bool hold_flag_rigid = false;
+  // Every coupling iteration's flow solves start from the step's start (CoupledRunOptions).
+  bool cold_repeats = false;
   int output_every = 1;          // fsi.h5 frames: every k-th step (and the last)
   // Progress: one line per step (and per coupling iteration when `iterations`).
   std::function<void(const std::string&)> progress;
