@@ -19,6 +19,7 @@
 #include <numbers>
 #include <string>
 
+#include "bending_flap.hpp"
 #include "cfd/flow/flow_solver.hpp"
 #include "cfd/forces/surface_traction.hpp"
 #include "cfd/immersed/deforming_polygon.hpp"
@@ -157,26 +158,8 @@ TEST(DeformingBody, EdgeTractionOfARotatingBodyIsTheRigidTractionAndSumsToItsTot
   }
 }
 
-// A flap of constant thickness along x whose centre line bends as y = y0 + sign a(t) xi^2 (xi
-// along the flap): each vertical section keeps its thickness, so the area stays constant. The
-// vertices run along the lower side, then back along the upper side (counter-clockwise for
-// sign = +1); sign = -1 gives the mirror image about y = y0 with the same vertex order
-// (clockwise).
-PolygonState flap(double t, double sign) {
-  const double x0 = 0.2537, L = 0.5, y0 = 0.5, half = 0.035, a = 0.06, w = 2 * std::numbers::pi;
-  const int n = 40;
-  PolygonState s;
-  const auto add = [&](int k, double side) {
-    const double xi = static_cast<double>(k) / n;
-    const double shape = xi * xi;
-    s.position.push_back({x0 + L * xi, y0 + sign * (a * std::sin(w * t) * shape + side * half)});
-    s.velocity.push_back({0, sign * a * w * std::cos(w * t) * shape});
-    s.acceleration.push_back({0, -sign * a * w * w * std::sin(w * t) * shape});
-  };
-  for (int k = 0; k <= n; ++k) add(k, -1);
-  for (int k = n; k >= 0; --k) add(k, +1);
-  return s;
-}
+// The flap of bending_flap.hpp at rest height y0, mirrored for sign = -1.
+PolygonState flap(double t, double sign) { return test::bending_flap(t, 0.0, sign); }
 
 FlowSolver flap_solver(double sign) {
   const StretchedGrid g(Axis::uniform(0, 1, 48), Axis::uniform(0, 1, 48));

@@ -17,43 +17,16 @@
 #include <numbers>
 #include <vector>
 
+#include "bending_flap.hpp"
 #include "cfd/flow/flow_solver.hpp"
 
 namespace finverse::cfd {
 namespace {
 
-// A frozen_flap of constant thickness whose centre line bends as y = y0 + a(t) xi^2 (as in
-// test_deforming_body.cpp), shifted by dy.
-PolygonState frozen_flap(double t, double dy) {
-  const double x0 = 0.2537, L = 0.5, y0 = 0.5, half = 0.035, a = 0.06, w = 2 * std::numbers::pi;
-  const int n = 40;
-  PolygonState s;
-  const auto add = [&](int k, double side) {
-    const double xi = static_cast<double>(k) / n;
-    const double shape = xi * xi;
-    s.position.push_back({x0 + L * xi, y0 + dy + a * std::sin(w * t) * shape + side * half});
-    s.velocity.push_back({0, a * w * std::cos(w * t) * shape});
-    s.acceleration.push_back({0, -a * w * w * std::sin(w * t) * shape});
-  };
-  for (int k = 0; k <= n; ++k) add(k, -1);
-  for (int k = n; k >= 0; --k) add(k, +1);
-  return s;
-}
-
-constexpr int kCells = 48;
+constexpr int kCells = test::kBendingFlapCells;
 constexpr double kH = 1.0 / kCells;
-
-FlowSolver frozen_flap_solver() {
-  const StretchedGrid g(Axis::uniform(0, 1, kCells), Axis::uniform(0, 1, kCells));
-  FlowOptions opt;
-  opt.nu = 2e-3;
-  opt.dt = 0.01;
-  FlowSolver s;
-  s.setup(g, FlowBoundary{}, opt);
-  s.immerse_deforming(frozen_flap(0, 0));
-  s.initialise({});
-  return s;
-}
+PolygonState frozen_flap(double t, double dy) { return test::bending_flap(t, dy); }
+const auto frozen_flap_solver = test::bending_flap_solver;
 
 struct Response {
   std::vector<CellKind> kinds;

@@ -1,7 +1,7 @@
 // FlowSolver::warm_start_repeated_steps: a partitioned coupling repeats a step from its restored
 // start with an updated interface, and with the option on the repeat's momentum and pressure
-// solves start from the previous repeat's solutions. A deforming flap (as in
-// test_frozen_cell_kinds.cpp) is stepped from one saved state to two positions in turn:
+// solves start from the previous repeat's solutions. A deforming flap (bending_flap.hpp) is
+// stepped from one saved state to two positions in turn:
 //   - the second repeat gives the cold repeat's flow within the solvers' tolerances, in fewer
 //     pressure-correction iterations;
 //   - a step computed for the first time (after restoring a state the solver did not just step
@@ -14,48 +14,27 @@
 #include <numbers>
 #include <vector>
 
+#include "bending_flap.hpp"
 #include "cfd/flow/flow_solver.hpp"
 
 namespace finverse::cfd {
 namespace {
 
-PolygonState repeat_flap(double t, double dy) {
-  const double x0 = 0.2537, L = 0.5, y0 = 0.5, half = 0.035, a = 0.06, w = 2 * std::numbers::pi;
-  const int n = 40;
-  PolygonState s;
-  const auto add = [&](int k, double side) {
-    const double xi = static_cast<double>(k) / n;
-    const double shape = xi * xi;
-    s.position.push_back({x0 + L * xi, y0 + dy + a * std::sin(w * t) * shape + side * half});
-    s.velocity.push_back({0, a * w * std::cos(w * t) * shape});
-    s.acceleration.push_back({0, -a * w * w * std::sin(w * t) * shape});
-  };
-  for (int k = 0; k <= n; ++k) add(k, -1);
-  for (int k = n; k >= 0; --k) add(k, +1);
-  return s;
-}
+constexpr int kRepeatCells = test::kBendingFlapCells;
 
-constexpr int kRepeatCells = 48;
-
+// The flap solver after five steps, each computed once.
 FlowSolver repeat_flap_solver(bool warm) {
-  const StretchedGrid g(Axis::uniform(0, 1, kRepeatCells), Axis::uniform(0, 1, kRepeatCells));
-  FlowOptions opt;
-  opt.nu = 2e-3;
-  opt.dt = 0.01;
-  FlowSolver s;
-  s.setup(g, FlowBoundary{}, opt);
-  s.immerse_deforming(repeat_flap(0, 0));
-  s.initialise({});
+  FlowSolver s = test::bending_flap_solver();
   s.warm_start_repeated_steps(warm);
   for (int n = 0; n < 5; ++n) {
-    s.set_body_state(repeat_flap(s.time() + s.next_dt(), 0));
+    s.set_body_state(test::bending_flap(s.time() + s.next_dt(), 0));
     s.step();
   }
   return s;
 }
 
 StepStats repeat_step_to(FlowSolver& s, double dy) {
-  s.set_body_state(repeat_flap(s.time() + s.next_dt(), dy));
+  s.set_body_state(test::bending_flap(s.time() + s.next_dt(), dy));
   return s.step();
 }
 
