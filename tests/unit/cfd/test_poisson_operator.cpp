@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -73,6 +74,31 @@ TEST(PoissonOperator, ConstantsSpanTheNullSpaceOfAllNeumannProblems) {
 // The components of the union-find labelling against a plain flood fill written here: the same id
 // for every cell (ids in scan order of each component's first active cell) and the same singular
 // flags, on masks of scattered solid cells (many small pockets, pockets touching a Dirichlet side,
+
+// Set up without its connectivity (a system solver's operator, an MPI block), the operator applies
+// and assembles as with it, and its null-space projections refuse rather than use stale components.
+TEST(PoissonOperator, WithoutConnectivityAppliesTheSameAndRefusesTheProjections) {
+  const StretchedGrid g = stretched_3d(16);
+  FaceCoefficients beta(g, 1.0);
+  beta.mask_cells([&](int i, int j, int k) { return g.xc(i) * g.xc(i) + g.yc(j) * g.yc(j) + g.zc(k) * g.zc(k) < 0.3; });
+  const BoundaryConditions bc = BoundaryConditions::all(BcType::Neumann);
+  PoissonOperator with, without;
+  with.setup(g, beta, bc);
+  without.setup(g, beta, bc);  // connectivity built once, then the same operator set up again without it
+  without.setup(g, beta, bc, PoissonOperator::Connectivity::Skip);
+  EXPECT_TRUE(with.has_connectivity());
+  EXPECT_FALSE(without.has_connectivity());
+  Field x = test::random_field(g, 3), a(g), b(g);
+  with.apply(x, a);
+  without.apply(x, b);
+  axpy(-1.0, a, b);
+  EXPECT_EQ(max_abs(b), 0.0);
+  EXPECT_EQ(with.active_cells(), without.active_cells());
+  EXPECT_THROW((void)without.any_singular(), std::logic_error);
+  EXPECT_THROW((void)without.components(), std::logic_error);
+  EXPECT_THROW(without.remove_mean(b), std::logic_error);
+  EXPECT_TRUE(with.any_singular());
+}
 // components joined only through a periodic side), for each combination of side conditions.
 TEST(PoissonOperator, ComponentsMatchAFloodFill) {
   const StretchedGrid g = stretched_3d(16);

@@ -32,14 +32,21 @@ class PoissonOperator {
  public:
   PoissonOperator() = default;
 
+  // Whether setup() finds the connected components (component(), singular(), the null-space
+  // projections below). A solver that handles the null space itself (the MPI ranks' one, with
+  // DistributedComponents over the whole grid) skips them: a union-find over every cell, at every
+  // set-up of a moving body.
+  enum class Connectivity { Build, Skip };
+
   // Builds transmissibilities, diagonal and connectivity. beta must be >= 0 (checked).
-  void setup(const StretchedGrid& grid, const FaceCoefficients& beta, const BoundaryConditions& bc);
+  void setup(const StretchedGrid& grid, const FaceCoefficients& beta, const BoundaryConditions& bc,
+             Connectivity connectivity = Connectivity::Build);
   // The operator of one MPI rank's block (cells j in [j0, j1), k in [k0, k1) of `whole`; beta on
   // the block's faces, its last face on a periodic axis holding face 0's value): the whole grid's
   // transmissibilities and diagonal bit for bit, so that apply, residual and the smoothers give the
   // whole grid's numbers once the ghosts hold the neighbours' values (cfd/parallel). Block sides
   // inside the domain and periodic y/z sides are Neumann in bc() (their ghosts are the exchange's).
-  // The connectivity (components, singular) is the block's own, not yet the whole grid's.
+  // No connectivity: a block's own components are not the whole grid's (DistributedComponents).
   void setup_block(const StretchedGrid& whole, const FaceCoefficients& beta, const BoundaryConditions& bc, int j0, int j1,
                    int k0, int k1);
 
@@ -79,10 +86,12 @@ class PoissonOperator {
   std::size_t active_cells() const { return active_cells_; }
 
   // Connectivity: component id per cell (-1 inactive), and whether each component is singular
-  // (touches no Dirichlet face, so p is fixed only up to a constant there).
-  const std::vector<int>& component() const { return component_; }
-  int components() const { return static_cast<int>(singular_.size()); }
-  bool singular(int c) const { return singular_[static_cast<std::size_t>(c)] != 0; }
+  // (touches no Dirichlet face, so p is fixed only up to a constant there). It and the projections
+  // below throw std::logic_error on an operator set up without it.
+  bool has_connectivity() const { return connected_; }
+  const std::vector<int>& component() const { return (require_connectivity(), component_); }
+  int components() const { return (require_connectivity(), static_cast<int>(singular_.size())); }
+  bool singular(int c) const { return (require_connectivity(), singular_[static_cast<std::size_t>(c)] != 0); }
   bool any_singular() const;
 
   // Null-space handling on singular components:
@@ -100,6 +109,7 @@ class PoissonOperator {
  private:
   void build(const StretchedGrid& whole, const BoundaryConditions& bc, std::array<int, 3> offset);
   void build_connectivity();
+  void require_connectivity() const;
   bool single_open_component();
 
   StretchedGrid grid_;
@@ -110,6 +120,7 @@ class PoissonOperator {
   std::size_t active_cells_ = 0;
   std::vector<int> component_;
   std::vector<char> singular_;
+  bool connected_ = false;
 };
 
 }  // namespace finverse::cfd

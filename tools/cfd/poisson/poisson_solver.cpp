@@ -29,7 +29,9 @@ void PoissonSolver::setup(const StretchedGrid& grid, const FaceCoefficients& bet
   if (!(options.rtol > 0) || options.max_iterations < 1)
     throw std::invalid_argument("PoissonSolver: need rtol > 0 and max_iterations >= 1");
   options_ = options;
-  op_.setup(grid, beta, bc);
+  // A system solver handles the null space itself: this operator only assembles right-hand sides
+  // and applies A (the ranks' solver builds its own blocks and components).
+  op_.setup(grid, beta, bc, system_ ? PoissonOperator::Connectivity::Skip : PoissonOperator::Connectivity::Build);
   if (system_) {
     mg_ = Multigrid();
     system_->setup(op_, beta, options);
