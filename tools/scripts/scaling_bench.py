@@ -10,8 +10,10 @@ named flow_<closed|sheet>_<threads1|threads2|ranks1|ranks2>[_<repeat>].json; of 
 the fastest counts), on one rank against the
 threaded solver on one thread (goal <= 1.1: the decomposition must not slow the single-rank
 path). Reported: two ranks against two threads, halo and reduction bytes per iteration per rank,
-and a strong- and weak-scaling model of the pressure solve for 8-512 ranks from the measured cost
-per cell-iteration and traffic, with its assumptions.
+a strong- and weak-scaling model of the pressure solve for 8-512 ranks from the measured cost
+per cell-iteration and traffic, and a strong-scaling model of the whole flow step (today's
+whole-flow ranks and the planned blocks) from the one-rank step's measured pressure share, with
+their assumptions.
 """
 import argparse
 import json
@@ -96,13 +98,45 @@ def model(t_cell_iter, nx, ny, nz, p, exchanges_per_iter, reductions_per_iter):
             "gathered_s": gathered, "total_s": compute + halo + reductions + gathered}
 
 
+# The explicit parts of a step on blocks (the planned blocks-only flow): one-layer exchanges per
+# step of the face velocities and the pressure (predictor, projection, update; an assumption).
+STEP_EXCHANGES = 8
+
+
+def step_model(t_rest, t_pressure, pressure, nx, ny, nz, exchanges=STEP_EXCHANGES):
+    """Seconds per flow step on p ranks from the measured one-rank costs per cell-step of the
+    pressure solves (t_pressure) and of everything else (t_rest), and the pressure solve's model
+    per iteration (model(), one entry per rank count, in `pressure`): today, every rank holds the
+    whole flow and shares only the pressure; planned, the rest also runs on blocks."""
+    cells = nx * ny * nz
+    base = pressure[0]["total_s"]
+    rows = []
+    for m in pressure:
+        p, (py, pz) = m["ranks"], m["split"]
+        by, bz = math.ceil(ny / py), math.ceil(nz / pz)
+        face_cells = (nx + 2) * ((2 * bz if py > 1 else 0) + (2 * (by + 2) if pz > 1 else 0))
+        messages = (2 if py > 1 else 0) + (2 if pz > 1 else 0)
+        halo = exchanges * (messages * LATENCY_S + 8 * face_cells * 2 / BANDWIDTH_BPS)
+        pressure_s = cells * t_pressure * m["total_s"] / base
+        today = cells * t_rest + pressure_s
+        blocks = cells * t_rest / p + halo + pressure_s
+        rows.append({"ranks": p, "pressure_s": pressure_s, "today_s": today, "blocks_s": blocks,
+                     "blocks_halo_s": halo})
+    for r in rows:
+        r["today_speedup"] = rows[0]["today_s"] / r["today_s"]
+        r["blocks_speedup"] = rows[0]["blocks_s"] / r["blocks_s"]
+        r["blocks_efficiency"] = r["blocks_speedup"] / r["ranks"]
+    return rows
+
+
 FLOW_RECORD = re.compile(r"flow_(closed|sheet)_(threads1|threads2|ranks1|ranks2)(_\d+)?\.json$")
 
 
 def read_flow_records(paths):
-    """{surface: {mode: seconds per cell-step}} from fin-cfd fin summaries, the fastest of a mode's
-    repeats: a shared or noisy machine only ever slows a run down."""
-    out = {}
+    """({surface: {mode: seconds per cell-step}}, {surface: {mode: pressure solve share}}) from fin-cfd
+    fin summaries, the fastest of a mode's repeats (a shared or noisy machine only ever slows a run
+    down) and that run's share of its time in the pressure solves (None where not recorded)."""
+    out, share = {}, {}
     for path in paths:
         m = FLOW_RECORD.search(path)
         if not m:
@@ -114,8 +148,11 @@ def read_flow_records(paths):
         except (KeyError, TypeError, ZeroDivisionError) as e:
             fail(f"--flow-record {path}: {e}; expected fin-cfd fin's summary with solver_seconds, steps and cells")
         modes = out.setdefault(m.group(1), {})
-        modes[m.group(2)] = min(cost, modes.get(m.group(2), math.inf))
-    return out
+        if cost < modes.get(m.group(2), math.inf):
+            modes[m.group(2)] = cost
+            solve = values.get("pressure_solve_seconds")
+            share.setdefault(m.group(1), {})[m.group(2)] = solve / values["solver_seconds"] if solve else None
+    return out, share
 
 
 def flow_metrics(flow):
@@ -142,6 +179,32 @@ def flow_metrics(flow):
                              f"the larger of the surfaces' ratios ({surface}), cost per cell-step (goal <= 1.1)",
                              1.1, worst <= 1.1, worst))
     return metrics
+
+
+def step_models(flow, flow_share, strong, nx, ny, nz, metrics):
+    """The whole flow step's strong-scaling model per surface (step_model) from the fastest one-rank
+    run's cost and pressure share; its 512-rank figures appended to metrics."""
+    step = {}
+    for surface, modes in sorted(flow.items()):
+        share = flow_share.get(surface, {}).get("ranks1")
+        if share is None:
+            continue
+        c = modes["ranks1"]
+        rows = step_model(c * (1 - share), c * share, strong, nx, ny, nz)
+        step[surface] = {"pressure_share_one_rank": share, "cost_per_cell_step_s": c, "strong": rows,
+                         "notes": "today: every rank runs all but the pressure solve on the whole grid (Amdahl); "
+                                  "blocks: the rest on blocks at the one-rank cost per cell, plus "
+                                  f"{STEP_EXCHANGES} one-layer halo exchanges per step; the pressure as the "
+                                  "per-iteration model, scaled by its measured one-rank share"}
+        last = rows[-1]
+        metrics += [
+            metric(f"model_step_speedup_{last['ranks']}_ranks_today_{surface}", last["today_speedup"], "", "info", None,
+                   f"modelled, {nx}x{ny}x{nz} cells: the whole flow on every rank, the pressure ({share:.0%} of a "
+                   "one-rank step) shared (parameters.model.step)"),
+            metric(f"model_step_efficiency_{last['ranks']}_ranks_blocks_{surface}", last["blocks_efficiency"], "", "info",
+                   None, f"modelled, {nx}x{ny}x{nz} cells: the planned blocks-only flow (parameters.model.step)"),
+        ]
+    return step
 
 
 def main():
@@ -173,7 +236,8 @@ def main():
         metric("pressure_solution_difference_relative", one["solution_max_difference_relative"], "", "info", None,
                "1 rank vs threaded, max |dp| / max |p| (all-Neumann: the singular projections sum by lines)"),
     ]
-    metrics += flow_metrics(read_flow_records(a.flow_record)) if a.flow_record else [
+    flow, flow_share = read_flow_records(a.flow_record) if a.flow_record else ({}, {})
+    metrics += flow_metrics(flow) if a.flow_record else [
         metric("flow_step_one_rank_over_threaded", None, "", "max", None, "not measured: no --flow-record given",
                1.1, None)]
     # Traffic counts from the most ranks measured (one rank skips its exchanges: nothing to send).
@@ -215,6 +279,7 @@ def main():
     eff512 = next((m["efficiency"] for m in strong if m["ranks"] == 512), None)
     metrics.append(metric("model_strong_efficiency_512_ranks", eff512, "", "info", None,
                           f"modelled, {nx}x{ny}x{nz} cells, per MG-PCG iteration (parameters.model)"))
+    step = step_models(flow, flow_share, strong, nx, ny, nz, metrics)
     params = {"records": {str(k): v for k, v in sorted(recs.items())},
               "model": {"assumptions": {"latency_s": LATENCY_S, "bandwidth_B_per_s": BANDWIDTH_BPS,
                                         "cost_per_cell_iteration_s": t_cell_iter,
@@ -224,7 +289,7 @@ def main():
                                                  "block's faces over all levels (x 4/3); reductions allgather ny x nz line "
                                                  "sums; the gathered level (every level halved until a rank would hold fewer "
                                                  "than 2 lines) is solved on rank 0 at the 1-rank cost"},
-                        "grid": [nx, ny, nz], "strong": strong, "weak": weak}}
+                        "grid": [nx, ny, nz], "strong": strong, "weak": weak, "step": step}}
     write_summary(a.out, "bench", "scaling", "the pressure solve and the flow step on MPI ranks against the threaded "
                   "solver; scaling model", metrics, params, "scaling_bench.py finverse", threads=2,
                   inputs=a.record + a.flow_record)

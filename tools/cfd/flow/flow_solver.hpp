@@ -309,6 +309,8 @@ class FlowSolver {
   const FaceField& face_velocity() const { return U_; }
   const StretchedGrid& grid() const { return grid_; }
   const FlowOptions& options() const { return opt_; }
+  // The pressure solver's set-up and solve time so far (threaded or on ranks).
+  const PoissonTimes& pressure_times() const { return poisson_.times(); }
   const FlowBoundary& boundary() const { return bnd_; }
   int dim() const { return grid_.dim(); }
   double time() const { return time_; }

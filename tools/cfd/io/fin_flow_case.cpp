@@ -284,6 +284,8 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
     }
   }
   st.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  st.pressure_setup_seconds = solver.pressure_times().setup_seconds;  // the solver lives for this run
+  st.pressure_solve_seconds = solver.pressure_times().solve_seconds;
   return rec.to_stage(o.rho, U, in.reference_area, periodic ? in.period : std::nullopt);
 }
 

@@ -85,6 +85,8 @@ struct FinFlowStats {
   double h = 0, dt = 0, U = 0, nu = 0, chord = 0, t_begin = 0, t_end = 0, max_body_speed = 0;
   long steps = 0, poisson_iterations = 0;
   double max_cfl = 0, wall_seconds = 0;
+  // Of wall_seconds: the pressure's set-ups and solves.
+  double pressure_setup_seconds = 0, pressure_solve_seconds = 0;
   std::size_t triangles = 0;
   long first_step = 0;   // steps already done when this run began (a restart's checkpoint)
   long checkpoints = 0;  // written by this run

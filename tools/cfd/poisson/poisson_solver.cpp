@@ -4,6 +4,7 @@
 
 #include "cfd/poisson/mg_pcg.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -11,6 +12,10 @@
 namespace finverse::cfd {
 
 namespace {
+double poisson_seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 PoissonSystemFactory& flow_pressure_factory() {
   static PoissonSystemFactory factory;
   return factory;
@@ -28,6 +33,7 @@ void PoissonSolver::setup(const StretchedGrid& grid, const FaceCoefficients& bet
                           const PoissonSolverOptions& options) {
   if (!(options.rtol > 0) || options.max_iterations < 1)
     throw std::invalid_argument("PoissonSolver: need rtol > 0 and max_iterations >= 1");
+  const auto t0 = std::chrono::steady_clock::now();
   options_ = options;
   // A system solver handles the null space itself: this operator only assembles right-hand sides
   // and applies A (the ranks' solver builds its own blocks and components).
@@ -40,6 +46,8 @@ void PoissonSolver::setup(const StretchedGrid& grid, const FaceCoefficients& bet
   }
   b_ = op_.make_field();
   work_ = {op_.make_field(), op_.make_field(), op_.make_field(), op_.make_field()};
+  ++times_.setups;
+  times_.setup_seconds += poisson_seconds_since(t0);
 }
 
 PoissonSolveStats PoissonSolver::solve(const Field& f, const BoundaryValues& values, Field& p) {
@@ -69,9 +77,17 @@ struct PoissonOps {
 }  // namespace
 
 PoissonSolveStats PoissonSolver::solve_system(Field& b, Field& x) {
-  if (system_) return system_->solve_system(op_, b, x);
-  PoissonOps ops{op_, mg_};
-  return solve_poisson_system(ops, b, x, options_, work_);
+  const auto t0 = std::chrono::steady_clock::now();
+  PoissonSolveStats st;
+  if (system_) {
+    st = system_->solve_system(op_, b, x);
+  } else {
+    PoissonOps ops{op_, mg_};
+    st = solve_poisson_system(ops, b, x, options_, work_);
+  }
+  ++times_.solves;
+  times_.solve_seconds += poisson_seconds_since(t0);
+  return st;
 }
 
 }  // namespace finverse::cfd

@@ -71,6 +71,13 @@ using PoissonSystemFactory = std::function<std::shared_ptr<PoissonSystemSolver>(
 void install_flow_pressure_system(PoissonSystemFactory factory);
 std::shared_ptr<PoissonSystemSolver> make_flow_pressure_system();
 
+// Wall time a PoissonSolver spent in its set-ups and solves (the scaling benchmark splits a flow
+// step into the pressure and the rest with it: docs/studies/flow_mpi.md).
+struct PoissonTimes {
+  long setups = 0, solves = 0;
+  double setup_seconds = 0, solve_seconds = 0;
+};
+
 class PoissonSolver {
  public:
   // Solve the systems with `system` instead of the multigrid (null: the multigrid); takes effect
@@ -91,9 +98,12 @@ class PoissonSolver {
   const PoissonOperator& op() const { return op_; }
   const Multigrid& multigrid() const { return mg_; }
   const PoissonSolverOptions& options() const { return options_; }
+  // Summed over this solver's life (every set-up, solve() and solve_system()).
+  const PoissonTimes& times() const { return times_; }
 
  private:
   PoissonSolverOptions options_;
+  PoissonTimes times_;
   PoissonOperator op_;
   Multigrid mg_;
   std::shared_ptr<PoissonSystemSolver> system_;

@@ -61,6 +61,8 @@ Summary fin_loads_summary(const std::string& name, const std::string& inputs, co
   s.info("max_cfl", st.max_cfl);
   s.info("mean_poisson_iterations", st.steps ? static_cast<double>(st.poisson_iterations) / st.steps : 0.0);
   s.info("solver_seconds", st.wall_seconds, "s");
+  s.info("pressure_setup_seconds", st.pressure_setup_seconds, "s");
+  s.info("pressure_solve_seconds", st.pressure_solve_seconds, "s");
   s.parameters() = parameters;
   log::info("nodal loads vs integrated force: max relative difference " + fmt("%.3e", worst) + " over " +
             std::to_string(nt) + " output times; C_T mean " + fmt("%.4f", ct) + ", C_Y mean " + fmt("%.4f", cy));
