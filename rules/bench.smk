@@ -34,7 +34,10 @@ register_bench("scaling", "the pressure solve and the fin's flow step on MPI ran
 # The whole flow step on ranks: fin-cfd fin on the tiny case's fin (h = c/20, 161 280 cells) as the
 # closed body and as the sheet, threaded on 1 and 2 threads and on 1 and 2 ranks (1 rank through
 # the ranks' path, FINVERSE_FLOW_RANKS_ON_ONE=1). Every run takes both cores so that none times
-# beside another; the records' solver_seconds / (steps x cells) is the cost per cell-step. Each run
+# beside another, and its threads spin between loops (OMP_WAIT_POLICY=ACTIVE, as the other timed
+# benchmarks alone on the machine): sleeping threads made two threads' pressure solve 1.6x one
+# thread's (docs/studies/flow_mpi.md, session 58). solver_seconds / (steps x cells) is the cost
+# per cell-step. Each run
 # is repeated (_SCALING_FLOW_REPEATS) and the fastest kept: on an idle machine single 40-step runs
 # of the same command differed by up to 27 % (docs/studies/flow_mpi.md, session 57), and the
 # fastest of three still moved the one-rank ratio by 7 % between two runs of the rule (session 58).
@@ -65,13 +68,16 @@ rule bench_scaling_flow:
     resources:
         mem_mb=2000,
     shell:
-        "OMP_WAIT_POLICY=PASSIVE {params.launch} fin --surface {wildcards.surface} --mesh {input.mesh}"
+        "OMP_WAIT_POLICY=ACTIVE {params.launch} fin --surface {wildcards.surface} --mesh {input.mesh}"
         " --motion {input.motion} --cells-per-chord 20 --upstream 1.5 --downstream 3 --lateral 1.5 --spanwise 1.5"
         " --stretch-ratio 1.2 --out {output.loads} --summary {output.summary} > {log} 2>&1"
 
 # Issue 48's scaling benchmark (docs/studies/flow_mpi.md): 1 and 2 ranks of fin-poisson-ranks, each
 # against the threaded solver with as many threads, the flow step's runs above, then the file and
-# the model (tools/scripts/scaling_bench.py).
+# the model (tools/scripts/scaling_bench.py). OpenMP's default wait policy (spin briefly, then
+# sleep): the threaded run's spare thread must not spin through the ranks' run that follows it
+# in the same process. No core binding: Open MPI binds each of 2 ranks to one core, and rank 0's
+# threaded run then had its two threads on one core (0.44 s against 0.29 s unbound, session 58).
 rule bench_scaling:
     input:
         exe=EXE("fin-poisson-ranks"),
@@ -89,8 +95,8 @@ rule bench_scaling:
     resources:
         mem_mb=3000,
     shell:
-        "(OMP_WAIT_POLICY=PASSIVE {MPIRUN} -np 1 {input.exe} -n {params.n} --json {output.ranks1} && "
-        " OMP_WAIT_POLICY=PASSIVE {MPIRUN} -np 2 {input.exe} -n {params.n} --json {output.ranks2} && "
+        "(env -u OMP_WAIT_POLICY {MPIRUN} --bind-to none -np 1 {input.exe} -n {params.n} --json {output.ranks1} && "
+        " env -u OMP_WAIT_POLICY {MPIRUN} --bind-to none -np 2 {input.exe} -n {params.n} --json {output.ranks2} && "
         " /usr/bin/python3 {SCRIPTS}/scaling_bench.py --record {output.ranks1} --record {output.ranks2}"
         " $(for f in {input.flow}; do echo --flow-record $f; done) --out {output.json}"
         " " + METRIC_MISSED_IS_A_RESULT + ") > {log} 2>&1"
