@@ -37,9 +37,8 @@ register_bench("scaling", "the pressure solve and the fin's flow step on MPI ran
 # beside another, and its threads spin between loops (OMP_WAIT_POLICY=ACTIVE, as the other timed
 # benchmarks alone on the machine): sleeping threads made two threads' pressure solve 1.6x one
 # thread's (docs/studies/flow_mpi.md, session 58). solver_seconds / (steps x cells) is the cost
-# per cell-step. Each run
-# is repeated (_SCALING_FLOW_REPEATS) and the fastest kept: on an idle machine single 40-step runs
-# of the same command differed by up to 27 % (docs/studies/flow_mpi.md, session 57), and the
+# per cell-step. Each run is repeated (_SCALING_FLOW_REPEATS) and the fastest kept: on an idle
+# machine single 40-step runs of the same command differed by up to 27 % (session 57), and the
 # fastest of three still moved the one-rank ratio by 7 % between two runs of the rule (session 58).
 _SCALING_FLOW_RUNS = {"threads1": "OMP_NUM_THREADS=1 {exe} --threads 1",
                       "threads2": "{exe} --threads 2",

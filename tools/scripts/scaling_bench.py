@@ -75,6 +75,13 @@ def gathered_levels(t_cell_iter, cells, ny, nz, p, py, pz):
     return move + t_cell_iter * level_cells * 8 / 7 / half + gathered_levels(t_cell_iter, level_cells, ly, lz, half, spy, spz)
 
 
+def block_halo(nx, py, pz, by, bz):
+    """One halo layer of a pencil block of by x bz lines: its cells, (nx + 2) per line of each cut
+    side, and its messages."""
+    face_cells = (nx + 2) * ((2 * bz if py > 1 else 0) + (2 * (by + 2) if pz > 1 else 0))
+    return face_cells, (2 if py > 1 else 0) + (2 if pz > 1 else 0)
+
+
 def model(t_cell_iter, nx, ny, nz, p, exchanges_per_iter, reductions_per_iter):
     """Seconds per MG-PCG iteration on p ranks: compute, halo, reductions, the gathered level."""
     split = pencil_split(ny, nz, p)
@@ -83,10 +90,10 @@ def model(t_cell_iter, nx, ny, nz, p, exchanges_per_iter, reductions_per_iter):
     _, py, pz, by, bz = split
     cells = nx * ny * nz
     compute = t_cell_iter * cells / p
-    # Halo: the fine level's faces (nx + 2) x block side, every level down adding about 1/4 more
-    # (3-D coarsening halves both face directions), one layer per exchange.
-    face_cells = (nx + 2) * ((2 * bz if py > 1 else 0) + (2 * (by + 2) if pz > 1 else 0)) * 4 / 3
-    messages = (2 if py > 1 else 0) + (2 if pz > 1 else 0)
+    # Halo: the fine level's faces, every level down adding about 1/4 more (3-D coarsening halves
+    # both face directions), one layer per exchange.
+    face_cells, messages = block_halo(nx, py, pz, by, bz)
+    face_cells *= 4 / 3
     halo = exchanges_per_iter * (messages * LATENCY_S + 8 * face_cells / exchanges_per_iter * 2 / BANDWIDTH_BPS)
     # Reductions: an allgather of ny x nz line sums (recursive doubling).
     reductions = reductions_per_iter * (math.log2(p) * LATENCY_S + 8 * ny * nz / BANDWIDTH_BPS)
@@ -113,9 +120,7 @@ def step_model(t_rest, t_pressure, pressure, nx, ny, nz, exchanges=STEP_EXCHANGE
     rows = []
     for m in pressure:
         p, (py, pz) = m["ranks"], m["split"]
-        by, bz = math.ceil(ny / py), math.ceil(nz / pz)
-        face_cells = (nx + 2) * ((2 * bz if py > 1 else 0) + (2 * (by + 2) if pz > 1 else 0))
-        messages = (2 if py > 1 else 0) + (2 if pz > 1 else 0)
+        face_cells, messages = block_halo(nx, py, pz, math.ceil(ny / py), math.ceil(nz / pz))
         halo = exchanges * (messages * LATENCY_S + 8 * face_cells * 2 / BANDWIDTH_BPS)
         pressure_s = cells * t_pressure * m["total_s"] / base
         today = cells * t_rest + pressure_s
@@ -151,7 +156,7 @@ def read_flow_records(paths):
         if cost < modes.get(m.group(2), math.inf):
             modes[m.group(2)] = cost
             solve = values.get("pressure_solve_seconds")
-            share.setdefault(m.group(1), {})[m.group(2)] = solve / values["solver_seconds"] if solve else None
+            share.setdefault(m.group(1), {})[m.group(2)] = None if solve is None else solve / values["solver_seconds"]
     return out, share
 
 

@@ -71,10 +71,6 @@ TEST(PoissonOperator, ConstantsSpanTheNullSpaceOfAllNeumannProblems) {
   EXPECT_LT(max_abs(out), 1e-13);
 }
 
-// The components of the union-find labelling against a plain flood fill written here: the same id
-// for every cell (ids in scan order of each component's first active cell) and the same singular
-// flags, on masks of scattered solid cells (many small pockets, pockets touching a Dirichlet side,
-
 // Set up without its connectivity (a system solver's operator, an MPI block), the operator applies
 // and assembles as with it, and its null-space projections refuse rather than use stale components.
 TEST(PoissonOperator, WithoutConnectivityAppliesTheSameAndRefusesTheProjections) {
@@ -99,6 +95,10 @@ TEST(PoissonOperator, WithoutConnectivityAppliesTheSameAndRefusesTheProjections)
   EXPECT_THROW(without.remove_mean(b), std::logic_error);
   EXPECT_TRUE(with.any_singular());
 }
+
+// The components of the union-find labelling against a plain flood fill written here: the same id
+// for every cell (ids in scan order of each component's first active cell) and the same singular
+// flags, on masks of scattered solid cells (many small pockets, pockets touching a Dirichlet side,
 // components joined only through a periodic side), for each combination of side conditions.
 TEST(PoissonOperator, ComponentsMatchAFloodFill) {
   const StretchedGrid g = stretched_3d(16);
