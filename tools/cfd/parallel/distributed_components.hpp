@@ -24,6 +24,8 @@ class DistributedComponents {
   // The component of this rank's cell (i, j, k) (local indices; -1 inactive), as the whole grid's
   // operator numbers it.
   int component(int i, int j, int k) const;
+  // The components of the block's line (j, k), nx of them: the hot loops read a line at a time.
+  const int* line(int j, int k) const { return id_.data() + static_cast<std::size_t>(nx_) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny_) * k); }
   int components() const { return static_cast<int>(singular_.size()); }
   bool singular(int c) const { return singular_[static_cast<std::size_t>(c)] != 0; }
   bool any_singular() const;

@@ -68,17 +68,16 @@ double DistributedGrid::max_abs(const Field& a) const {
   return m;
 }
 
-// gather and allgather: this rank's interior packed line by line, every rank's place in the
-// gathered array (counts and offsets in doubles), and the gathered array unpacked into the whole
-// field in rank order.
-std::vector<double> DistributedGrid::packed_block(const Field& local) const {
+// gather and allgather: every rank's interior packed line by line at its place in one gathered
+// array (rank order; counts and offsets in doubles), which is then unpacked into the whole field.
+// The array is scratch kept between calls (a whole-flow run gathers several fields per step, and
+// a fresh array of that size costs its page faults every time), and this rank's part is packed
+// into it in place, so a field is copied twice, once in and once out, a line at a time.
+void DistributedGrid::pack_block(const Field& local, double* dst) const {
   const Block& mine = block();
-  std::vector<double> send(static_cast<std::size_t>(d_.nx()) * static_cast<std::size_t>(mine.ny() * mine.nz()));
-  std::size_t c = 0;
+  const int nx = d_.nx();
   for (int k = 0; k < mine.nz(); ++k)
-    for (int j = 0; j < mine.ny(); ++j)
-      for (int i = 0; i < d_.nx(); ++i) send[c++] = local(i, j, k);
-  return send;
+    for (int j = 0; j < mine.ny(); ++j, dst += nx) std::copy_n(&local(0, j, k), nx, dst);
 }
 
 void DistributedGrid::cell_counts(std::vector<int>& counts, std::vector<int>& displs) const {
@@ -86,45 +85,52 @@ void DistributedGrid::cell_counts(std::vector<int>& counts, std::vector<int>& di
   for (std::size_t r = 0; r < counts.size(); ++r) counts[r] *= d_.nx(), displs[r] *= d_.nx();
 }
 
-void DistributedGrid::unpack_whole(const std::vector<double>& all, Field& global, const char* what) const {
-  if (global.nx() != d_.nx() || global.ny() != d_.ny() || global.nz() != d_.nz())
-    throw Error(std::string(what) + ": the field is not shaped like the whole grid");
-  std::size_t c = 0;
+void DistributedGrid::unpack_whole(const double* all, Field& global) const {
+  const int nx = d_.nx();
   for (int r = 0; r < d_.ranks(); ++r) {
     const Block& b = d_.block(r);
     for (int k = b.k0; k < b.k1; ++k)
-      for (int j = b.j0; j < b.j1; ++j)
-        for (int i = 0; i < d_.nx(); ++i) global(i, j, k) = all[c++];
+      for (int j = b.j0; j < b.j1; ++j, all += nx) std::copy_n(all, nx, &global(0, j, k));
   }
 }
 
+void DistributedGrid::check_whole(const Field& global, const char* what) const {
+  if (global.nx() != d_.nx() || global.ny() != d_.ny() || global.nz() != d_.nz())
+    throw Error(std::string(what) + ": the field is not shaped like the whole grid");
+}
+
 void DistributedGrid::gather(const Field& local, Field& global, int root) const {
-  const std::vector<double> send = packed_block(local);
   std::vector<int> counts, displs;
   cell_counts(counts, displs);
-  std::vector<double> all(rank_ == root ? static_cast<std::size_t>(d_.nx()) * line_position_.size() : 0);
-  MPI_Gatherv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
-              root, comm_);
-  if (rank_ == root) unpack_whole(all, global, "gather");
+  std::vector<double>& all = cells_;
+  all.resize(rank_ == root ? static_cast<std::size_t>(d_.nx()) * line_position_.size() : static_cast<std::size_t>(counts[rank_]));
+  double* mine = all.data() + (rank_ == root ? displs[rank_] : 0);
+  pack_block(local, mine);
+  if (rank_ == root)
+    MPI_Gatherv(MPI_IN_PLACE, 0, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, root, comm_);
+  else
+    MPI_Gatherv(mine, counts[rank_], MPI_DOUBLE, nullptr, nullptr, nullptr, MPI_DOUBLE, root, comm_);
+  if (rank_ != root) return;
+  check_whole(global, "gather");  // after the collective, so that the other ranks are not left waiting in it
+  unpack_whole(all.data(), global);
 }
 
 void DistributedGrid::allgather(const Field& local, Field& global) const {
-  const std::vector<double> send = packed_block(local);
   std::vector<int> counts, displs;
   cell_counts(counts, displs);
-  std::vector<double> all(static_cast<std::size_t>(d_.nx()) * line_position_.size());
-  MPI_Allgatherv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, all.data(), counts.data(), displs.data(),
-                 MPI_DOUBLE, comm_);
-  unpack_whole(all, global, "allgather");
+  std::vector<double>& all = cells_;
+  all.resize(static_cast<std::size_t>(d_.nx()) * line_position_.size());
+  pack_block(local, all.data() + displs[rank_]);
+  MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, comm_);
+  check_whole(global, "allgather");
+  unpack_whole(all.data(), global);
 }
 
 void DistributedGrid::own_part(const Field& global, Field& local) const {
-  if (global.nx() != d_.nx() || global.ny() != d_.ny() || global.nz() != d_.nz())
-    throw Error("own_part: the field is not shaped like the whole grid");
+  check_whole(global, "own_part");
   const Block& b = block();
   for (int k = 0; k < b.nz(); ++k)
-    for (int j = 0; j < b.ny(); ++j)
-      for (int i = 0; i < d_.nx(); ++i) local(i, j, k) = global(i, b.j0 + j, b.k0 + k);
+    for (int j = 0; j < b.ny(); ++j) std::copy_n(&global(0, b.j0 + j, b.k0 + k), d_.nx(), &local(0, j, k));
 }
 
 void DistributedGrid::scatter(const Field& global, Field& local, int root) const {

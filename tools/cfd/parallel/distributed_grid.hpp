@@ -69,9 +69,10 @@ class DistributedGrid {
 
  private:
   void index_lines();
-  std::vector<double> packed_block(const Field& local) const;
+  void pack_block(const Field& local, double* dst) const;
   void cell_counts(std::vector<int>& counts, std::vector<int>& displs) const;
-  void unpack_whole(const std::vector<double>& all, Field& global, const char* what) const;
+  void unpack_whole(const double* all, Field& global) const;
+  void check_whole(const Field& global, const char* what) const;
 
   MPI_Comm comm_;
   int rank_ = 0;
@@ -82,6 +83,7 @@ class DistributedGrid {
   std::vector<std::size_t> line_position_;   // global line l -> its index in the gathered array
   mutable long reductions_ = 0;
   mutable std::vector<double> mine_, all_;  // line_sum's scratch
+  mutable std::vector<double> cells_;       // gather's and allgather's scratch
 };
 
 template <class LineSum>

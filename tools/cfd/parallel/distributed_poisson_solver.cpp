@@ -37,6 +37,8 @@ DistributedPoissonSolver::DistributedPoissonSolver(MPI_Comm comm, const Stretche
   MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_LONG_LONG, MPI_SUM, comm);
   active_cells_ = counts[0], cells_ = counts[1];
   work_ = {grid_->make_field(1), grid_->make_field(1), grid_->make_field(1), grid_->make_field(1)};
+  // The singular component's volume, summed once: make_compatible and remove_volume_mean divide by it.
+  if (components_->any_singular()) singular_volume_ = singular_sum(nullptr, true);
 }
 
 DistributedPoissonSolver::~DistributedPoissonSolver() = default;
@@ -46,23 +48,44 @@ double DistributedPoissonSolver::singular_sum(const Field* x, bool volume_weight
   const auto& comp = *components_;
   const Field& shape = x ? *x : work_.r;  // the block's shape only, when summing the weights
   return grid_->line_sum(shape, [&](int j, int k) {
+    const int* c = comp.line(j, k);
+    const double* p = x ? &(*x)(0, j, k) : nullptr;
     double s = 0;
     for (int i = 0; i < g.nx(); ++i) {
-      const int c = comp.component(i, j, k);
-      if (c < 0 || !comp.singular(c)) continue;
+      if (c[i] < 0 || !comp.singular(c[i])) continue;
       const double w = volume_weight ? g.volume(i, j, k) : 1.0;
-      s += x ? w * (*x)(i, j, k) : w;
+      s += p ? w * p[i] : w;
     }
     return s;
   });
+}
+
+// Subtracts shift (times the cell's volume with volume_weight) in the singular component's cells.
+// One component is the usual case (a body's cells are -1): a select that vectorises, as
+// PoissonOperator's; subtracting 0 leaves a value's bits as they are.
+void DistributedPoissonSolver::shift_singular(Field& f, double shift, bool volume_weight) const {
+  const StretchedGrid& g = op_->block_grid();
+  const auto& comp = *components_;
+  const int nx = g.nx();
+  const bool one = comp.components() == 1;
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j) {
+      const int* c = comp.line(j, k);
+      double* p = &f(0, j, k);
+      if (one && !volume_weight) {
+        for (int i = 0; i < nx; ++i) p[i] -= c[i] == 0 ? shift : 0.0;
+        continue;
+      }
+      for (int i = 0; i < nx; ++i)
+        if (c[i] >= 0 && comp.singular(c[i])) p[i] -= volume_weight ? shift * g.volume(i, j, k) : shift;
+    }
 }
 
 // PoissonOperator::remove_mean: with one component the lane sums of field.hpp, line-ordered (the
 // serial bits); with more, the singular component's line-ordered sum.
 void DistributedPoissonSolver::remove_mean(Field& r) const {
   if (!components_->any_singular()) return;
-  const StretchedGrid& g = op_->block_grid();
-  const int nx = g.nx();
+  const int nx = op_->block_grid().nx();
   const auto& comp = *components_;
   double mean = 0;
   if (comp.components() == 1) {
@@ -70,45 +93,27 @@ void DistributedPoissonSolver::remove_mean(Field& r) const {
     mean = grid_->line_sum(r, [&](int j, int k) {
              const double* p = &r(0, j, k);
              if (all) return lane_sum(nx, [&](int i) { return p[i]; });
-             return lane_sum(nx, [&](int i) { return comp.component(i, j, k) == 0 ? p[i] : 0.0; });
+             const int* c = comp.line(j, k);
+             return lane_sum(nx, [&](int i) { return c[i] == 0 ? p[i] : 0.0; });
            }) /
            static_cast<double>(active_cells_);
   } else {
     const double n = singular_sum(nullptr, false);
     mean = n > 0 ? singular_sum(&r, false) / n : 0;
   }
-  for (int k = 0; k < g.nz(); ++k)
-    for (int j = 0; j < g.ny(); ++j)
-      for (int i = 0; i < nx; ++i) {
-        const int c = comp.component(i, j, k);
-        r(i, j, k) -= c >= 0 && comp.singular(c) ? mean : 0.0;
-      }
+  shift_singular(r, mean, false);
 }
 
 void DistributedPoissonSolver::make_compatible(Field& b) const {
   if (!components_->any_singular()) return;
-  const StretchedGrid& g = op_->block_grid();
-  const double s = singular_sum(&b, false), v = singular_sum(nullptr, true);
-  const double shift = v > 0 ? s / v : 0;
-  for (int k = 0; k < g.nz(); ++k)
-    for (int j = 0; j < g.ny(); ++j)
-      for (int i = 0; i < g.nx(); ++i) {
-        const int c = components_->component(i, j, k);
-        if (c >= 0 && components_->singular(c)) b(i, j, k) -= shift * g.volume(i, j, k);
-      }
+  const double s = singular_sum(&b, false);
+  shift_singular(b, singular_volume_ > 0 ? s / singular_volume_ : 0, true);
 }
 
 void DistributedPoissonSolver::remove_volume_mean(Field& p) const {
   if (!components_->any_singular()) return;
-  const StretchedGrid& g = op_->block_grid();
-  const double s = singular_sum(&p, true), v = singular_sum(nullptr, true);
-  const double shift = v > 0 ? s / v : 0;
-  for (int k = 0; k < g.nz(); ++k)
-    for (int j = 0; j < g.ny(); ++j)
-      for (int i = 0; i < g.nx(); ++i) {
-        const int c = components_->component(i, j, k);
-        if (c >= 0 && components_->singular(c)) p(i, j, k) -= shift;
-      }
+  const double s = singular_sum(&p, true);
+  shift_singular(p, singular_volume_ > 0 ? s / singular_volume_ : 0, false);
 }
 
 namespace {

@@ -44,6 +44,7 @@ class DistributedPoissonSolver {
   // Sum over the singular component's cells of w x (x null: of w), w the volume or 1, line by
   // line in the global order.
   double singular_sum(const Field* x, bool volume_weight) const;
+  void shift_singular(Field& f, double shift, bool volume_weight) const;
 
   PoissonSolverOptions options_;
   StretchedGrid whole_;
@@ -53,6 +54,7 @@ class DistributedPoissonSolver {
   std::unique_ptr<DistributedMultigrid> mg_;
   std::unique_ptr<DistributedComponents> components_;
   long long active_cells_ = 0, cells_ = 0;  // the whole grid's
+  double singular_volume_ = 0;              // the singular component's volume, the whole grid's
   SolveWork work_;
 };
 
