@@ -1,9 +1,9 @@
 // The pressure Poisson solve over MPI ranks (issue 48; docs/studies/flow_mpi.md): PoissonSolver's
 // MG-PCG or cycles (mg_pcg.hpp) with the block operator, the distributed multigrid, the bitwise
 // reductions and the components across ranks. Where every component touches a Dirichlet face
-// (the flow's usual case) iterates and solution are the serial ones bit for bit. On one singular
-// component the projections sum line by line where the serial code sums cell after cell: the
-// solution agrees to rounding (about 1e-12 relative). Several singular components are refused.
+// (the flow's usual case) iterates and solution are the serial ones bit for bit; on one singular
+// component too, whose projections both sum each x line and then the lines in the global order.
+// Several singular components are refused.
 #pragma once
 
 #include <functional>

@@ -307,23 +307,41 @@ bool PoissonOperator::any_singular() const {
 }
 
 namespace {
-// Per-component sums of w(i,j,k) * x(i,j,k) and of w, in a fixed (serial) order.
+// Per-component sums of w(i,j,k) * x(i,j,k) and of w over the singular components, in a fixed
+// order: each x line's cells in turn, then the line sums in line order (l = j + ny k). That is
+// the order in which the ranks of a distributed solve add them (distributed_poisson_solver.cpp,
+// line sums gathered in the global line order), so a run on MPI ranks projects the null space of
+// an all-Neumann pressure with these bits, and its files equal one process's bit for bit.
 template <class Weight>
 void component_sums(const PoissonOperator& op, const Field& x, Weight w, std::vector<double>& sx,
                     std::vector<double>& sw) {
   const StretchedGrid& g = op.grid();
   sx.assign(static_cast<std::size_t>(op.components()), 0.0);
   sw.assign(static_cast<std::size_t>(op.components()), 0.0);
-  const auto& comp = op.component();
+  const int* comp = op.component().data();
+  // One pass; a line's partial sums per component, added to the totals when the line ends (a
+  // component absent from a line adds nothing, so sealed pockets cost no extra pass).
+  std::vector<double> lx(sx.size(), 0.0), lw(sw.size(), 0.0);
+  std::vector<int> touched;
   for (int k = 0; k < g.nz(); ++k)
-    for (int j = 0; j < g.ny(); ++j)
+    for (int j = 0; j < g.ny(); ++j) {
+      const int* line = comp + op.cell_index(0, j, k);
       for (int i = 0; i < g.nx(); ++i) {
-        const int c = comp[op.cell_index(i, j, k)];
+        const int c = line[i];
         if (c < 0 || !op.singular(c)) continue;
+        const auto u = static_cast<std::size_t>(c);
+        if (lw[u] == 0 && std::find(touched.begin(), touched.end(), c) == touched.end()) touched.push_back(c);
         const double wi = w(i, j, k);
-        sx[static_cast<std::size_t>(c)] += wi * x(i, j, k);
-        sw[static_cast<std::size_t>(c)] += wi;
+        lx[u] += wi * x(i, j, k);
+        lw[u] += wi;
       }
+      for (int c : touched) {
+        const auto u = static_cast<std::size_t>(c);
+        sx[u] += lx[u], sw[u] += lw[u];
+        lx[u] = lw[u] = 0;
+      }
+      touched.clear();
+    }
 }
 
 // x -= shift_c * w(i,j,k) on every singular component c.
