@@ -122,10 +122,11 @@ rule fsi:
         mem_mb=2000,
     params:
         flags=_FSI_STAGE["flags"],
+        launch=mpi_launch,  # the flow's pressure and momentum solves on MPI ranks where the profile says
     shell:
         stage_shell(
             "fsi",
-            "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --motion {input.motion}"
+            "OMP_WAIT_POLICY=PASSIVE {params.launch} {input.exe} --threads {threads} fin --mesh {input.mesh} --motion {input.motion}"
             " --materials {input.materials} --base-materials {input.base} --out {output.fsi}"
             " --summary {output.summary} --checkpoint-every 50 {params.flags} 2> {log}",
         )

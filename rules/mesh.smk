@@ -129,10 +129,11 @@ rule truth_fsi:
         # fin-fsi fin ... --restart results/<case>/truth/fsi.checkpoint.h5 (tools/fsi/coupled_run.hpp).
         flags=f"--reynolds {_FIN['reynolds']} {_TRUTH['flags']}"
         + (f" --effects {_TRUTH_OUT}/effects.json" if _TRUTH_EFFECTS else ""),
+        launch=mpi_launch,  # the flow's solves on MPI ranks where the profile says (as the fsi stage)
     shell:
         stage_shell(
             "truth",
-            "OMP_WAIT_POLICY=PASSIVE {input.exe} --threads {threads} fin --mesh {input.mesh} --materials {input.materials}"
+            "OMP_WAIT_POLICY=PASSIVE {params.launch} {input.exe} --threads {threads} fin --mesh {input.mesh} --materials {input.materials}"
             " --root-drive {input.drive} --out {output.fsi} --summary {output.summary} --checkpoint-every 50"
             " {params.flags} 2> {log}",
         )
