@@ -100,6 +100,45 @@ TEST(PoissonOperator, WithoutConnectivityAppliesTheSameAndRefusesTheProjections)
 // for every cell (ids in scan order of each component's first active cell) and the same singular
 // flags, on masks of scattered solid cells (many small pockets, pockets touching a Dirichlet side,
 // components joined only through a periodic side), for each combination of side conditions.
+// On MPI ranks that hold the whole flow, a rank computes the momentum and pressure right-hand
+// sides on its own lines only (momentum_predictor.cpp): apply and assemble_rhs on a LineRange must
+// give the whole call's bits there and leave every other cell alone.
+TEST(PoissonOperator, ApplyAndRightHandSideOnLinesAreTheWholeCallsThere) {
+  const StretchedGrid g = stretched_3d(16);
+  FaceCoefficients beta(g, [](double x, double y, double z) { return 1 + 0.1 * x * x + 0.05 * y * z; });
+  BoundaryConditions bc;
+  bc[Side::XLo] = bc[Side::YHi] = bc[Side::ZLo] = BcType::Dirichlet;
+  PoissonOperator op;
+  op.setup(g, beta, bc);
+  const LineRange lines{3, g.ny(), 2, 5};  // touches the Dirichlet side YHi, not ZLo
+  Field x = test::random_field(g, 3), f = test::random_field(g, 4);
+  BoundaryValues bv;
+  for (Side s : {Side::XLo, Side::YHi, Side::ZLo}) bv.sample(g, s, [](double x, double y, double z) { return x - 2 * y + z * z; });
+  Field whole(g), part(g), rhs_whole(g), rhs_part(g);
+  part.fill(7.0);
+  rhs_part.fill(7.0);
+  op.apply(x, whole);
+  op.apply(x, part, lines);
+  op.assemble_rhs(f, bv, rhs_whole);
+  op.assemble_rhs(f, bv, rhs_part, lines);
+  long inside = 0, outside = 0;
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i) {
+        if (lines.contains(j, k)) {
+          ++inside;
+          ASSERT_EQ(part(i, j, k), whole(i, j, k)) << i << " " << j << " " << k;
+          ASSERT_EQ(rhs_part(i, j, k), rhs_whole(i, j, k)) << i << " " << j << " " << k;
+        } else {
+          ++outside;
+          ASSERT_EQ(part(i, j, k), 7.0);
+          ASSERT_EQ(rhs_part(i, j, k), 7.0);
+        }
+      }
+  EXPECT_EQ(inside, static_cast<long>(g.nx()) * lines.ny() * lines.nz());
+  EXPECT_GT(outside, 0);
+}
+
 TEST(PoissonOperator, ComponentsMatchAFloodFill) {
   const StretchedGrid g = stretched_3d(16);
   std::mt19937 rng(7);

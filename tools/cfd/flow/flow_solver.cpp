@@ -448,13 +448,13 @@ double FlowSolver::cell_gradient_at(const Field& q, int d, int i, int j, int k) 
 // expression of cell_gradient_at with its neighbours read at a fixed stride, which the compiler
 // vectorises (per cell, the generic path costs two index computations and two branches per face;
 // it was 6 % of the fin's time step). Same operations in the same order, so the same bits.
-void FlowSolver::cell_gradient(const Field& q, int d, Field& out) const {
+void FlowSolver::cell_gradient(const Field& q, int d, Field& out, const LineRange& lines) const {
   const Axis& ax = grid_.axis(d);
   const int n = ax.size(), nx = grid_.nx();
   std::vector<double> dist(static_cast<std::size_t>(n) + 1, 0.0);
   for (int f = 1; f < n; ++f) dist[static_cast<std::size_t>(f)] = ax.centre_distance(f);
   const std::ptrdiff_t stride = d == 0 ? 1 : d == 1 ? q.stride_y() : q.stride_z();
-  for_each_line(grid_, [&](int j, int k) {
+  for_each_line(grid_, lines, [&](int j, int k) {
     const double* a = &q(0, j, k);
     double* o = &out(0, j, k);
     if (d == 0) {
@@ -482,7 +482,7 @@ void FlowSolver::cell_gradient(const Field& q, int d, Field& out) const {
   for (const NearWallFace& w : ib_->near_wall_faces()) {
     const auto [i, j, k] = w.cell;
     const int m = w.cell[static_cast<std::size_t>(d)];
-    if (w.axis != d || m == 0 || m == n - 1) continue;
+    if (w.axis != d || m == 0 || m == n - 1 || !lines.contains(j, k)) continue;
     int f[3] = {i, j, k};
     if (w.side < 0) ++f[d];  // the closed face is the lower one: the other is the upper
     out(i, j, k) = masked_face(d, f[0], f[1], f[2]) ? 0.0 : 0.5 * face_gradient(q, d, f[0], f[1], f[2]);

@@ -106,6 +106,7 @@
 #include "cfd/immersed/deforming_polygon.hpp"
 #include "cfd/grid/face_field.hpp"
 #include "cfd/grid/field.hpp"
+#include "cfd/grid/line_range.hpp"
 #include "cfd/flow/velocity_boundary.hpp"
 #include "cfd/immersed/ghost_cells.hpp"
 #include "cfd/immersed/immersed_momentum_solver.hpp"
@@ -364,7 +365,9 @@ class FlowSolver {
                              const std::array<BoundaryValues, 3>& bv) const;
   double face_gradient(const Field& q, int d, int i, int j, int k) const;
   double boundary_face_gradient(const Field& q, int d, int i, int j, int k) const;
-  void cell_gradient(const Field& q, int d, Field& out) const;
+  void cell_gradient(const Field& q, int d, Field& out) const { cell_gradient(q, d, out, all_lines(grid_)); }
+  // The same on `lines` only (out elsewhere untouched).
+  void cell_gradient(const Field& q, int d, Field& out, const LineRange& lines) const;
   double cell_gradient_at(const Field& q, int d, int i, int j, int k) const;
   double divergence(const FaceField& U, int i, int j, int k) const;
   // The divergence of the continuity constraint: the cut-cell balance (per unit cell volume) in the

@@ -59,6 +59,11 @@ void jacobi(const PoissonOperator& op, double mass, double stiffness, const Fiel
   }
 }
 
+LineRange HelmholtzSolver::rhs_lines() const {
+  const std::optional<LineRange> own = system_ ? system_->lines_read() : std::nullopt;
+  return own ? *own : all_lines(op_.grid());
+}
+
 void HelmholtzSolver::apply(double mass, double stiffness, Field& x, Field& out) const {
   op_.apply(x, out);
   add_mass(op_, mass, stiffness, x, out);

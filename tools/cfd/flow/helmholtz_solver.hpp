@@ -14,6 +14,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "cfd/poisson/poisson_boundary.hpp"
@@ -43,6 +44,8 @@ class HelmholtzSystemSolver {
   virtual void setup(const PoissonOperator& op, const FaceCoefficients& beta, const BoundaryConditions& bc) = 0;
   virtual HelmholtzStats solve(const PoissonOperator& op, double mass, double stiffness, const Field& b, Field& x,
                                double rtol, int max_iterations) = 0;
+  // The lines of b that solve reads once set up (an MPI rank's block); empty: all of them.
+  virtual std::optional<LineRange> lines_read() const { return std::nullopt; }
 };
 
 // The process's flow solvers take their momentum system solver from this factory once one is
@@ -61,6 +64,10 @@ class HelmholtzSolver {
 
   // Solves (mass V + stiffness A) x = b to ||r|| <= rtol ||b||; x holds the initial guess.
   HelmholtzStats solve(double mass, double stiffness, const Field& b, Field& x, double rtol, int max_iterations);
+
+  // The lines of b that solve() reads: all of them, or an MPI rank's block when the ranks solve
+  // the system (its caller may leave the rest of b unset).
+  LineRange rhs_lines() const;
 
   // out = (mass V + stiffness A) x; fills x's ghosts.
   void apply(double mass, double stiffness, Field& x, Field& out) const;

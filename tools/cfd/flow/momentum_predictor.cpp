@@ -98,15 +98,18 @@ void FlowSolver::predict_momentum(double dt) {
     const auto C = static_cast<std::size_t>(c);
     HelmholtzSolver& hs = helmholtz_[C];
     Field& un = u_[C];
-    cell_gradient(p_, c, grad_);
-    hs.op().apply(un, work_[C]);  // A u^n
+    // On MPI ranks the momentum system reads only the rank's block of the right-hand side, so its
+    // terms are computed there alone; a closed body's ghost-cell rows are solved whole.
+    const LineRange lines = ib_ ? all_lines(grid_) : hs.rhs_lines();
+    cell_gradient(p_, c, grad_, lines);
+    hs.op().apply(un, work_[C], lines);  // A u^n
     // Boundary terms of both time levels (Dirichlet: T_b u_b).
-    hs.op().assemble_rhs(zero_, bv_[C], rhs_);
-    hs.op().assemble_rhs(zero_, bv_new_[C], bterm_);
+    hs.op().assemble_rhs(zero_, bv_[C], rhs_, lines);
+    hs.op().assemble_rhs(zero_, bv_new_[C], bterm_, lines);
     const Field& n_new = conv_[C];
     const Field& n_old = conv_old_[C];
     const Field& A_un = work_[C];
-    for_each_cell(grid_, [&](int i, int j, int k) {
+    for_each_cell(grid_, lines, [&](int i, int j, int k) {
       const double V = grid_.volume(i, j, k);
       double force = 0;
       if (opt_.body_force)

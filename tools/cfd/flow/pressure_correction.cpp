@@ -59,7 +59,9 @@ void FlowSolver::face_predictor(double dt, double tau) {
 
 PoissonSolveStats FlowSolver::solve_pressure_correction(double dt) {
   if (pressure_stale_) setup_pressure_operator();
-  for_each_cell(grid_, [&](int i, int j, int k) { rhs_(i, j, k) = continuity_residual(Ustar_, i, j, k) / dt; });
+  // (on MPI ranks the system reads only the rank's block of it: computed there alone)
+  for_each_cell(grid_, poisson_.rhs_lines(),
+                [&](int i, int j, int k) { rhs_(i, j, k) = continuity_residual(Ustar_, i, j, k) / dt; });
   const PoissonSolveStats st = poisson_.solve(rhs_, BoundaryValues{}, phi_);
   // The cut faces are corrected with phi as solved (update_velocity); the cell-centred gradients
   // take the ghost values of the Neumann condition dphi/dn = 0 at the boundary intercept.

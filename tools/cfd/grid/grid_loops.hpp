@@ -1,30 +1,46 @@
 // Parallel loops over the cells and faces of a grid for the flow solver's kernels: lines (j, k)
 // are distributed over OpenMP threads, i runs innermost (contiguous). Each iteration writes only
 // its own cell or face, so the results do not depend on the thread count.
+//
+// A LineRange restricts a loop to a rectangle of lines: on MPI ranks that each hold the whole
+// flow, the kernels whose output only the rank's own block is read from (the right-hand sides
+// that the ranks' systems take their block of) run over that block alone (docs/studies/flow_mpi.md,
+// "The right-hand sides on the ranks' own lines"). Each line's arithmetic is the same, so the
+// block's values are the whole loop's bit for bit.
 #pragma once
 
 #include "cfd/grid/field.hpp"
+#include "cfd/grid/line_range.hpp"
 #include "cfd/grid/stretched_grid.hpp"
 
 namespace finverse::cfd {
 
-// fn(i, j, k) for every interior cell.
+// fn(j, k) for every grid line of cells along x in `lines` (the kernel runs i itself, contiguous
+// in memory).
 template <class Fn>
-void for_each_cell(const StretchedGrid& g, Fn fn) {
-  const int nx = g.nx(), ny = g.ny(), nz = g.nz();
-#pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
-  for (int l = 0; l < ny * nz; ++l) {
-    const int j = l % ny, k = l / ny;
-    for (int i = 0; i < nx; ++i) fn(i, j, k);
-  }
+void for_each_line(const StretchedGrid& g, const LineRange& lines, Fn fn) {
+  const int ny = lines.ny(), count = ny * lines.nz();
+#pragma omp parallel for schedule(static) if (static_cast<long>(g.nx()) * count >= parallel_min_cells)
+  for (int l = 0; l < count; ++l) fn(lines.j0 + l % ny, lines.k0 + l / ny);
 }
 
-// fn(j, k) for every grid line of cells along x (the kernel runs i itself, contiguous in memory).
 template <class Fn>
 void for_each_line(const StretchedGrid& g, Fn fn) {
-  const int ny = g.ny(), nz = g.nz();
-#pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
-  for (int l = 0; l < ny * nz; ++l) fn(l % ny, l / ny);
+  for_each_line(g, all_lines(g), fn);
+}
+
+// fn(i, j, k) for every interior cell of `lines` (all of them without).
+template <class Fn>
+void for_each_cell(const StretchedGrid& g, const LineRange& lines, Fn fn) {
+  const int nx = g.nx();
+  for_each_line(g, lines, [&](int j, int k) {
+    for (int i = 0; i < nx; ++i) fn(i, j, k);
+  });
+}
+
+template <class Fn>
+void for_each_cell(const StretchedGrid& g, Fn fn) {
+  for_each_cell(g, all_lines(g), fn);
 }
 
 // fn(i, j, k) for every face normal to axis d (i, j or k runs to n(d) along d).

@@ -18,6 +18,12 @@ void RankMomentumSystem::setup(const PoissonOperator& op, const FaceCoefficients
   x_ = grid_->make_field(1);
 }
 
+std::optional<LineRange> RankMomentumSystem::lines_read() const {
+  if (!grid_) return std::nullopt;
+  const Block& b = grid_->block();
+  return LineRange{b.j0, b.j1, b.k0, b.k1};
+}
+
 HelmholtzStats RankMomentumSystem::solve(const PoissonOperator& op, double mass, double stiffness, const Field& b,
                                          Field& x, double rtol, int max_iterations) {
   op.fill_ghosts(x);  // as the threaded solve's first product A x does

@@ -10,6 +10,7 @@
 #include <mpi.h>
 
 #include <memory>
+#include <optional>
 
 #include "cfd/flow/helmholtz_solver.hpp"
 #include "cfd/parallel/distributed_helmholtz.hpp"
@@ -25,6 +26,9 @@ class RankMomentumSystem : public HelmholtzSystemSolver {
   // Collective: b and x whole on every rank, x the solution on every rank on return.
   HelmholtzStats solve(const PoissonOperator& op, double mass, double stiffness, const Field& b, Field& x, double rtol,
                        int max_iterations) override;
+
+  // This rank's block: the lines of b that solve reads.
+  std::optional<LineRange> lines_read() const override;
 
  private:
   MPI_Comm comm_;

@@ -38,6 +38,12 @@ void RankPressureSystem::setup(const PoissonOperator& op, const FaceCoefficients
   ++g_times.setups;
 }
 
+std::optional<LineRange> RankPressureSystem::lines_read() const {
+  if (!solver_) return std::nullopt;
+  const Block& b = solver_->grid().block();
+  return LineRange{b.j0, b.j1, b.k0, b.k1};
+}
+
 PoissonSolveStats RankPressureSystem::solve_system(const PoissonOperator& op, Field& b, Field& x) {
   const auto t0 = std::chrono::steady_clock::now();
   const DistributedGrid& g = solver_->grid();

@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cfd/parallel/distributed_poisson_solver.hpp"
@@ -29,6 +30,9 @@ class RankPressureSystem : public PoissonSystemSolver {
   PoissonSolveStats solve_system(const PoissonOperator& op, Field& b, Field& x) override;
 
   const DistributedPoissonSolver& solver() const { return *solver_; }
+
+  // This rank's block: the lines of b that solve reads.
+  std::optional<LineRange> lines_read() const override;
 
  private:
   MPI_Comm comm_;

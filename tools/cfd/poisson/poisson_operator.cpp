@@ -12,13 +12,13 @@ namespace finverse::cfd {
 
 namespace {
 
-// out = b - A p (with_b) or A p over all lines (j,k) in parallel (stencil_lines.hpp).
+// out = b - A p (with_b) or A p over the lines (j,k) of `range` in parallel (stencil_lines.hpp).
 template <int D, bool WithB>
-void stencil(const PoissonOperator& op, const Field* b, const Field& p, Field& out) {
+void stencil(const PoissonOperator& op, const Field* b, const Field& p, Field& out, const LineRange& range) {
   const StencilLines<D, WithB> lines(op, b, p, out);
-  const int ny = op.grid().ny(), nz = op.grid().nz();
-#pragma omp parallel for schedule(static) if (static_cast<long>(op.grid().cells()) >= parallel_min_cells)
-  for (int l = 0; l < ny * nz; ++l) lines.line(l % ny, l / ny);
+  const int ny = range.ny(), count = ny * range.nz();
+#pragma omp parallel for schedule(static) if (static_cast<long>(op.grid().nx()) * count >= parallel_min_cells)
+  for (int l = 0; l < count; ++l) lines.line(range.j0 + l % ny, range.k0 + l / ny);
 }
 
 }  // namespace
@@ -150,24 +150,24 @@ void PoissonOperator::fill_ghosts(Field& p) const {
       for (int i = -1; i <= nx; ++i) p(i, j, -1) = p(i, j, nz - 1), p(i, j, nz) = p(i, j, 0);
 }
 
-void PoissonOperator::apply(Field& p, Field& out) const {
+void PoissonOperator::apply(Field& p, Field& out, const LineRange& lines) const {
   fill_ghosts(p);
-  if (dim() == 3) stencil<3, false>(*this, nullptr, p, out);
-  else stencil<2, false>(*this, nullptr, p, out);
+  if (dim() == 3) stencil<3, false>(*this, nullptr, p, out, lines);
+  else stencil<2, false>(*this, nullptr, p, out, lines);
 }
 
 void PoissonOperator::residual(const Field& b, Field& x, Field& r) const {
   fill_ghosts(x);
-  if (dim() == 3) stencil<3, true>(*this, &b, x, r);
-  else stencil<2, true>(*this, &b, x, r);
+  if (dim() == 3) stencil<3, true>(*this, &b, x, r, all_lines(grid_));
+  else stencil<2, true>(*this, &b, x, r, all_lines(grid_));
 }
 
-void PoissonOperator::assemble_rhs(const Field& f, const BoundaryValues& values, Field& b) const {
+void PoissonOperator::assemble_rhs(const Field& f, const BoundaryValues& values, Field& b, const LineRange& lines) const {
   const StretchedGrid& g = grid_;
-  const int nx = g.nx(), ny = g.ny(), nz = g.nz();
-#pragma omp parallel for schedule(static) if (static_cast<long>(g.cells()) >= parallel_min_cells)
-  for (int l = 0; l < ny * nz; ++l) {
-    const int j = l % ny, k = l / ny;
+  const int nx = g.nx(), ny = lines.ny(), count = ny * lines.nz();
+#pragma omp parallel for schedule(static) if (static_cast<long>(nx) * count >= parallel_min_cells)
+  for (int l = 0; l < count; ++l) {
+    const int j = lines.j0 + l % ny, k = lines.k0 + l / ny;
     for (int i = 0; i < nx; ++i) b(i, j, k) = active(i, j, k) ? -f(i, j, k) * g.volume(i, j, k) : 0.0;
   }
 
@@ -190,6 +190,7 @@ void PoissonOperator::assemble_rhs(const Field& f, const BoundaryValues& values,
         ci[d] = cell, fi[d] = face;
         ci[t1] = fi[t1] = p;
         ci[t2] = fi[t2] = q;
+        if (!lines.contains(ci[1], ci[2])) continue;
         const double val = v[static_cast<std::size_t>(p) + static_cast<std::size_t>(na) * q];
         const std::size_t fx = beta_.index(d, fi[0], fi[1], fi[2]);
         double add;

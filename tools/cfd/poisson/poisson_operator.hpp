@@ -24,6 +24,7 @@
 #include "cfd/poisson/poisson_boundary.hpp"
 #include "cfd/poisson/face_coefficients.hpp"
 #include "cfd/grid/field.hpp"
+#include "cfd/grid/line_range.hpp"
 #include "cfd/grid/stretched_grid.hpp"
 
 namespace finverse::cfd {
@@ -59,7 +60,9 @@ class PoissonOperator {
   Field make_field() const { return Field(grid_, 1); }
 
   // out = A p with homogeneous boundary conditions. Fills p's ghosts, hence non-const p.
-  void apply(Field& p, Field& out) const;
+  void apply(Field& p, Field& out) const { apply(p, out, all_lines(grid_)); }
+  // The same on `lines` only (out elsewhere untouched), each line's bits as above.
+  void apply(Field& p, Field& out, const LineRange& lines) const;
   // r = b - A x.
   void residual(const Field& b, Field& x, Field& r) const;
   // Periodic wrap-around into the ghost layer; ghosts on other sides stay zero, so the stencil
@@ -67,7 +70,11 @@ class PoissonOperator {
   void fill_ghosts(Field& p) const;
 
   // b = -f V + sum over Dirichlet faces T_b p_b + sum over Neumann faces beta A dp/dn.
-  void assemble_rhs(const Field& f, const BoundaryValues& values, Field& b) const;
+  void assemble_rhs(const Field& f, const BoundaryValues& values, Field& b) const {
+    assemble_rhs(f, values, b, all_lines(grid_));
+  }
+  // The same on `lines` only (b elsewhere untouched).
+  void assemble_rhs(const Field& f, const BoundaryValues& values, Field& b, const LineRange& lines) const;
 
   // The multigrid's coarse operators are rediscretisations of this one: coarsen_operator in
   // coarsening.hpp.

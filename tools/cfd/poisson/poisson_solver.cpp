@@ -53,8 +53,13 @@ void PoissonSolver::setup(const StretchedGrid& grid, const FaceCoefficients& bet
 PoissonSolveStats PoissonSolver::solve(const Field& f, const BoundaryValues& values, Field& p) {
   if (f.nx() != b_.nx() || f.ny() != b_.ny() || f.nz() != b_.nz())
     throw std::invalid_argument("PoissonSolver::solve: f does not match the grid");
-  op_.assemble_rhs(f, values, b_);
+  op_.assemble_rhs(f, values, b_, rhs_lines());
   return solve_system(b_, p);
+}
+
+LineRange PoissonSolver::rhs_lines() const {
+  const std::optional<LineRange> own = system_ ? system_->lines_read() : std::nullopt;
+  return own ? *own : all_lines(op_.grid());
 }
 
 namespace {

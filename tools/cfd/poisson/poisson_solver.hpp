@@ -17,6 +17,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "cfd/poisson/poisson_boundary.hpp"
@@ -61,6 +62,8 @@ class PoissonSystemSolver {
   virtual ~PoissonSystemSolver() = default;
   virtual void setup(const PoissonOperator& op, const FaceCoefficients& beta, const PoissonSolverOptions& options) = 0;
   virtual PoissonSolveStats solve_system(const PoissonOperator& op, Field& b, Field& x) = 0;
+  // The lines of b that solve_system reads once set up (an MPI rank's block); empty: all of them.
+  virtual std::optional<LineRange> lines_read() const { return std::nullopt; }
 };
 
 // The process's flow solvers (FlowSolver::setup) take their pressure system solver from this
@@ -94,6 +97,9 @@ class PoissonSolver {
 
   // Solves the volume-integrated system A x = b directly (b is made compatible in place).
   PoissonSolveStats solve_system(Field& b, Field& x);
+  // The lines of f (solve) and b (solve_system) that the solve reads: all of them, or an MPI rank's
+  // block when the ranks solve the system (its caller may leave the rest of f unset).
+  LineRange rhs_lines() const;
 
   const PoissonOperator& op() const { return op_; }
   const Multigrid& multigrid() const { return mg_; }
