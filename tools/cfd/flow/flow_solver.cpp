@@ -354,12 +354,13 @@ StepStats FlowSolver::step() {
   ++step_;
   solved_step_ = warm_start_repeats_ ? step_ : -1;
   repeating_ = false;
-  check_health(dt);
+  const double cfl_now = cfl(dt);
+  check_health(dt, cfl_now);
   StepStats st;
   st.step = step_;
   st.time = time_;
   st.dt = dt;
-  st.cfl = cfl(dt);
+  st.cfl = cfl_now;
   st.poisson_iterations = ps.iterations;
   st.poisson_residual = ps.relative_residual;
   st.helmholtz_iterations = last_helmholtz_iterations_;

@@ -344,7 +344,9 @@ class FlowSolver {
  private:
   // time_step_control.cpp
   double choose_time_step() const;
-  void check_health(double dt) const;
+  // Throws on a blown-up field or a CFL number `cfl_now` (= cfl(dt), computed once per step by
+  // the caller, which reports it too) above the limit.
+  void check_health(double dt, double cfl_now) const;
   // boundary_update.cpp
   void set_boundary_values(double t, double dt, bool initial);
   // momentum_predictor.cpp

@@ -23,13 +23,13 @@ double FlowSolver::choose_time_step() const {
   return std::min(dt, opt_.dt_max);
 }
 
-void FlowSolver::check_health(double dt) const {
+void FlowSolver::check_health(double dt, double cfl_now) const {
   double s = norm2(p_);
   for (int c = 0; c < dim(); ++c) s += norm2(u_[static_cast<std::size_t>(c)]);
   char where[96];
   std::snprintf(where, sizeof where, "flow solver: step %ld (t = %.6g s, dt = %.3g s): ", step_, time_, dt);
   if (!std::isfinite(s)) throw Error(std::string(where) + "velocity or pressure is not finite (blow-up)");
-  const double c = cfl(dt);
+  const double c = cfl_now;
   if (c > opt_.cfl_limit) {
     char msg[96];
     std::snprintf(msg, sizeof msg, "CFL number %.3g exceeds the limit %.3g (blow-up; lower dt or cfl)", c,
