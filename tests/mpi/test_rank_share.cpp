@@ -1,11 +1,13 @@
 // Loops built in shares over MPI ranks (tools/cfd/parallel/rank_share.hpp, mpi_rank_share.hpp), run
 // by run_cfd_ranks.sh on 1-4 ranks: every rank ends with the whole array, item for item what one
-// process computes; a failing item is the lowest failing index's message on every rank; and a
+// process computes; a failing item is the lowest failing index's message on every rank; the lines
+// of a field gathered from the ranks that own them (allgather_lines); and a
 // 3-D body's ghost cells (ghost_cells_3d.cpp) and surface samples (surface_traction_3d.cpp) built
 // in shares are one process's, bit for bit.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -15,6 +17,7 @@
 #include "cfd/forces/surface_traction_3d.hpp"
 #include "cfd/immersed/ghost_cells.hpp"
 #include "cfd/immersed/surface_shapes.hpp"
+#include "cfd/parallel/block_decomposition.hpp"
 #include "cfd/parallel/mpi_rank_share.hpp"
 
 using namespace finverse::cfd;
@@ -100,6 +103,43 @@ TEST(RankShare, EveryRankEndsWithTheWholeArray) {
       EXPECT_EQ(items[static_cast<std::size_t>(m)].value, std::sin(0.3 * m) + m) << "item " << m;
     }
   }
+}
+
+// A whole-flow run's face velocities and convective term computed on each rank's own lines
+// (tools/cfd/flow/rank_lines.cpp) are gathered with allgather_lines: every line from the rank that
+// owns it, face rows that two blocks share from either, lines of no rank untouched.
+TEST(RankShare, AllgatherLinesLeavesEveryLineItsOwnersValues) {
+  const ShareScope scope;
+  const RankShare& share = *rank_share();
+  const int nx = 5, ny = 7, nz = 4;
+  const BlockDecomposition split(nx, ny, nz, 3, share.size(), 1);
+  const Block& b = split.block(share.rank());
+  const auto truth = [](int i, int j, int k) { return 100.0 * k + 10.0 * j + i + 0.25; };
+  // Cells of the block's lines, the rest garbage that differs by rank.
+  Field f(nx, ny, nz, 3);
+  f.fill(-1.0 - share.rank());
+  for (int k = b.k0; k < b.k1; ++k)
+    for (int j = b.j0; j < b.j1; ++j)
+      for (int i = 0; i < nx; ++i) f(i, j, k) = truth(i, j, k);
+  allgather_lines(share, LineRange{b.j0, b.j1, b.k0, b.k1}, nx, [&](int j, int k) { return &f(0, j, k); });
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) ASSERT_EQ(f(i, j, k), truth(i, j, k)) << i << " " << j << " " << k;
+  // y faces: rows j in [j0, j1] (the upper row is the next block's lower one), ny + 1 rows in all;
+  // z row 0 is nobody's and keeps its value.
+  const int rows = ny + 1;
+  std::vector<double> faces(static_cast<std::size_t>(nx) * rows * nz, -5.0 - share.rank());
+  const auto row = [&](int j, int k) { return faces.data() + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(rows) * k); };
+  const LineRange mine{b.j0, b.j1 + 1, std::max(b.k0, 1), b.k1};
+  for (int k = mine.k0; k < mine.k1; ++k)
+    for (int j = mine.j0; j < mine.j1; ++j)
+      for (int i = 0; i < nx; ++i) row(j, k)[i] = truth(i, j, k);
+  allgather_lines(share, mine, nx, row);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < rows; ++j)
+      for (int i = 0; i < nx; ++i)
+        ASSERT_EQ(row(j, k)[i], k == 0 ? -5.0 - share.rank() : truth(i, j, k)) << i << " " << j << " " << k;
+  EXPECT_EQ(share.max(0.5 * share.rank()), 0.5 * (share.size() - 1));
 }
 
 TEST(RankShare, AFailingItemThrowsTheLowestIndexsMessageOnEveryRank) {

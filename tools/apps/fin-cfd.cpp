@@ -66,13 +66,16 @@ int run_fin(const FinArgs& a, const CLI::App& app) {
   cfd::io::FinCheckpointing ck;
   // On MPI ranks every rank runs the whole flow and rank 0 alone writes files.
   const bool writer = cli::mpi_launch_rank() == 0;
-  ck.every = writer ? a.checkpoint_every : 0;
+  ck.every = a.checkpoint_every;
+  ck.write = writer;
   ck.file = !a.checkpoint.empty() ? a.checkpoint : a.out.parent_path() / (a.out.stem().string() + ".checkpoint.h5");
   ck.restart = a.restart;
   cfd::io::FlowSnapshots snapshots(a.out.parent_path() / (a.out.stem().string() + ".flow.pvd"), writer ? a.snapshot_every : 0,
                                    !ck.restart.empty());
-  if (writer && a.snapshot_every > 0)
-    ck.at_output = [&](long output, double t, const cfd::FlowSolver& s) { snapshots.at_output(output, t, st.dt, s); };
+  if (a.snapshot_every > 0)
+    ck.at_output = [&](long output, double t, const cfd::FlowSolver& s) {
+      if (writer) snapshots.at_output(output, t, st.dt, s);
+    };
   if (!ck.restart.empty()) log::info("restarting from " + ck.restart.string());
   cfd::io::FinProgress progress;
   stage::Loads loads = cfd::io::run_fin_flow(in, a.flow, st, std::ref(progress), ck);

@@ -6,20 +6,23 @@
 #include <cmath>
 
 #include "cfd/flow/flow_solver.hpp"
+#include "cfd/parallel/rank_share.hpp"
 
 namespace finverse::cfd {
 
 double FlowSolver::max_divergence() const {
   double m = 0;  // a maximum: the same in any order (reported every step, so over the threads too)
-  const int nx = grid_.nx(), ny = grid_.ny(), nz = grid_.nz();
-#pragma omp parallel for schedule(static) reduction(max : m) if (static_cast<long>(grid_.cells()) >= parallel_min_cells)
-  for (int l = 0; l < ny * nz; ++l) {
-    const int j = l % ny, k = l / ny;
+  // On a rank's own lines while the face velocities are partial, then over the ranks (rank_lines.cpp).
+  const LineRange lines = partial_ ? faces_ : all_lines(grid_);
+  const int nx = grid_.nx(), ny = lines.ny(), count = ny * lines.nz();
+#pragma omp parallel for schedule(static) reduction(max : m) if (static_cast<long>(nx) * count >= parallel_min_cells)
+  for (int l = 0; l < count; ++l) {
+    const int j = lines.j0 + l % ny, k = lines.k0 + l / ny;
     for (int i = 0; i < nx; ++i)
       if (fluid(i, j, k) && !cut_cell(i, j, k)) m = std::max(m, std::abs(divergence(U_, i, j, k)));
   }
   if (cut_) m = std::max(m, cut_residual_max_);
-  return m;
+  return partial_ ? rank_share()->max(m) : m;
 }
 
 double FlowSolver::kinetic_energy() const {

@@ -55,6 +55,8 @@ void FlowSolver::setup(const StretchedGrid& grid, const FlowBoundary& boundary, 
   bterm_ = Field(grid);
   U_ = FaceField(grid);
   Ustar_ = FaceField(grid);
+  own_ = faces_ = all_lines(grid);
+  partial_ = false;
   time_ = 0;
   dt_old_ = 0;
   step_ = 0;
@@ -330,6 +332,7 @@ StepStats FlowSolver::step() {
     sheet_next = sheet_motion_ ? sheet_motion_(t_new) : std::move(*next_sheet_);
     next_sheet_.reset();
   }
+  choose_rank_lines();
   predict_momentum(dt);
   if (sheet_) force_sheet(dt, std::move(*sheet_next));
   face_predictor(dt, coupling_time(dt));
@@ -517,6 +520,7 @@ Field FlowSolver::pressure() const {
 // ---- output and checkpoint state -------------------------------------------------------------
 
 std::vector<StateArray> FlowSolver::cell_output() const {
+  require_whole("cell_output");
   const std::size_t n = grid_.cells();
   const Field ph = pressure();
   StateArray vel{"velocity", std::vector<double>(3 * n, 0.0)}, pres{"pressure", std::vector<double>(n)},
@@ -602,6 +606,7 @@ SurfaceState surface_state_from(const std::vector<double>& in, const SurfaceStat
 }  // namespace
 
 std::vector<StateArray> FlowSolver::state() const {
+  require_whole("state");
   std::vector<StateArray> s;
   s.push_back({"scalars", {static_cast<double>(step_), time_, dt_old_}});
   s.push_back(raw("p", p_));
@@ -654,6 +659,7 @@ void FlowSolver::warm_start_repeated_steps(bool on) {
 }
 
 void FlowSolver::restore(const std::vector<StateArray>& s) {
+  partial_ = false;  // every field that a rank's lines leave partial is replaced whole below
   const std::vector<StateArray> expected = state();
   if (s.size() != expected.size()) throw Error("flow solver restore: checkpoint does not match this set-up");
   for (std::size_t a = 0; a < s.size(); ++a)

@@ -300,6 +300,17 @@ class FlowSolver {
 
   StepStats step();
 
+  // On whole-flow MPI ranks (a rank share installed, the systems on the ranks) with no closed body:
+  // compute the face velocities and the convective term on the rank's own lines only, the lines
+  // whose right-hand sides its systems read (rank_lines.cpp; docs/studies/flow_mpi.md, "The
+  // right-hand sides and the face velocities ..."). After such a step the face velocities and the stored
+  // convective term are valid there and on the domain's boundary faces only, until
+  // gather_rank_lines() (collective: every rank calls it) makes them whole again; state(),
+  // cell_output() and face_velocity() refuse until then. Off by default; no effect on one process.
+  void compute_on_rank_lines(bool on) { rank_lines_wanted_ = on; }
+  void gather_rank_lines();
+  bool fields_partial() const { return partial_; }
+
   // Output: cell-centred velocity component c, kinematic pressure, face velocities.
   const Field& u(int c) const { return u_[static_cast<std::size_t>(c)]; }
   // Kinematic pressure of the scheme (Van Kan's p^{n+1/2}, first order at t - dt/2), and the
@@ -307,7 +318,10 @@ class FlowSolver {
   // 168:464, p + phi - (nu dt/2) L phi).
   const Field& p() const { return p_; }
   Field pressure() const;
-  const FaceField& face_velocity() const { return U_; }
+  const FaceField& face_velocity() const {
+    require_whole("face_velocity");
+    return U_;
+  }
   const StretchedGrid& grid() const { return grid_; }
   const FlowOptions& options() const { return opt_; }
   // The pressure solver's set-up and solve time so far (threaded or on ranks).
@@ -342,6 +356,11 @@ class FlowSolver {
   void warm_start_repeated_steps(bool on);
 
  private:
+  // rank_lines.cpp: the lines this step computes its face velocities (faces_) and convective term
+  // (own_) on; throws std::logic_error naming `what` while the fields are partial.
+  void choose_rank_lines();
+  void require_whole(const char* what) const;
+
   // time_step_control.cpp
   double choose_time_step() const;
   // Throws on a blown-up field or a CFL number `cfl_now` (= cfl(dt), computed once per step by
@@ -509,6 +528,9 @@ class FlowSolver {
   long solved_step_ = -1;
   std::array<Field, 3> solved_ustar_;
   Field solved_phi_;
+  // compute_on_rank_lines: wanted, whether the fields are partial now, and this step's lines.
+  bool rank_lines_wanted_ = false, partial_ = false;
+  LineRange own_, faces_;
 };
 
 inline double FlowSolver::face_area(int d, int i, int j, int k) const { return grid_.face_area(d, i, j, k); }

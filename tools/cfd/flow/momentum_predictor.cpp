@@ -52,7 +52,7 @@ void FlowSolver::convective_term(std::array<Field, 3>& out) const {
       const double* hi = &q(0, fj, fk);
       for (int i = 0; i < nx; ++i) dst[i] = U[i] * (w * lo[i] + (1 - w) * hi[i]);
     };
-    for_each_line(grid_, [&](int j, int k) {
+    for_each_line(grid_, own_, [&](int j, int k) {  // (the rank's own lines: rank_lines.cpp)
       thread_local std::vector<double> buf;
       buf.resize(5 * static_cast<std::size_t>(nx) + 1);
       double* fx = buf.data();

@@ -47,7 +47,7 @@ void FlowSolver::face_predictor(double dt, double tau) {
     for_each_cell(grid_, [&](int i, int j, int k) { w(i, j, k) = us(i, j, k) + tau * grad_(i, j, k); });
     const int n = grid_.n(d);
     const bool periodic = bnd_.periodic(d);
-    for_each_face(grid_, d, [&](int i, int j, int k) {
+    for_each_face(grid_, d, faces_, [&](int i, int j, int k) {  // (the rank's own lines: rank_lines.cpp)
       const int f = d == 0 ? i : d == 1 ? j : k;
       if (!periodic && (f == 0 || f == n)) return;  // prescribed boundary flux
       if (masked_face(d, i, j, k)) return;             // immersed body: body_face_velocities

@@ -22,6 +22,22 @@
 
 namespace finverse::cfd {
 
+namespace {
+// fn(i, j, k) for the faces normal to d on the domain's two sides across d.
+template <class Fn>
+void boundary_faces(const StretchedGrid& g, int d, Fn fn) {
+  const int n[3] = {g.nx(), g.ny(), g.nz()};
+  const int a = d == 0 ? 1 : 0, b = d == 2 ? 1 : 2;  // the tangential axes
+  for (int f : {0, n[d]})
+    for (int q = 0; q < n[b]; ++q)
+      for (int p = 0; p < n[a]; ++p) {
+        int x[3];
+        x[d] = f, x[a] = p, x[b] = q;
+        fn(x[0], x[1], x[2]);
+      }
+}
+}  // namespace
+
 void FlowSolver::update_velocity(double dt) {
   for (int d = 0; d < dim(); ++d) {
     const auto D = static_cast<std::size_t>(d);
@@ -31,9 +47,12 @@ void FlowSolver::update_velocity(double dt) {
         U_(d, i, j, k) = Ustar_(d, i, j, k) - (alpha > 0 ? alpha * dt * face_gradient(phi_solved_, d, i, j, k) : 0.0);
       });
     } else {
-      for_each_face(grid_, d, [&](int i, int j, int k) {
+      const auto update = [&](int i, int j, int k) {
         U_(d, i, j, k) = Ustar_(d, i, j, k) - (masked_face(d, i, j, k) ? 0.0 : dt * face_gradient(phi_, d, i, j, k));
-      });
+      };
+      for_each_face(grid_, d, faces_, update);  // (the rank's own lines: rank_lines.cpp)
+      // and the domain's boundary faces on every line: the outlet's flux balance sums them all
+      if (!(faces_ == all_lines(grid_)) && !bnd_.periodic(d)) boundary_faces(grid_, d, update);
     }
     cell_gradient(phi_, d, grad_);
     Field& u = u_[D];

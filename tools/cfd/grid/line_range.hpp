@@ -13,8 +13,14 @@ struct LineRange {
   int ny() const { return j1 - j0; }
   int nz() const { return k1 - k0; }
   bool contains(int j, int k) const { return j >= j0 && j < j1 && k >= k0 && k < k1; }
+  friend bool operator==(const LineRange&, const LineRange&) = default;
 };
 
 inline LineRange all_lines(const StretchedGrid& g) { return {0, g.ny(), 0, g.nz()}; }
+
+// The smallest range holding both.
+inline LineRange span(const LineRange& a, const LineRange& b) {
+  return {a.j0 < b.j0 ? a.j0 : b.j0, a.j1 > b.j1 ? a.j1 : b.j1, a.k0 < b.k0 ? a.k0 : b.k0, a.k1 > b.k1 ? a.k1 : b.k1};
+}
 
 }  // namespace finverse::cfd

@@ -188,6 +188,9 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
   FlowSolver solver;
   try {
     solver.setup(st.grid, b, opt);
+    // On MPI ranks the face velocities and convection on the rank's own lines; the checkpoints and
+    // the output callback below gather the rest first (flow_solver.hpp, compute_on_rank_lines).
+    solver.compute_on_rank_lines(true);
     if (sheet) {
       SheetForcingOptions so;
       so.kernel = delta_kernel_from_name(o.kernel);
@@ -265,12 +268,16 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
       for (const auto& w : window.add(n, nodal, total_force, jump)) {
         const double tw = t0 + static_cast<double>(w.step / m) * interval;  // exact output time
         rec.add(tw, w.nodal, w.total, w.jump);
-        if (ck.at_output) ck.at_output(w.step / m, tw, solver);
+        if (ck.at_output) {
+          solver.gather_rank_lines();  // (collective: set on every rank of an MPI run)
+          ck.at_output(w.step / m, tw, solver);
+        }
       }
     }
     if (ck.every > 0 && n % ck.every == 0 && n < total) {
       const auto c0 = std::chrono::steady_clock::now();
-      write_fin_checkpoint(ck.file, solver, config, {n, st.poisson_iterations, st.max_cfl}, rec, window);
+      solver.gather_rank_lines();  // (collective: every rank of an MPI run comes here)
+      if (ck.write) write_fin_checkpoint(ck.file, solver, config, {n, st.poisson_iterations, st.max_cfl}, rec, window);
       st.checkpoint_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
       ++st.checkpoints;
       last_checkpoint = "; last checkpoint: " + ck.file.string() + " (step " + std::to_string(n) + ")";

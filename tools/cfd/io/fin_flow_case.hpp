@@ -97,11 +97,15 @@ struct FinCheckpointing {
   long every = 0;                 // write `file` after every this many steps (0: never)
   std::filesystem::path file;     // the checkpoint (replaced atomically each time)
   std::filesystem::path restart;  // continue from this checkpoint (empty: start at t_0)
+  // This process writes the checkpoint; false on the other ranks of an MPI run, which keep the
+  // cadence to gather the flow's fields with the writer (FlowSolver::gather_rank_lines).
+  bool write = true;
   // Called at the end of every step, after its outputs and checkpoint (observers; fault-injection
   // tests); a finverse::Error it throws ends the run as a failure of that step.
   std::function<void(long step, FlowSolver& solver)> after_step;
   // Called at every output time that is written to loads.h5 (after its loads are recorded), e.g.
-  // for flow-field snapshots; `output` counts the output times from t_0 (1, 2, ...).
+  // for flow-field snapshots; `output` counts the output times from t_0 (1, 2, ...). On an MPI run
+  // set on every rank or on none (the solver's fields are gathered before each call).
   std::function<void(long output, double t, const FlowSolver& solver)> at_output;
 };
 

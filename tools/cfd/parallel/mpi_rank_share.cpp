@@ -24,6 +24,12 @@ void MpiRankShare::allgather(unsigned char* data, const std::vector<std::size_t>
   MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, data, counts.data(), displs.data(), MPI_BYTE, comm_);
 }
 
+double MpiRankShare::max(double value) const {
+  double m = value;
+  MPI_Allreduce(&value, &m, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return m;
+}
+
 std::string MpiRankShare::first_failure(bool failed, const std::string& message) const {
   int mine = failed ? rank_ : size_, first = size_;
   MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm_);

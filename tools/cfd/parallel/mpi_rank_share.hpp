@@ -16,6 +16,7 @@ class MpiRankShare : public RankShare {
   int size() const override { return size_; }
   void allgather(unsigned char* data, const std::vector<std::size_t>& bytes) const override;
   std::string first_failure(bool failed, const std::string& message) const override;
+  double max(double value) const override;
 
  private:
   MPI_Comm comm_;

@@ -15,12 +15,14 @@
 #include <algorithm>
 #include <cstddef>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "cfd/grid/line_range.hpp"
 #include "core/error.hpp"
 
 namespace finverse::cfd {
@@ -35,6 +37,8 @@ class RankShare {
   virtual void allgather(unsigned char* data, const std::vector<std::size_t>& bytes) const = 0;
   // Collective: the message of the lowest rank with failed = true on every rank, or "" when none failed.
   virtual std::string first_failure(bool failed, const std::string& message) const = 0;
+  // Collective: the largest of the ranks' values (exact, so the same in any order).
+  virtual double max(double value) const = 0;
 };
 
 // The share of the process's whole-flow ranks (nullptr: none, the loops run whole).
@@ -73,5 +77,11 @@ void shared_for_each(std::vector<T>& items, Fn fn) {
   for (std::size_t q = 0; q < p; ++q) bytes[q] = (edge(q + 1) - edge(q)) * sizeof(T);
   share->allgather(reinterpret_cast<unsigned char*>(items.data()), bytes);
 }
+
+// Collective: each rank's `mine` lines of an array onto every rank, in place (line(j, k): where
+// line (j, k)'s `length` values start). The ranks' ranges may overlap where their values agree
+// (a face two blocks share); lines in no rank's range keep their values.
+void allgather_lines(const RankShare& share, const LineRange& mine, std::size_t length,
+                     const std::function<double*(int j, int k)>& line);
 
 }  // namespace finverse::cfd
