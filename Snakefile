@@ -41,6 +41,9 @@ include: "rules/footage.smk"
 include: "rules/flap.smk"
 include: "rules/loop.smk"
 
+# A profile's MPI tasks without a launcher, or on a rule that does not run on ranks: one line, exit 2.
+check_mpi_resources(workflow.overwrite_resources)
+
 
 # A new run of the main job: its progress lines count from here (rules/common.smk, stage_shell).
 onstart:

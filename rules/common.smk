@@ -2,6 +2,7 @@
 # executable not built yet, and the registry of validation cases, benchmarks and pipeline outputs
 # that the targets in the Snakefile draw from.
 import os
+import sys
 
 REPO = workflow.basedir
 # A relative build_dir is relative to the repository, so the workflow can run in another
@@ -124,6 +125,32 @@ def mpi_launch(wildcards, resources):
     tasks = int(resources.get("tasks", 1) if hasattr(resources, "get") else getattr(resources, "tasks", 1))
     mpi = str(mpi).strip().strip("'\"")  # a value given on the command line keeps its quotes
     return f"{mpi} -n {tasks}" if mpi and tasks > 1 else ""
+
+
+# The rules whose command runs "<mpi> -n <tasks>" (mpi_launch above).
+MPI_RULES = ("loads", "fsi", "truth_fsi")
+
+
+def check_mpi_resources(overwrite):
+    """Issue 48's bad input: a profile (--set-resources) that gives a rule several MPI tasks must give
+    it a launcher, and only the MPI_RULES run on ranks; else the tasks would idle beside one
+    process. One line naming what to change, exit 2, before any job starts."""
+    for rule, res in sorted(overwrite.items()):
+        if "tasks" not in res:
+            continue
+        tasks = str(res["tasks"]).strip().strip("'\"")
+        if not tasks.isdigit() or int(tasks) < 1:
+            fail = f"{rule}:tasks={tasks}, expected a whole number >= 1"
+        elif int(tasks) > 1 and rule not in MPI_RULES:
+            fail = (f"{rule}:tasks={tasks}, but rule {rule} is not launched on MPI ranks"
+                    f" (only {', '.join(MPI_RULES)} are); set {rule}:tasks=1")
+        elif int(tasks) > 1 and not str(res.get("mpi", "")).strip().strip("'\""):
+            fail = f"{rule}:tasks={tasks} without a launcher; add {rule}:mpi=\"srun\" (or mpirun) to set-resources"
+        else:
+            continue
+        sys.stderr.write(f"finverse: error: profile resources: {fail}\n")
+        sys.stderr.flush()
+        os._exit(2)  # (Snakemake turns SystemExit into a traceback and exit 1; nothing is locked yet)
 
 
 def stage_shell(stage, command):
