@@ -7,7 +7,8 @@
 # run at CFL 0.5). The pressure is all-Neumann here (one singular component); its projections sum
 # each x line and then the lines in order, in one process as on the ranks (poisson_operator.cpp's
 # component_sums), so loads.h5 must equal one process's bit for bit (fin-diff without tolerances).
-# A subcommand that does not run on ranks refuses mpirun in one line, exit 2.
+# A subcommand that does not run on ranks refuses mpirun in one line, exit 2; so does a rank count
+# the grid cannot be split into.
 # Usage: run_fin_cfd_ranks.sh <fin-cfd> <fin-diff> <mpiexec> <source dir> <work dir>
 set -euo pipefail
 cfd=$1 diff=$2 mpiexec=$3 src=$4 work=$5
@@ -58,6 +59,14 @@ done
   { cat restarted.diff; echo "sheet: restart from the 2 ranks' checkpoint differs from the uninterrupted run"; exit 1; }
 # Ranks write nothing but rank 0's files: no checkpoint or snapshot of their own to race on.
 [ "$(ls fin.ranks4* | wc -l)" = 3 ] || { ls; echo "fin on 4 ranks: files besides rank 0's"; exit 1; }
+# A rank count the grid cannot be split into (16 x 16 lines at c/6, at least 2 per rank and cut
+# direction: 11 is prime and needs 22): rank 0's one line naming the largest that works, exit 2,
+# and no rank exits before it has said it (FlowRanks::report_once).
+rc=0
+OMP_NUM_THREADS=1 "${launch[@]}" -np 11 "$cfd" --threads 1 fin "${plate[@]}" --cells-per-chord 6 --lateral 0.5 --spanwise 0.5 \
+  --periods 0.05 --out split.h5 > split.out 2> split.err || rc=$?
+[ $rc = 2 ] && [ "$(grep -c 'fin-cfd: error:' split.err)" = 1 ] && grep -q "cannot be split into 11 ranks.*use at most 10 ranks" split.err ||
+  { cat split.err; echo "fin-cfd on 11 ranks of a 16 x 16-line grid: exit $rc, not one line saying why"; exit 1; }
 rc=0
 "${launch[@]}" -np 2 "$cfd" --coarse taylor_green > tg.out 2> tg.err || rc=$?
 [ $rc = 2 ] && [ "$(grep -c 'fin-cfd: error:' tg.err)" -ge 1 ] && grep -q "does not run on MPI ranks" tg.err ||

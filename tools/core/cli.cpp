@@ -127,6 +127,8 @@ int run(CLI::App& app, Standard& standard, int argc, char** argv, const std::fun
     const int rc = body();
     log::timing_summary(threads_in_use());
     return rc;
+  } catch (const ReportedError&) {
+    return kExitError;
   } catch (const std::exception& e) {
     if (!quiet_rank) std::fprintf(stderr, "%s: error: %s\n", standard.tool.c_str(), e.what());
     return kExitError;

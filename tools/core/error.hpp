@@ -13,6 +13,14 @@ class Error : public std::runtime_error {
   explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
 
+// An Error whose one line has been printed already: an MPI run's rank 0 says it before any rank
+// exits, since the launcher ends the job at the first non-zero exit and could take the line with
+// it (cfd/parallel/rank_pressure_system.hpp). Executables exit kExitError without repeating it.
+class ReportedError : public Error {
+ public:
+  using Error::Error;
+};
+
 // Exit codes shared by every executable.
 enum ExitCode : int {
   kExitOk = 0,

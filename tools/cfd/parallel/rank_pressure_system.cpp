@@ -105,6 +105,14 @@ bool FlowRanks::every_rank_failed(double seconds) const {
   return done != 0;  // else the barrier stays posted: the job is about to be aborted
 }
 
+void FlowRanks::report_once(const char* tool, const char* what) const {
+  if (rank_ == 0) {
+    std::fprintf(stderr, "%s: error: %s\n", tool, what);
+    std::fflush(stderr);
+  }
+  MPI_Barrier(failures_);
+}
+
 void FlowRanks::abort(const char* tool, const char* what, int code) const {
   if (rank_ == 0) std::fprintf(stderr, "%s: error: %s\n", tool, what);
   else std::fprintf(stderr, "%s: rank %d: error: %s\n", tool, rank_, what);
@@ -127,8 +135,11 @@ int run_on_flow_ranks(const std::string& tool, const std::function<int()>& body)
     log::info(line);
     return rc;
   } catch (const std::exception& e) {
-    if (ranks.every_rank_failed()) throw;  // rank 0 says it once; the job ends normally
-    ranks.abort(tool.c_str(), e.what(), kExitError);
+    if (!ranks.every_rank_failed()) ranks.abort(tool.c_str(), e.what(), kExitError);
+    // Every rank failed alike (bad input, a rank count the grid cannot take): rank 0 says it once,
+    // and no rank exits before it has.
+    ranks.report_once(tool.c_str(), e.what());
+    throw ReportedError(e.what());
   }
 }
 

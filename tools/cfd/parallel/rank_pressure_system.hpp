@@ -59,6 +59,8 @@ class FlowRanks {
   // rank meets, as bad input or a rank count the grid cannot take: rank 0 alone then says it and
   // the job ends normally). Meets the others on a communicator of its own.
   bool every_rank_failed(double seconds = 3) const;
+  // After every_rank_failed(): rank 0 says `what` in one line, and every rank waits until it has.
+  void report_once(const char* tool, const char* what) const;
   // A failure of this rank alone: says it (rank 0 plainly, the others with their rank) and ends
   // the whole job with `code`; the other ranks may wait in a collective that would never complete.
   [[noreturn]] void abort(const char* tool, const char* what, int code) const;
