@@ -166,6 +166,21 @@ TEST(Cli, MpiLaunchRankAndSizeFromTheEnvironment) {
       << said;
   plain_standard.mpi = true;
   EXPECT_EQ(finverse::cli::run(plain, plain_standard, 1, argv, [] { return 0; }), finverse::kExitOk);
+  // A stage that runs on ranks, built without MPI and started by a launcher: one line naming the
+  // rebuild, exit 2 (apps/flow_ranks_launch.hpp calls this in such a build).
+  ::testing::internal::CaptureStderr();
+  EXPECT_EQ(finverse::cli::run(plain, plain_standard, 1, argv,
+                               [] {
+                                 finverse::cli::refuse_mpi_launch_without_mpi("fin-cfd");
+                                 return 0;
+                               }),
+            finverse::kExitError);
+  const std::string rebuild = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(rebuild.find("t: error: started by an MPI launcher on 4 ranks, but this fin-cfd was built without MPI: "
+                         "install libopenmpi-dev and rebuild (cmake -DFINVERSE_MPI=ON)"),
+            std::string::npos)
+      << rebuild;
   ::unsetenv("PMIX_RANK");
   ::unsetenv("PMIX_SIZE");
+  EXPECT_NO_THROW(finverse::cli::refuse_mpi_launch_without_mpi("fin-cfd"));  // one process: nothing to refuse
 }
