@@ -121,7 +121,7 @@ TEST(RankShare, AllgatherLinesLeavesEveryLineItsOwnersValues) {
   for (int k = b.k0; k < b.k1; ++k)
     for (int j = b.j0; j < b.j1; ++j)
       for (int i = 0; i < nx; ++i) f(i, j, k) = truth(i, j, k);
-  allgather_lines(share, LineRange{b.j0, b.j1, b.k0, b.k1}, nx, [&](int j, int k) { return &f(0, j, k); });
+  allgather_lines(share, b, nx, [&](int j, int k) { return &f(0, j, k); });
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) ASSERT_EQ(f(i, j, k), truth(i, j, k)) << i << " " << j << " " << k;

@@ -16,14 +16,12 @@
 #include <cstddef>
 #include <vector>
 
+#include "cfd/grid/line_range.hpp"
+
 namespace finverse::cfd {
 
 // One rank's lines: y in [j0, j1), z in [k0, k1), all of x.
-struct Block {
-  int j0 = 0, j1 = 0, k0 = 0, k1 = 0;
-  int ny() const { return j1 - j0; }
-  int nz() const { return k1 - k0; }
-};
+using Block = LineRange;
 
 class BlockDecomposition {
  public:

@@ -20,8 +20,7 @@ void RankMomentumSystem::setup(const PoissonOperator& op, const FaceCoefficients
 
 std::optional<LineRange> RankMomentumSystem::lines_read() const {
   if (!grid_) return std::nullopt;
-  const Block& b = grid_->block();
-  return LineRange{b.j0, b.j1, b.k0, b.k1};
+  return grid_->block();
 }
 
 HelmholtzStats RankMomentumSystem::solve(const PoissonOperator& op, double mass, double stiffness, const Field& b,

@@ -40,8 +40,7 @@ void RankPressureSystem::setup(const PoissonOperator& op, const FaceCoefficients
 
 std::optional<LineRange> RankPressureSystem::lines_read() const {
   if (!solver_) return std::nullopt;
-  const Block& b = solver_->grid().block();
-  return LineRange{b.j0, b.j1, b.k0, b.k1};
+  return solver_->grid().block();
 }
 
 PoissonSolveStats RankPressureSystem::solve_system(const PoissonOperator& op, Field& b, Field& x) {
