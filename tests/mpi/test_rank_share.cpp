@@ -129,7 +129,9 @@ TEST(RankShare, AllgatherLinesLeavesEveryLineItsOwnersValues) {
   // z row 0 is nobody's and keeps its value.
   const int rows = ny + 1;
   std::vector<double> faces(static_cast<std::size_t>(nx) * rows * nz, -5.0 - share.rank());
-  const auto row = [&](int j, int k) { return faces.data() + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(rows) * k); };
+  const auto row = [&](int j, int k) {
+    return faces.data() + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(rows) * k);
+  };
   const LineRange mine{b.j0, b.j1 + 1, std::max(b.k0, 1), b.k1};
   for (int k = mine.k0; k < mine.k1; ++k)
     for (int j = mine.j0; j < mine.j1; ++j)

@@ -113,7 +113,8 @@ TEST(PoissonOperator, ApplyAndRightHandSideOnLinesAreTheWholeCallsThere) {
   const LineRange lines{3, g.ny(), 2, 5};  // touches the Dirichlet side YHi, not ZLo
   Field x = test::random_field(g, 3), f = test::random_field(g, 4);
   BoundaryValues bv;
-  for (Side s : {Side::XLo, Side::YHi, Side::ZLo}) bv.sample(g, s, [](double x, double y, double z) { return x - 2 * y + z * z; });
+  for (Side s : {Side::XLo, Side::YHi, Side::ZLo})
+    bv.sample(g, s, [](double x, double y, double z) { return x - 2 * y + z * z; });
   Field whole(g), part(g), rhs_whole(g), rhs_part(g);
   part.fill(7.0);
   rhs_part.fill(7.0);

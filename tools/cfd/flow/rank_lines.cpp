@@ -45,7 +45,8 @@ void FlowSolver::gather_rank_lines() {
   for (int d = 0; d < dim(); ++d) {
     // The face rows of faces_'s cells: their upper faces along d too (two blocks share those).
     const LineRange rows{faces_.j0, faces_.j1 + (d == 1), faces_.k0, faces_.k1 + (d == 2)};
-    allgather_lines(share, rows, static_cast<std::size_t>(nx + (d == 0)), [&](int j, int k) { return &U_(d, 0, j, k); });
+    allgather_lines(share, rows, static_cast<std::size_t>(nx + (d == 0)),
+                    [&](int j, int k) { return &U_(d, 0, j, k); });
   }
   for (int c = 0; c < dim(); ++c) {
     Field& n = conv_old_[static_cast<std::size_t>(c)];

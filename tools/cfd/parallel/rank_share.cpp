@@ -27,7 +27,8 @@ void allgather_lines(const RankShare& share, const LineRange& mine, std::size_t 
   share.allgather(reinterpret_cast<unsigned char*>(ranges.data()), std::vector<std::size_t>(p, sizeof(LineRange)));
   std::vector<std::size_t> bytes(p), at(p + 1, 0);
   for (std::size_t q = 0; q < p; ++q) {
-    const std::size_t lines = static_cast<std::size_t>(std::max(0, ranges[q].ny())) * static_cast<std::size_t>(std::max(0, ranges[q].nz()));
+    const std::size_t lines =
+        static_cast<std::size_t>(std::max(0, ranges[q].ny())) * static_cast<std::size_t>(std::max(0, ranges[q].nz()));
     at[q + 1] = at[q] + lines * length;
     bytes[q] = lines * length * sizeof(double);
   }

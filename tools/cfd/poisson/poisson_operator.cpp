@@ -162,7 +162,8 @@ void PoissonOperator::residual(const Field& b, Field& x, Field& r) const {
   else stencil<2, true>(*this, &b, x, r, all_lines(grid_));
 }
 
-void PoissonOperator::assemble_rhs(const Field& f, const BoundaryValues& values, Field& b, const LineRange& lines) const {
+void PoissonOperator::assemble_rhs(const Field& f, const BoundaryValues& values, Field& b,
+                                   const LineRange& lines) const {
   const StretchedGrid& g = grid_;
   const int nx = g.nx(), ny = lines.ny(), count = ny * lines.nz();
 #pragma omp parallel for schedule(static) if (static_cast<long>(nx) * count >= parallel_min_cells)
