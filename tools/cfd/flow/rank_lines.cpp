@@ -1,16 +1,9 @@
-// The explicit kernels on a rank's own lines in a whole-flow MPI run (issue 48, deliverable 2;
-// docs/studies/flow_mpi.md, "The right-hand sides and the face velocities on the ranks' own
-// lines").
-//
-// Every rank holds the whole flow, and the ranks' systems read only their block of the right-hand
-// sides. The momentum right-hand side needs the convective term on the momentum block's lines
-// (own_); the pressure's, the predicted face velocities of its block's cells; the next step's
-// convective term, the corrected face velocities of own_'s cells. So a rank computes the face
-// velocities of the cells in the span of its two blocks (faces_) and on every boundary face of the
-// domain (the outlet's flux balance sums them all, boundary_update.cpp), and the convective term
-// on own_; the cell velocities, p and phi stay whole on every rank. Each line's arithmetic is the
-// whole loop's, so the bits are one process's. The other ranks' lines are gathered only when a
-// file needs the whole state (gather_rank_lines).
+// The explicit kernels on a rank's own lines in a whole-flow MPI run (issue 48; the reasoning and
+// measurements: docs/studies/flow_mpi.md, "The right-hand sides and the face velocities on the
+// ranks' own lines"). A rank computes the face velocities of the cells of its two systems' blocks
+// (faces_) plus every domain boundary face (the outlet balance sums them all), and the convective
+// term on its momentum block (own_): exactly what its right-hand sides and the next step read.
+// Cell velocities, p and phi stay whole. The rest is gathered only when a file needs it.
 #include <stdexcept>
 #include <string>
 
