@@ -277,7 +277,8 @@ stage::Loads run_fin_flow(const FinInput& in, const FinFlowOptions& o, FinFlowSt
     if (ck.every > 0 && n % ck.every == 0 && n < total) {
       const auto c0 = std::chrono::steady_clock::now();
       solver.gather_rank_lines();  // (collective: every rank of an MPI run comes here)
-      if (ck.write) write_fin_checkpoint(ck.file, solver, config, {n, st.poisson_iterations, st.max_cfl}, rec, window);
+      if (ck.write)
+        write_fin_checkpoint(ck.file, solver, config, {n, st.poisson_iterations, st.max_cfl}, rec, window);
       st.checkpoint_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
       ++st.checkpoints;
       last_checkpoint = "; last checkpoint: " + ck.file.string() + " (step " + std::to_string(n) + ")";

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cfd/grid/grid_loops.hpp"
 #include "cfd/poisson/stencil_lines.hpp"
 
 namespace finverse::cfd {
@@ -16,9 +17,7 @@ namespace {
 template <int D, bool WithB>
 void stencil(const PoissonOperator& op, const Field* b, const Field& p, Field& out, const LineRange& range) {
   const StencilLines<D, WithB> lines(op, b, p, out);
-  const int ny = range.ny(), count = ny * range.nz();
-#pragma omp parallel for schedule(static) if (static_cast<long>(op.grid().nx()) * count >= parallel_min_cells)
-  for (int l = 0; l < count; ++l) lines.line(range.j0 + l % ny, range.k0 + l / ny);
+  for_each_line(op.grid(), range, [&](int j, int k) { lines.line(j, k); });
 }
 
 }  // namespace
@@ -165,12 +164,8 @@ void PoissonOperator::residual(const Field& b, Field& x, Field& r) const {
 void PoissonOperator::assemble_rhs(const Field& f, const BoundaryValues& values, Field& b,
                                    const LineRange& lines) const {
   const StretchedGrid& g = grid_;
-  const int nx = g.nx(), ny = lines.ny(), count = ny * lines.nz();
-#pragma omp parallel for schedule(static) if (static_cast<long>(nx) * count >= parallel_min_cells)
-  for (int l = 0; l < count; ++l) {
-    const int j = lines.j0 + l % ny, k = lines.k0 + l / ny;
-    for (int i = 0; i < nx; ++i) b(i, j, k) = active(i, j, k) ? -f(i, j, k) * g.volume(i, j, k) : 0.0;
-  }
+  for_each_cell(g, lines,
+                [&](int i, int j, int k) { b(i, j, k) = active(i, j, k) ? -f(i, j, k) * g.volume(i, j, k) : 0.0; });
 
   for (int s = 0; s < 2 * dim(); ++s) {
     const Side side = static_cast<Side>(s);
