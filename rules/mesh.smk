@@ -207,7 +207,7 @@ rule mesh:
     resources:
         mem_mb=1000,
     params:
-        flags=_TEMPLATE_FLAGS,
+        flags=_TEMPLATE_FLAGS + (" " + config["mesh"]["flags"] if config["mesh"]["flags"] else ""),
     shell:
         stage_shell(
             "mesh",
