@@ -6,7 +6,8 @@ best) with the same pipeline on a finer near-fin grid, each graded within a rela
 the finer run's value. Writes a finverse validation summary (tools/core/summary.hpp).
 
     case_grid_compare.py --name default_case_grid --loads L.h5 --materials M.h5 \
-        --fine-loads Lf.h5 --fine-materials Mf.h5 [--tolerance 0.05] --out summary.json
+        --fine-loads Lf.h5 --fine-materials Mf.h5 [--fsi F.h5 [--fine-fsi Ff.h5]] [--tolerance 0.05] \
+        --out summary.json
 
 Every E parameter is graded; nu is reported (a Poisson ratio is not a modulus). A parameter the
 fit marks not identified (materials.h5 uncertainty/identified) in either run is graded too, with
@@ -75,7 +76,9 @@ def main():
     p.add_argument("--materials", required=True)
     p.add_argument("--fine-loads", required=True)
     p.add_argument("--fine-materials", required=True)
-    p.add_argument("--fsi", help="the case's fsi.h5 (optional): its mean C_T and peak, reported")
+    p.add_argument("--fsi", help="the case's fsi.h5 (optional): its mean C_T and peak")
+    p.add_argument("--fine-fsi", help="the fsi stage on the finer grid: the case's FSI mean C_T and peak graded "
+                   "against it (without it they are reported)")
     p.add_argument("--tolerance", type=float, default=0.05)
     p.add_argument("--out", required=True)
     a = p.parse_args()
@@ -100,7 +103,15 @@ def main():
     if rays:
         d = np.abs(best[rays] - best_f[rays]) / np.abs(best_f[rays])
         metrics.append(info("fitted ray E, median relative difference to the finer grid", float(np.median(d)), "", ref))
-    if a.fsi:
+    if a.fine_fsi and not a.fsi:
+        fail("--fine-fsi needs --fsi (the case's fsi.h5)")
+    if a.fsi and a.fine_fsi:
+        fsi_ct, fsi_peak, _ = thrust(a.fsi, "--fsi")
+        fine_ct, fine_peak, _ = thrust(a.fine_fsi, "--fine-fsi")
+        fsi_ref = "the fsi stage at twice the resolution, with the finer fit's materials"
+        metrics.append(relative("FSI mean C_T (fsi.h5)", fsi_ct, fine_ct, a.tolerance, fsi_ref))
+        metrics.append(relative("FSI C_T peak (fsi.h5)", fsi_peak, fine_peak, a.tolerance, fsi_ref))
+    elif a.fsi:
         fsi_ct, fsi_peak, _ = thrust(a.fsi, "--fsi")
         metrics.append(info("FSI mean C_T (fsi.h5)", fsi_ct, "", "the case's fsi stage, reported"))
         metrics.append(info("FSI C_T peak (fsi.h5)", fsi_peak, "", "the case's fsi stage, reported"))
