@@ -581,6 +581,7 @@ rule bench_pipeline:
         mem_mb=200,
     params:
         stages=" ".join(f"--stage {s}={stage_benchmark(s)}" for s in progress_order()),
+        goal=f"--goal-minutes {config['progress']['goal_minutes']}" if config["progress"]["goal_minutes"] else "",
     shell:
         "/usr/bin/python3 {input.script} --case {config[case]} --threads " + str(THREADS) +
-        " {params.stages} --out {output.json} 2> {log}"
+        " {params.stages} {params.goal} --out {output.json} 2> {log} " + METRIC_MISSED_IS_A_RESULT
