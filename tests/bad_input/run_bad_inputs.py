@@ -207,6 +207,16 @@ def cases():
     c += flag_cases("fin-fsi", fsi, "{w}/fsi.h5", [
         ("--speed", "-1"), ("--cells-per-chord", "nan"), ("--reynolds", "-1"), ("--rho", "-1"), ("--viscosity", "0"),
         ("--periods", "-1"), ("--substeps", "0"), ("--cfl", "-0.5")])
+    # fin-fsi fin: a fin too soft for the coupled run (the fit's soft corner) is refused before any step.
+    soft = ('{"membrane": {"E": 1e5, "nu": 0.4, "density": 1050}, '
+            '"rays": {"E": 1e7, "nu": 0.4, "density": 1100}}')
+
+    def soft_fin(w, fmt):
+        written("soft.json", soft)(w, fmt)
+        written("drive.json", DRIVE)(w, fmt)
+    c.append(case("fin-fsi", f"fin --mesh {MESH} --materials {{w}}/soft.json --root-drive {{w}}/drive.json "
+                  "--min-frequency-ratio 4 --out {w}/fsi.h5", "{w}/soft.json: the fin's first natural frequency",
+                  ["{w}/fsi.h5"], make=soft_fin, label="fin-fsi fin: materials too soft for the coupled run"))
     c += flag_cases("fin-calibrate", "simulate --cameras {w}/cameras.yml --out-dir {w}/cal", "{w}/cal", [
         ("--poses", "-1"), ("--supersample", "0"), ("--noise-sigma", "-1"), ("--marker-fraction", "1.5"),
         ("--board-fraction", "-0.45")])

@@ -170,6 +170,7 @@ struct FinCommand {
     fs::FinFsiInputs in;
     in.mesh = finverse::stage::read<finverse::stage::Mesh>(mesh);
     in.mesh_name = mesh;
+    in.materials_name = materials;
     std::vector<std::filesystem::path> inputs{mesh, materials};
     nlohmann::json materials_config = {{"materials", materials}};
     if (std::filesystem::path(materials).extension() == ".h5") {

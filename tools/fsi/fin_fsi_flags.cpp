@@ -61,6 +61,12 @@ void add_fin_fsi_flags(CLI::App& command, FinFsiOptions& o) {
                   "nested (0: the failure ends the run)")
       ->capture_default_str()
       ->check(CLI::Range(0, 10));
+  command
+      .add_option("--min-frequency-ratio", o.min_frequency_ratio,
+                  "refuse materials whose fin's first natural frequency in water is below this many times the "
+                  "flapping frequency, before any step (0: run whatever the materials)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   command.add_flag("--cold-repeats", o.cold_repeats,
                    "every coupling iteration's flow solves start from the step's start, not the last iteration's");
   command.add_option(

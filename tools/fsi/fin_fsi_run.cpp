@@ -22,6 +22,7 @@
 #include "fem/root_drive.hpp"
 #include "fsi/acceleration_factory.hpp"
 #include "fsi/coupled_run.hpp"
+#include "fsi/fin_frequency_check.hpp"
 #include "fsi/fsi_paraview.hpp"
 #include "fsi/implicit_coupling.hpp"
 #include "fsi/surface_flow_structure_step.hpp"
@@ -547,6 +548,9 @@ nlohmann::json FinFsiResult::summary() const {
           {"dt_s", dt},
           {"T_s", period},
           {"frequency_hz", frequency},
+          {"first_frequency_vacuum_hz", first_frequency_vacuum},
+          {"first_frequency_wet_hz", first_frequency_wet},
+          {"first_frequency_ratio", first_frequency_ratio},
           {"U_m_s", U},
           {"chord_m", chord},
           {"grid", grid},
@@ -554,11 +558,35 @@ nlohmann::json FinFsiResult::summary() const {
           {"config", config}};
 }
 
+// The fin's first natural frequency in water against the flapping frequency: materials the coupled
+// run cannot carry are refused here, in one line, before any step (issue 50; the threshold's
+// measurements: docs/studies/default_case.md, "The soft corner").
+void check_frequency(const FinFsiInputs& in, const FinFsiOptions& o, FinSetup& s) {
+  if (!(o.min_frequency_ratio >= 0)) throw Error("--min-frequency-ratio: expected >= 0");
+  // A motion without a period (attribute T) has no flapping frequency: its frames' span stands in
+  // for T elsewhere, but a ratio to it would mean nothing.
+  const bool flapping = in.drive.has_value() || s.periodic;
+  if (!flapping && o.min_frequency_ratio > 0)
+    throw Error("--min-frequency-ratio: " + in.motion_name + " is not periodic (no attribute T), so it has no flapping "
+                "frequency to compare with; give 0");
+  const FinFrequencies f = fin_frequencies(s.model, s.area, s.c, o.flow.rho, 1 / s.T);
+  FinFsiResult& res = s.result;
+  res.first_frequency_vacuum = f.vacuum_hz;
+  res.first_frequency_wet = f.wet_hz;
+  res.first_frequency_ratio = flapping ? f.ratio : 0;
+  if (f.ratio < o.min_frequency_ratio)
+    throw Error(in.materials_name + ": the fin's first natural frequency in water, about " + num(f.wet_hz) +
+                " Hz (" + num(f.vacuum_hz) + " Hz in vacuo), is " + num(f.ratio) + " times the flapping frequency " +
+                num(1 / s.T) + " Hz; the coupled run fails below " + num(o.min_frequency_ratio) +
+                " (docs/studies/default_case.md, \"The soft corner\"); --min-frequency-ratio 0 runs it anyway");
+}
+
 FinFsiResult run_fin_fsi(const FinFsiInputs& in, const FinFsiOptions& o) {
   const auto wall0 = std::chrono::steady_clock::now();
   FinSetup s;
   read_mesh_and_scales(in, o, s);
   drive_structure(in, o, s);
+  check_frequency(in, o, s);
   grid_time_and_config(in, o, s);
   const cfd::io::FinFlowOptions& fo = o.flow;
   const Eigen::Index nv = s.X0.cols();

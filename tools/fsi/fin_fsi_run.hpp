@@ -73,6 +73,9 @@ struct FinFsiOptions {
   int structure_halvings = 3;
   // Every coupling iteration's flow solves start from the step's start (CoupledRunOptions).
   bool cold_repeats = false;
+  // Refuse, before any step, materials whose fin's first natural frequency in water is below this
+  // many times the flapping frequency (fin_frequency_check.hpp); 0: run whatever the materials.
+  double min_frequency_ratio = 0;
   // Rayleigh damping C = a_M M + a_K K of the structure; < 0: the materials file's.
   double rayleigh_mass = -1, rayleigh_stiffness = -1;
   // Checkpoints (coupled_run.hpp): to `checkpoint` every checkpoint_every steps (0: only after the
@@ -91,6 +94,7 @@ struct FinFsiInputs {
   stage::Mesh mesh;
   std::string mesh_name = "mesh.h5";
   fem::io::MaterialSpec materials;
+  std::string materials_name = "materials";  // in error messages
   // The structure, root clamped (empty: fem::io::build_fin_model(mesh, materials)); e.g. fin-fit's
   // model factory with a materials.h5's best values. The root drive replaces the clamp.
   std::function<fem::Model()> build_model;
@@ -114,6 +118,9 @@ struct FinFsiResult {
   double te_peak_to_peak_mean = 0, te_peak_to_peak_min = 0, te_peak_to_peak_max = 0;  // rays' tips, / c
   double transfer_mismatch = 0;
   double wall_seconds = 0, h = 0, dt = 0, period = 0, chord = 0, U = 0, frequency = 0;
+  // The structure's first natural frequency in vacuo and in water (fin_frequency_check.hpp) and
+  // the latter over the flapping frequency (0 for a motion without a period).
+  double first_frequency_vacuum = 0, first_frequency_wet = 0, first_frequency_ratio = 0;
   long cells = 0;
   std::array<long, 3> grid{};
   nlohmann::json config;  // the effective parameters (stored in fsi.h5 and the summary)

@@ -10,12 +10,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <filesystem>
 #include <string>
 
 #include "../scratch_dir.hpp"
 #include "core/error.hpp"
 #include "fem/io/root_drive_file.hpp"
+#include "fem/io/fin_model.hpp"
+#include "fsi/fin_frequency_check.hpp"
 #include "fsi/fin_fsi_run.hpp"
 
 namespace finverse::fsi {
@@ -241,6 +244,47 @@ TEST(FinFsi, RefusesNoDriveOrTwoDrives) {
   FinFsiInputs both = inputs();
   both.motion = stage::Motion{};
   EXPECT_THROW(run_fin_fsi(both, options()), Error);
+}
+
+// The first natural frequency (fin_frequency_check.hpp): at rest and linear, so it grows as the
+// square root of the moduli; in water it is the in-vacuo one over sqrt(1 + rho pi c / (4 m_s)).
+TEST(FinFsi, FirstFrequencyScalesWithTheModuliAndTheAddedMass) {
+  const FinFsiInputs in = inputs();
+  fem::Model soft = fem::io::build_fin_model(in.mesh, in.materials, "small fin").model;
+  fem::io::MaterialSpec stiffer = in.materials;
+  stiffer.membrane.youngs_modulus *= 4;
+  stiffer.rays.youngs_modulus *= 4;
+  fem::Model stiff = fem::io::build_fin_model(in.mesh, stiffer, "small fin").model;
+  const double area = kC * kC, flap = 20;
+  const FinFrequencies a = fin_frequencies(soft, area, kC, 1000, flap);
+  const FinFrequencies b = fin_frequencies(stiff, area, kC, 1000, flap);
+  EXPECT_NEAR(b.vacuum_hz / a.vacuum_hz, 2.0, 1e-6);
+  EXPECT_NEAR(a.mass_per_area, soft.total_mass() / area, 1e-12);
+  EXPECT_NEAR(a.wet_hz, a.vacuum_hz / std::sqrt(1 + 1000 * std::numbers::pi * kC / 4 / a.mass_per_area), 1e-9);
+  EXPECT_NEAR(a.ratio, a.wet_hz / flap, 1e-12);
+  EXPECT_THROW(fin_frequencies(soft, 0, kC, 1000, flap), Error);
+}
+
+// Materials whose fin's first wet frequency is below --min-frequency-ratio times the flapping
+// frequency are refused before any step, in one line naming the materials and the ratio.
+TEST(FinFsi, RefusesAFinTooSoftForTheCoupledRun) {
+  FinFsiInputs in = inputs();
+  in.materials_name = "soft.json";
+  FinFsiOptions o = options();
+  o.min_frequency_ratio = 1e6;
+  try {
+    run_fin_fsi(in, o);
+    FAIL() << "expected the soft fin to be refused";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("soft.json: the fin's first natural frequency in water"), std::string::npos) << what;
+    EXPECT_NE(what.find("--min-frequency-ratio"), std::string::npos) << what;
+  }
+  o.min_frequency_ratio = 0.5;  // this fin is far above it: the run goes on and records the frequencies
+  const FinFsiResult r = run_fin_fsi(in, o);
+  EXPECT_GT(r.first_frequency_ratio, 0.5);
+  EXPECT_GT(r.first_frequency_vacuum, r.first_frequency_wet);
+  EXPECT_EQ(r.summary()["first_frequency_ratio"], r.first_frequency_ratio);
 }
 
 // The fin's run is the coupled run every case uses (coupled_run.hpp): a restart from the
