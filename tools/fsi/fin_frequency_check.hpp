@@ -14,10 +14,10 @@
 namespace finverse::fsi {
 
 struct FinFrequencies {
-  double vacuum_hz = 0;  // first natural frequency, root held, in vacuo
-  double wet_hz = 0;     // with the plate's added mass
+  double vacuum_hz = 0;      // first natural frequency, root held, in vacuo
+  double wet_hz = 0;         // with the plate's added mass
   double mass_per_area = 0;  // structure [kg/m^2]
-  double ratio = 0;      // wet_hz / flapping frequency
+  double ratio = 0;          // wet_hz / flapping frequency
 };
 
 // model: the driven structure (its prescribed root DOFs held); area: the fin's planform [m^2];
