@@ -60,7 +60,6 @@ def _grid_loads_flags(wildcards):
     return f"--reynolds {config['fin']['reynolds']} --checkpoint-every 100 {_GRID_LOADS_FINE}"
 
 
-
 _GRID_FSI_FLAGS = _twice_as_fine(config["fsi"]["flags"], 16, thickness_flag=True)
 _GRID_FSI = f"{_TROUT}/fsi.h5" if f"{_TROUT}/fsi.h5" in STAGE_OUTPUTS else None
 
@@ -164,6 +163,7 @@ _AGREE = "results/validation/stage_agreement"
 if _TRUTH_FSI:
     register_validation("stage_agreement", "fin-cfd fin on the truth's own motion against the truth's FSI force: "
                         "mean C_T and C_L amplitude within 5 %")
+
 
 rule stage_agreement_motion:
     input:
