@@ -569,7 +569,14 @@ void check_frequency(const FinFsiInputs& in, const FinFsiOptions& o, FinSetup& s
   if (!flapping && o.min_frequency_ratio > 0)
     throw Error("--min-frequency-ratio: " + in.motion_name + " is not periodic (no attribute T), so it has no flapping "
                 "frequency to compare with; give 0");
-  const FinFrequencies f = fin_frequencies(s.model, s.area, s.c, o.flow.rho, 1 / s.T);
+  FinFrequencies f;
+  try {
+    f = fin_frequencies(s.model, s.area, s.c, o.flow.rho, 1 / s.T);
+  } catch (const std::exception& e) {
+    // Without a refusal asked for, the frequencies only inform: the run goes on without them.
+    if (o.min_frequency_ratio > 0) throw Error(in.materials_name + ": the fin's first natural frequency: " + e.what());
+    return;
+  }
   FinFsiResult& res = s.result;
   res.first_frequency_vacuum = f.vacuum_hz;
   res.first_frequency_wet = f.wet_hz;
