@@ -7,6 +7,8 @@
 #
 # And the table of every validation summary in the run (tools/scripts/summary.py prints it).
 
+import shlex
+
 _REPORT_OUT = f"results/{config['case']}"
 
 
@@ -38,12 +40,14 @@ rule report:
     params:
         out=f"{_REPORT_OUT}/report",
         fsi=lambda wildcards, input: f"--fsi {input.fsi}" if "fsi" in input.keys() else "",
+        # What the case's scores can test (config report.scope), quoted for the shell.
+        scope=(lambda s: f"--scope {shlex.quote(s)}" if s else "")(config.get("report", {}).get("scope", "")),
     shell:
         stage_shell(
             "report",
             "{input.exe} --case {config[case]} --truth {input.truth} --kinematics {input.kinematics}"
             " --mesh {input.mesh} --motion {input.motion} --loads {input.loads} --materials {input.materials}"
-            " --truth-materials {input.truth_materials} {params.fsi} --out-dir {params.out} 2> {log}"
+            " --truth-materials {input.truth_materials} {params.fsi} {params.scope} --out-dir {params.out} 2> {log}"
             " && /usr/bin/python3 {input.script} {params.out} 2>> {log}",
         )
 

@@ -80,6 +80,10 @@ for f in index.html summary.json fig10_pressure_jump.png fig11_moduli.png fig12_
 done
 python3 -c 'import json, sys; s = json.load(open(sys.argv[1])); assert s["schema"] == "finverse/report" and s["scores"]' \
   "$work/results/tiny/report/summary.json" || { echo "results/tiny/report/summary.json is not a finverse report"; exit 1; }
+# The tiny report says, above its scores, that they test the grading and not the method (issue 50).
+python3 -c 'import json, sys; assert "not the method" in json.load(open(sys.argv[1])).get("scope", "")' \
+  "$work/results/tiny/report/summary.json" || { echo "results/tiny/report/summary.json does not say what its scores test"; exit 1; }
+grep -q "Scope:" "$work/results/tiny/report/index.html" || { echo "results/tiny/report/index.html shows no scope"; exit 1; }
 # Stages that disagree (issue 33 "Bad input"): a mesh of another fin, a motion of another run; the
 # first reader of both files refuses them with one line naming both, exit 2.
 t=$work/results/tiny

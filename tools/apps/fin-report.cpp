@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
                  "materials file (fin-fem format) of the truth, used when truth.h5 records none")
       ->check(CLI::ExistingFile);
   app.add_option("--chord", in.chord, "chord [m] (default: mesh.h5's chord attribute)");
+  app.add_option("--scope", in.scope,
+                 "what this case's scores can test, shown above them (e.g. a coarse case: the grading, not the method)");
   app.add_option("--out-dir", out_dir, "directory of summary.json and figures.json")->required();
 
   return cli::run(app, standard, argc, argv, [&]() -> int {

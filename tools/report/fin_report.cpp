@@ -275,6 +275,7 @@ nlohmann::json summary_json(const ReportInputs& in, const Report& r) {
             {"motion", in.motion.has_value()}, {"loads", in.loads.has_value()}, {"materials", in.materials.has_value()},
             {"fsi", in.fsi.has_value()}, {"truth_materials", in.truth_materials_source}}}};
   if (in.loop) j["inputs"]["loop"] = true;
+  if (!in.scope.empty()) j["scope"] = in.scope;
   return j;
 }
 

@@ -33,6 +33,7 @@ struct ReportInputs {
   std::map<std::string, double> truth_materials;  // parameter name -> value (empty: none)
   std::string truth_materials_source;             // where they come from, for the notes
   double chord = 0;                               // [m]; 0: mesh.h5's chord attribute
+  std::string scope;  // what this case's scores can test (the tiny case: the grading, not the method)
 };
 
 struct Report {
@@ -45,7 +46,8 @@ struct Report {
 Report build_report(const ReportInputs& in);
 
 // summary.json: {"schema": "finverse/report", "case", "scores": [...], "counts": {met, missed,
-// not available}, "inputs": {stage: present}} ("loop" among the inputs only when given).
+// not available}, "inputs": {stage: present}} ("loop" among the inputs only when given), and
+// "scope" when ReportInputs::scope is set.
 nlohmann::json summary_json(const ReportInputs& in, const Report& r);
 
 }  // namespace finverse::report

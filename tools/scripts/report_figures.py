@@ -379,6 +379,8 @@ def page(summary, figures, out, extra=""):
             f"<td>{fmt(s['value'])} {html.escape(s.get('units', ''))}</td><td>{fmt(s['goal'])}</td>"
             f"<td><b>{html.escape(s['status'])}</b></td><td>{html.escape(s.get('note', ''))}</td></tr>")
     counts = ", ".join(f"{v} {k}" for k, v in summary["counts"].items())
+    # What the case's scores can test (a coarse case: the grading, not the method), above them.
+    scope = f"<p><b>Scope:</b> {html.escape(summary['scope'])}</p>" if summary.get("scope") else ""
     inputs = ", ".join(f"{k}: {'yes' if v is True else ('no' if v is False else html.escape(str(v)))}"
                        for k, v in summary["inputs"].items())
     figs = []
@@ -393,7 +395,7 @@ def page(summary, figures, out, extra=""):
             figs.append(f"<h3>{html.escape(title)}</h3><p><i>not available: its input file is absent</i></p>")
     return ("<!DOCTYPE html><html><head><meta charset='utf-8'><title>finverse report: "
             f"{html.escape(summary['case'])}</title></head><body style='font-family:sans-serif'>"
-            f"<h1>finverse report: {html.escape(summary['case'])}</h1><p>Scores: {counts}.</p>"
+            f"<h1>finverse report: {html.escape(summary['case'])}</h1>{scope}<p>Scores: {counts}.</p>"
             f"<p>Inputs: {inputs}</p><table border='1' cellpadding='4' style='border-collapse:collapse'>"
             "<tr><th>score</th><th>value</th><th>goal (≤)</th><th>status</th><th>note</th></tr>"
             + "".join(rows) + "</table>" + "".join(figs) + extra + "</body></html>\n")

@@ -68,6 +68,9 @@ TEST(FinReport, WithoutFsiTheFsiScoresAreNotAvailableAndSaySo) {
   EXPECT_EQ(j["schema"], "finverse/report");
   EXPECT_EQ(j["counts"]["met"], 0);
   EXPECT_FALSE(j["inputs"]["fsi"].get<bool>());
+  EXPECT_FALSE(j.contains("scope"));  // said only when the case gives one
+  in.scope = "the grading, not the method";
+  EXPECT_EQ(summary_json(in, r)["scope"], "the grading, not the method");
 }
 
 TEST(FinReport, AnFsiAtNinetyPercentAmplitudeMissesTheTrailingEdgeGoal) {
