@@ -5,7 +5,7 @@
 //   fin-report --case tiny --truth truth.h5 --kinematics kinematics.h5 --mesh mesh.h5
 //              --motion motion.h5 --loads loads.h5 --materials materials.h5
 //              --truth-materials data/cases/trout_fin_materials.json [--fsi fsi.h5] [--loop loop.h5]
-//              --out-dir report
+//              [--scope "what the scores can test"] --out-dir report
 // --loop (fin-loop trace's loop.h5, with --mesh) adds the "Closing the loop" section.
 // Every input is optional: a section whose file is not given is marked "not available" with the
 // missing file named. A given file that does not exist or breaks its contract, or files that
