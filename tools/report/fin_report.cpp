@@ -77,19 +77,15 @@ void force_figure(const std::string& label, const NdArray<double>& time, const s
   fig.push_back({{"label", label}, {"time", vec(time)}, {"C_T", vec(f.thrust)}, {"C_L", vec(f.lateral)}});
 }
 
-}  // namespace
+// Each motion's measures, where the motion is present.
+struct MotionMeasures {
+  std::optional<Measures> truth, kinematics, motion, fsi;
+};
 
-Report build_report(const ReportInputs& in) {
-  Report r;
+// Fig. 11 and scores 1-2: fitted moduli against the truth.
+void modulus_section(const ReportInputs& in, Report& r) {
   auto& scores = r.scores;
   json& fig = r.figures;
-  fig = json::object();
-  double chord = in.chord;
-  if (!(chord > 0) && in.mesh && in.mesh->chord) chord = *in.mesh->chord;
-  if (!(chord > 0)) throw Error("report: no chord (give --chord or a mesh.h5 with its chord attribute)");
-  fig["chord"] = chord;
-
-  // Fig. 11 and scores 1-2: fitted moduli against the truth.
   if (in.materials && !in.truth_materials.empty()) {
     const auto rows = modulus_rows(*in.materials, in.truth_materials);
     for (auto& s : modulus_scores(rows, "truth: " + in.truth_materials_source)) scores.push_back(s);
@@ -114,8 +110,10 @@ Report build_report(const ReportInputs& in) {
       scores.push_back(unavailable(n, std::string(n).find("median") != std::string::npos ? 0.05 : 0.15, kIssue, why));
     scores.push_back(unavailable("membrane E vs truth, relative error", 0.10, kIssue, why));
   }
+}
 
-  // Fig. 10: the pressure jump at a quarter and three quarters of the record.
+// Fig. 10: the pressure jump at a quarter and three quarters of the record.
+void pressure_jump_figure(const ReportInputs& in, json& fig) {
   if (in.loads && in.mesh && in.loads->pressure_jump.rank() == 2 &&
       in.loads->pressure_jump.dim(1) == in.mesh->triangles.dim(0)) {
     const auto& pj = in.loads->pressure_jump;
@@ -129,8 +127,10 @@ Report build_report(const ReportInputs& in) {
     fig["pressure_jump"] = {{"points", vec(in.mesh->points)}, {"triangles", in.mesh->triangles.data},
                             {"instants", instants}};
   }
+}
 
-  // Fig. 12: root pitch per ray, reconstruction (and truth on the same template).
+// Fig. 12: root pitch per ray, reconstruction (and truth on the same template).
+void root_pitch_figure(const ReportInputs& in, json& fig) {
   if (in.kinematics && in.kinematics->ray_offsets.size() > 1) {
     const auto& k = *in.kinematics;
     json rp{{"time", vec(k.time)}, {"reconstruction", root_pitch_deg(k.points, k.ray_offsets, k.ray_vertices)}};
@@ -147,34 +147,43 @@ Report build_report(const ReportInputs& in) {
     }
     fig["root_pitch"] = rp;
   }
+}
 
-  // Figs. 14 and 15: trailing-edge points and profiles of every motion present.
+// Figs. 14 and 15: trailing-edge points and profiles of every motion present.
+MotionMeasures measure_motions(const ReportInputs& in, double chord, json& fig) {
   fig["trailing_edge"] = json::array();
   fig["profiles"] = json::array();
-  std::optional<Measures> truth_m, kin_m, motion_m, fsi_m;
-  if (in.truth) truth_m = measure({"truth", &in.truth->template_points, &in.truth->points, &in.truth->time}, chord,
-                                  fig["trailing_edge"], fig["profiles"]);
+  MotionMeasures m;
+  if (in.truth)
+    m.truth = measure({"truth", &in.truth->template_points, &in.truth->points, &in.truth->time}, chord,
+                      fig["trailing_edge"], fig["profiles"]);
   if (in.kinematics)
-    kin_m = measure({"reconstruction (kinematics.h5)", &in.kinematics->template_points, &in.kinematics->points,
-                     &in.kinematics->time}, chord, fig["trailing_edge"], fig["profiles"]);
+    m.kinematics = measure({"reconstruction (kinematics.h5)", &in.kinematics->template_points,
+                            &in.kinematics->points, &in.kinematics->time},
+                           chord, fig["trailing_edge"], fig["profiles"]);
   if (in.motion && in.mesh) {
     if (in.motion->points.dim(1) != in.mesh->points.dim(0))
       throw Error("report: motion.h5 has " + std::to_string(in.motion->points.dim(1)) + " nodes, mesh.h5 " +
                   std::to_string(in.mesh->points.dim(0)));
-    motion_m = measure({"reconstruction (motion.h5)", &in.mesh->points, &in.motion->points, &in.motion->time}, chord,
+    m.motion = measure({"reconstruction (motion.h5)", &in.mesh->points, &in.motion->points, &in.motion->time}, chord,
                        fig["trailing_edge"], fig["profiles"]);
   }
   if (in.fsi && in.mesh) {
     if (in.fsi->points.dim(1) != in.mesh->points.dim(0))
       throw Error("report: fsi.h5 has " + std::to_string(in.fsi->points.dim(1)) + " nodes, mesh.h5 " +
                   std::to_string(in.mesh->points.dim(0)));
-    fsi_m = measure({"FSI (fsi.h5)", &in.mesh->points, &in.fsi->points, &in.fsi->time}, chord, fig["trailing_edge"],
+    m.fsi = measure({"FSI (fsi.h5)", &in.mesh->points, &in.fsi->points, &in.fsi->time}, chord, fig["trailing_edge"],
                     fig["profiles"]);
   }
+  return m;
+}
+
+// The trailing-edge and W-shape scores, FSI against the reconstruction.
+void shape_scores(const ReportInputs& in, const MotionMeasures& m, std::vector<Score>& scores) {
   for (std::size_t p = 0; p < 3; ++p) {
     const std::string n = "trailing-edge point " + std::to_string(p + 1) + " peak-to-peak, FSI vs reconstruction";
-    if (fsi_m && motion_m)
-      scores.push_back(graded(n, relative_difference(fsi_m->peak_to_peak[p], motion_m->peak_to_peak[p]), 0.03, kIssue,
+    if (m.fsi && m.motion)
+      scores.push_back(graded(n, relative_difference(m.fsi->peak_to_peak[p], m.motion->peak_to_peak[p]), 0.03, kIssue,
                               "relative difference; paper: 8 %, 5.6 %, 10 %"));
     else
       scores.push_back(unavailable(n, 0.03, kIssue, in.motion ? kNeedsFsi : "needs motion.h5 and fsi.h5"));
@@ -183,14 +192,18 @@ Report build_report(const ReportInputs& in) {
       {{"alpha1", &WShape::alpha1_deg}, {"alpha2", &WShape::alpha2_deg}, {"d1", &WShape::d1}, {"d2", &WShape::d2}}};
   for (const auto& [name, member] : w_names) {
     const std::string n = std::string("W-shape ") + name + ", FSI vs reconstruction";
-    if (fsi_m && motion_m)
-      scores.push_back(graded(n, relative_difference(fsi_m->w.*member, motion_m->w.*member), 0.10, kIssue,
+    if (m.fsi && m.motion)
+      scores.push_back(graded(n, relative_difference(m.fsi->w.*member, m.motion->w.*member), 0.10, kIssue,
                               "relative difference at mid-stroke"));
     else
       scores.push_back(unavailable(n, 0.10, kIssue, kNeedsFsi));
   }
+}
 
-  // Fig. 16 and the thrust scores.
+// Fig. 16 and the thrust scores; returns the loads' statistics for the reading numbers.
+std::optional<ForceStatistics> force_section(const ReportInputs& in, Report& r) {
+  auto& scores = r.scores;
+  json& fig = r.figures;
   fig["forces"] = json::array();
   std::optional<ForceStatistics> loads_ct, fsi_ct;
   if (in.loads && !in.loads->thrust.data.empty()) {
@@ -211,7 +224,11 @@ Report build_report(const ReportInputs& in) {
     scores.push_back(unavailable("mean C_T, FSI vs reconstruction", 0.10, kIssue, why));
     scores.push_back(unavailable("C_T peak, FSI vs reconstruction", 0.05, kIssue, why));
   }
-  // Motions against each other on the mesh's nodes: the truth carried onto them (motion_distance).
+  return loads_ct;
+}
+
+// Motions against each other on the mesh's nodes: the truth carried onto them (motion_distance).
+void distance_scores(const ReportInputs& in, double chord, std::vector<Score>& scores) {
   std::optional<NdArray<double>> truth_nodes;
   if (in.truth && in.mesh) truth_nodes = truth_on_mesh(*in.truth, *in.mesh);
   if (truth_nodes && in.motion)
@@ -229,36 +246,61 @@ Report build_report(const ReportInputs& in) {
                             0.01, kIssue, "in chords; truth carried onto the mesh's nodes", "c"));
   else
     scores.push_back(unavailable(fsi_truth, 0.01, kIssue, in.fsi ? "needs truth.h5 and mesh.h5" : kNeedsFsi));
+}
 
-  // Closing the loop (issue 34): the tracer's residual maps, decision trail and errors.
+// Closing the loop (issue 34): the tracer's residual maps, decision trail and errors.
+void closing_the_loop(const ReportInputs& in, Report& r) {
   if (in.loop) {
     const std::string source = in.loop_source.empty() ? "loop.h5" : in.loop_source;
     if (!in.mesh) throw Error(source + ": the loop section needs mesh.h5 (--mesh) for its residual maps");
     auto section = loop_section(*in.loop, *in.mesh, source);
-    scores.insert(scores.end(), section.scores.begin(), section.scores.end());
-    fig["loop"] = std::move(section.figure);
+    r.scores.insert(r.scores.end(), section.scores.begin(), section.scores.end());
+    r.figures["loop"] = std::move(section.figure);
   }
+}
 
-  // The reconstruction's own numbers (and the truth's), for reading the graded ones.
+// The reconstruction's own numbers (and the truth's), for reading the graded ones.
+void reading_scores(const std::optional<ForceStatistics>& loads_ct, const MotionMeasures& m,
+                    std::vector<Score>& scores) {
   if (loads_ct) {
     scores.push_back(info("mean C_T, reconstruction (loads.h5)", loads_ct->mean, "", "paper: 0.042"));
     scores.push_back(info("C_T peak, reconstruction (loads.h5)", loads_ct->peak));
   }
-  if (kin_m && truth_m)
+  if (m.kinematics && m.truth)
     for (std::size_t p = 0; p < 3; ++p)
       scores.push_back(info("trailing-edge point " + std::to_string(p + 1) +
                                 " peak-to-peak, reconstruction vs truth (relative difference)",
-                            relative_difference(kin_m->peak_to_peak[p], truth_m->peak_to_peak[p])));
-  for (const auto& [label, m] : {std::pair{"reconstruction (motion.h5)", motion_m}, std::pair{"truth", truth_m}})
-    if (m) {
+                            relative_difference(m.kinematics->peak_to_peak[p], m.truth->peak_to_peak[p])));
+  for (const auto& [label, one] : {std::pair{"reconstruction (motion.h5)", m.motion}, std::pair{"truth", m.truth}})
+    if (one) {
       for (std::size_t p = 0; p < 3; ++p)
         scores.push_back(info("trailing-edge point " + std::to_string(p + 1) + " peak-to-peak, " + label,
-                              m->peak_to_peak[p], "c", p == 0 ? "paper: 1.10c, 0.90c, 1.07c (reconstruction)" : ""));
-      scores.push_back(info(std::string("W-shape alpha1, ") + label, m->w.alpha1_deg, "deg", "paper: 41 deg"));
-      scores.push_back(info(std::string("W-shape alpha2, ") + label, m->w.alpha2_deg, "deg", "paper: 32 deg"));
-      scores.push_back(info(std::string("W-shape d1, ") + label, m->w.d1, "c", "paper: 0.086c"));
-      scores.push_back(info(std::string("W-shape d2, ") + label, m->w.d2, "c", "paper: 0.165c"));
+                              one->peak_to_peak[p], "c", p == 0 ? "paper: 1.10c, 0.90c, 1.07c (reconstruction)" : ""));
+      scores.push_back(info(std::string("W-shape alpha1, ") + label, one->w.alpha1_deg, "deg", "paper: 41 deg"));
+      scores.push_back(info(std::string("W-shape alpha2, ") + label, one->w.alpha2_deg, "deg", "paper: 32 deg"));
+      scores.push_back(info(std::string("W-shape d1, ") + label, one->w.d1, "c", "paper: 0.086c"));
+      scores.push_back(info(std::string("W-shape d2, ") + label, one->w.d2, "c", "paper: 0.165c"));
     }
+}
+
+}  // namespace
+
+Report build_report(const ReportInputs& in) {
+  Report r;
+  r.figures = json::object();
+  double chord = in.chord;
+  if (!(chord > 0) && in.mesh && in.mesh->chord) chord = *in.mesh->chord;
+  if (!(chord > 0)) throw Error("report: no chord (give --chord or a mesh.h5 with its chord attribute)");
+  r.figures["chord"] = chord;
+  modulus_section(in, r);
+  pressure_jump_figure(in, r.figures);
+  root_pitch_figure(in, r.figures);
+  const MotionMeasures m = measure_motions(in, chord, r.figures);
+  shape_scores(in, m, r.scores);
+  const auto loads_ct = force_section(in, r);
+  distance_scores(in, chord, r.scores);
+  closing_the_loop(in, r);
+  reading_scores(loads_ct, m, r.scores);
   return r;
 }
 
